@@ -1,0 +1,68 @@
+/* pxcd: proxima's CGAL component behind a C ABI.
+ *
+ * This is the only place where CGAL is used (C++17, convexdecomp/). Nothing
+ * outside convexdecomp/ knows CGAL exists. Two services:
+ *   1. pxcd_hull_*: the convex hull of a point set (CGAL convex_hull_3 with
+ *      the Exact_predicates_inexact_constructions kernel), returned as
+ *      polygonal faces: hull triangles that are *exactly* coplanar (exact
+ *      predicate) are merged into one convex polygon.
+ *   2. pxcd_exact_distance: exact Euclidean distance between the convex hulls
+ *      of two point sets (CGAL Polytope_distance_d with Homogeneous<Gmpzf>),
+ *      used as ground truth by tests and benchmarks.
+ * No function throws or aborts: CGAL exceptions are caught and reported.
+ */
+#ifndef PROXIMA_PXCD_H
+#define PROXIMA_PXCD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum pxcd_status {
+    PXCD_OK = 0,
+    PXCD_DEGENERATE = 1, /* fewer than 4 affinely independent points */
+    PXCD_ERROR = 2       /* CGAL threw, or out of memory: see msg */
+} pxcd_status;
+
+/* The hull, as polygons. Vertex ids index `vertices`; each face is a convex
+ * polygon listed counter-clockwise seen from outside (outward orientation).
+ * Only extreme points are vertices (no point in the middle of an edge or
+ * face). Memory is owned by the pxcd_hull; free it with pxcd_hull_free. */
+typedef struct pxcd_hull {
+    size_t vertex_count;
+    double *vertices;          /* 3 * vertex_count, copied from the input */
+    size_t face_count;
+    size_t *face_offsets;      /* face_count + 1; face f = face_indices[offsets[f] .. offsets[f+1]) */
+    uint32_t *face_indices;    /* vertex ids, CCW from outside */
+} pxcd_hull;
+
+/* Computes the hull of `count` points (xyz: 3*count doubles, all finite:
+ * the caller checks). On PXCD_OK *out is a new hull. On PXCD_DEGENERATE,
+ * *dimension is set to the affine dimension of the input (0 = one distinct
+ * point, 1 = collinear, 2 = coplanar) and *out is NULL. On PXCD_ERROR a
+ * sentence goes to msg (msg_len bytes, may be 0). */
+pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out,
+                              int *dimension, char *msg, size_t msg_len);
+
+void pxcd_hull_free(pxcd_hull *hull);
+
+/* Exact distance between conv(P) and conv(Q), P = p_xyz (np points),
+ * Q = q_xyz (nq points), all in one common frame, all finite. Computed with
+ * CGAL::Polytope_distance_d over Homogeneous<Gmpzf> (exact); the squared
+ * distance is converted to double once (correctly rounded quotient) and
+ * square-rooted in double. *is_zero is 1 when the exact distance is 0
+ * (touching or intersecting). Optionally (realizing_p / realizing_q non-NULL,
+ * 3 doubles each) returns the realizing points rounded to double. */
+pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_xyz,
+                                size_t nq, double *distance, double *squared_distance,
+                                int *is_zero, double *realizing_p, double *realizing_q,
+                                char *msg, size_t msg_len);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PROXIMA_PXCD_H */

@@ -1,0 +1,230 @@
+/// proxima: exact, fast proximity queries between rigid convex polytopes.
+///
+/// Umbrella header: the whole public API. C11, no global state except the
+/// allocator hook. Geometry objects (`px_convex`) are immutable after
+/// creation and may be shared between threads; everything a query changes
+/// lives in small caller-owned caches.
+///
+/// Frames: every `px_convex` is described in its own local ("body") frame. A
+/// `px_pose` maps body coordinates to world coordinates:
+/// `p_world = R * p_body + t`. Query results are in the world frame unless a
+/// name says otherwise.
+#ifndef PROXIMA_PROXIMA_H
+#define PROXIMA_PROXIMA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PX_VERSION_MAJOR 0
+#define PX_VERSION_MINOR 1
+#define PX_VERSION_PATCH 0
+
+/* ------------------------------------------------------------------------- */
+/* Status and errors                                                         */
+/* ------------------------------------------------------------------------- */
+
+/// Every fallible function returns one of these (or NULL plus a `px_error`).
+typedef enum px_status {
+    PX_OK = 0,
+    PX_ERR_INVALID_ARGUMENT = 1, ///< NULL where not allowed, a count out of range
+    PX_ERR_NON_FINITE = 2,       ///< NaN or Inf in coordinates, poses or options
+    PX_ERR_DEGENERATE = 3,       ///< geometry with no 3-D hull (flat, collinear, one point)
+    PX_ERR_INVALID_POSE = 4,     ///< rotation is not orthonormal with det +1 (within 1e-6)
+    PX_ERR_OUT_OF_MEMORY = 5,    ///< the allocator returned NULL
+    PX_ERR_IO = 6,               ///< a file could not be read or is malformed
+    PX_ERR_INTERNAL = 7          ///< an invariant failed: a bug, please report it
+} px_status;
+
+/// Filled by functions that can fail. `message` is one human sentence that
+/// names the input (file, argument) and what was wrong with it.
+typedef struct px_error {
+    px_status code;
+    char message[256];
+} px_error;
+
+/// Short constant name of a status ("PX_ERR_DEGENERATE"); never NULL.
+const char *px_status_string(px_status status);
+
+/* ------------------------------------------------------------------------- */
+/* Memory                                                                    */
+/* ------------------------------------------------------------------------- */
+
+/// One allocation hook pair for all memory proxima objects own. `alloc`
+/// returns NULL on failure; `free` receives the size that was requested.
+/// Queries never allocate.
+typedef struct px_allocator {
+    void *(*alloc)(void *user, size_t size);
+    void (*free)(void *user, void *ptr, size_t size);
+    void *user;
+} px_allocator;
+
+/// Installs `allocator` (copied) for all later allocations; NULL restores
+/// malloc/free. Not thread-safe: call it before creating any object, and do
+/// not free objects created under another allocator after switching.
+void px_set_allocator(const px_allocator *allocator);
+
+/* ------------------------------------------------------------------------- */
+/* Math types                                                                */
+/* ------------------------------------------------------------------------- */
+
+typedef struct px_vec3 {
+    double x, y, z;
+} px_vec3;
+
+/// Rigid transform body -> world: `p_world = R * p_body + t`, with `r` the
+/// rotation matrix in row-major order (r[3*i + j] = R_ij).
+typedef struct px_pose {
+    double r[9];
+    px_vec3 t;
+} px_pose;
+
+/// The identity pose.
+px_pose px_pose_identity(void);
+
+/// Pose from a row-major 3x3 rotation `r` and a translation `t`. The values
+/// are copied unchecked; queries validate them (see `px_pose_check`).
+px_pose px_pose_from_rt(const double r[9], const double t[3]);
+
+/// Pose from a unit quaternion (w, x, y, z) and a translation. The quaternion
+/// is normalised; a zero or non-finite quaternion gives a pose that
+/// `px_pose_check` rejects.
+px_pose px_pose_from_quat(const double q[4], const double t[3]);
+
+/// PX_OK when every entry is finite and R is a rotation within 1e-6
+/// (|R^T R - I| and |det R - 1|); otherwise PX_ERR_NON_FINITE or
+/// PX_ERR_INVALID_POSE, with a message when `err` is not NULL.
+px_status px_pose_check(const px_pose *pose, px_error *err);
+
+/// World coordinates of a body-frame point.
+px_vec3 px_pose_apply(const px_pose *pose, px_vec3 p_body);
+
+/* ------------------------------------------------------------------------- */
+/* Convex polytopes                                                          */
+/* ------------------------------------------------------------------------- */
+
+/// An immutable convex polytope in its body frame: vertices, edges and
+/// polygonal faces (coplanar hull triangles merged) with full adjacency and
+/// precomputed Voronoi-region planes. Safe to share across threads.
+typedef struct px_convex px_convex;
+
+/// Options for `px_convex_from_points`; zero-initialise, zero means default.
+typedef struct px_convex_options {
+    /// Resolution of the direction lookup table used for cold starts: the
+    /// number of cells per cube face side. 0 = chosen from the vertex count.
+    uint32_t lut_resolution;
+    uint32_t reserved[7];
+} px_convex_options;
+
+/// Builds the convex hull of `count` points (`xyz` holds 3*count doubles,
+/// body frame). The hull is computed by CGAL with exact predicates; only
+/// extreme points become vertices; exactly coplanar hull triangles are merged
+/// into polygonal faces.
+///
+/// Returns NULL and fills `err` (may be NULL) on:
+/// - PX_ERR_INVALID_ARGUMENT: `xyz` NULL, or `count` 0 or above 2^26;
+/// - PX_ERR_NON_FINITE: a NaN or infinite coordinate (index in the message);
+/// - PX_ERR_DEGENERATE: fewer than 4 distinct points, or all points
+///   collinear or coplanar (the message says which): the hull is not a solid;
+/// - PX_ERR_OUT_OF_MEMORY.
+/// `options` may be NULL.
+px_convex *px_convex_from_points(const double *xyz, size_t count, const px_convex_options *options,
+                                 px_error *err);
+
+/// Frees a polytope; NULL is a no-op.
+void px_convex_destroy(px_convex *convex);
+
+/// Feature counts. Euler: V - E + F = 2.
+uint32_t px_convex_vertex_count(const px_convex *convex);
+uint32_t px_convex_edge_count(const px_convex *convex);
+uint32_t px_convex_face_count(const px_convex *convex);
+
+/// Vertex `i` in the body frame (i < vertex count; else a zero vector).
+px_vec3 px_convex_vertex(const px_convex *convex, uint32_t i);
+
+/// The two vertices of edge `e` (tail, head); returns 0 if `e` is out of range.
+int px_convex_edge_vertices(const px_convex *convex, uint32_t e, uint32_t out[2]);
+
+/// Number of vertices of face `f` (0 if out of range); its vertices in
+/// counter-clockwise order seen from outside are `px_convex_face_vertex(f, k)`.
+uint32_t px_convex_face_size(const px_convex *convex, uint32_t f);
+uint32_t px_convex_face_vertex(const px_convex *convex, uint32_t f, uint32_t k);
+
+/// Outward unit normal `n` and offset `d` of face `f` (plane n.p = d, body
+/// frame); returns 0 if `f` is out of range.
+int px_convex_face_plane(const px_convex *convex, uint32_t f, px_vec3 *n, double *d);
+
+/// Bytes owned by the polytope (all arrays, planes and lookup table).
+size_t px_convex_memory_bytes(const px_convex *convex);
+
+/// Checks every structural invariant: Euler's formula, consistent
+/// half-edge adjacency, outward unit normals, convexity (every vertex on or
+/// below every face plane within a relative 1e-9), planar faces. PX_OK or
+/// PX_ERR_INTERNAL with the first violation in `err`.
+px_status px_convex_validate(const px_convex *convex, px_error *err);
+
+/* ------------------------------------------------------------------------- */
+/* Distance queries                                                          */
+/* ------------------------------------------------------------------------- */
+
+typedef enum px_feature_type {
+    PX_FEATURE_NONE = 0,
+    PX_FEATURE_VERTEX = 1,
+    PX_FEATURE_EDGE = 2,
+    PX_FEATURE_FACE = 3
+} px_feature_type;
+
+/// A vertex, edge or face of one polytope, by index.
+typedef struct px_feature {
+    uint32_t type; ///< a px_feature_type
+    uint32_t index;
+} px_feature;
+
+/// Caller-owned coherence cache for one pair of polytopes (A, B), in that
+/// order. Zero-initialise it: zero means "cold" (no previous answer). After a
+/// query it holds the closest feature pair, from which the next query of the
+/// same pair starts its walk. Features out of range for the polytopes given
+/// (a cache reused for another pair) are ignored and the query runs cold.
+typedef struct px_distance_cache {
+    px_feature feature_a;
+    px_feature feature_b;
+} px_distance_cache;
+
+/// Result of `px_distance`.
+typedef struct px_distance_result {
+    /// Euclidean distance between the two solids; 0 when they intersect.
+    double distance;
+    /// Closest points, world frame: |point_a - point_b| == distance. When the
+    /// solids intersect both are one common point of A and B.
+    px_vec3 point_a, point_b;
+    /// The closest feature pair (on intersection: a witness pair).
+    px_feature feature_a, feature_b;
+    /// 1 when the solids share at least one point (touching or overlapping):
+    /// solids, so one body inside the other counts.
+    int intersecting;
+    /// Number of feature-pair changes the walk made (0: the cached pair was
+    /// still closest).
+    uint32_t iterations;
+    /// Number of times a safeguard (cycle detector or step cap) had to
+    /// restart the walk from an exhaustive search. Expected 0.
+    uint32_t fallbacks;
+} px_distance_result;
+
+/// Distance between convex A at `pose_a` and convex B at `pose_b` by the
+/// Lin-Canny closest-feature walk (in the V-Clip formulation; see
+/// docs/lin-canny.md). Only the relative transform T_AB = T_B^-1 T_A is
+/// used. `cache` may be NULL (always cold). On error the result is zeroed,
+/// the cache is left unchanged, and the status is returned
+/// (PX_ERR_INVALID_ARGUMENT for NULL polytopes, poses or result;
+/// PX_ERR_NON_FINITE / PX_ERR_INVALID_POSE for a bad pose).
+px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                      px_distance_cache *cache, px_distance_result *result);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PROXIMA_PROXIMA_H */

@@ -1,0 +1,354 @@
+/* Building px_convex from a point set: CGAL computes the hull (exact
+ * predicates, exactly coplanar triangles merged into polygons; see
+ * convexdecomp/pxcd.h), this file turns the polygons into the edge/face
+ * structure with the Voronoi-region vectors of convex.h, and validates it.
+ */
+#include "convex/convex.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/core.h"
+#include "math/vec3.h"
+#include "pxcd.h"
+
+#define PXI_MAX_POINTS (1u << 26)
+
+/* One directed boundary edge of a face, for pairing into undirected edges. */
+typedef struct half {
+    uint32_t lo, hi;  /* sorted vertex ids: the undirected key */
+    uint32_t face;    /* face that traverses it */
+    uint32_t slot;    /* position in f_verts / f_edges */
+    uint32_t forward; /* 1 if the face traverses lo -> hi */
+} half;
+
+static int half_cmp(const void *pa, const void *pb) {
+    const half *a = pa, *b = pb;
+    if (a->lo != b->lo) return a->lo < b->lo ? -1 : 1;
+    if (a->hi != b->hi) return a->hi < b->hi ? -1 : 1;
+    return (int)a->forward - (int)b->forward;
+}
+
+static void *take(px_convex *c, size_t count, size_t size, int *ok) {
+    void *p = pxi_alloc_array(count, size);
+    if (!p)
+        *ok = 0;
+    else
+        c->bytes += count * size;
+    return p;
+}
+
+void px_convex_destroy(px_convex *c) {
+    if (!c) return;
+    size_t h = 2 * (size_t)c->ne;
+    pxi_free(c->v, c->nv * sizeof *c->v);
+    pxi_free(c->v_first, (c->nv + 1) * sizeof *c->v_first);
+    pxi_free(c->v_edges, h * sizeof *c->v_edges);
+    pxi_free(c->v_adj, h * sizeof *c->v_adj);
+    pxi_free(c->e, c->ne * sizeof *c->e);
+    pxi_free(c->f, c->nf * sizeof *c->f);
+    pxi_free(c->f_verts, h * sizeof *c->f_verts);
+    pxi_free(c->f_edges, h * sizeof *c->f_edges);
+    pxi_lut_destroy(c);
+    pxi_free(c, sizeof *c);
+}
+
+/* Newell's method on coordinates relative to the first vertex: a robust
+ * normal for a planar polygon (exact coplanarity came from CGAL). */
+static px_vec3 polygon_normal(const px_vec3 *v, const uint32_t *ids, uint32_t n) {
+    px_vec3 o = v[ids[0]], s = {0, 0, 0};
+    for (uint32_t k = 0; k < n; ++k) {
+        px_vec3 a = pxi_sub(v[ids[k]], o), b = pxi_sub(v[ids[(k + 1) % n]], o);
+        s.x += (a.y - b.y) * (a.z + b.z);
+        s.y += (a.z - b.z) * (a.x + b.x);
+        s.z += (a.x - b.x) * (a.y + b.y);
+    }
+    return s;
+}
+
+static px_vec3 unit(px_vec3 a) {
+    /* Scale first so that tiny (1e-23) and huge (1e39) bodies normalise
+     * without underflow or overflow of the squared length. */
+    double m = pxi_max_abs(a);
+    if (!(m > 0.0)) return a;
+    a = pxi_scale(a, 1.0 / m);
+    return pxi_scale(a, 1.0 / pxi_len(a));
+}
+
+static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err) {
+    int ok = 1;
+    size_t nhalf = h->face_offsets[h->face_count];
+    if (h->vertex_count < 4 || h->face_count < 4 || nhalf % 2 != 0 || nhalf / 2 > UINT32_MAX / 2)
+        return pxi_error(err, PX_ERR_INTERNAL, "hull from CGAL is not a closed polytope (V=%zu, F=%zu)",
+                         h->vertex_count, h->face_count);
+    c->nv = (uint32_t)h->vertex_count;
+    c->nf = (uint32_t)h->face_count;
+    c->ne = (uint32_t)(nhalf / 2);
+    c->v = take(c, c->nv, sizeof *c->v, &ok);
+    c->f = take(c, c->nf, sizeof *c->f, &ok);
+    c->e = take(c, c->ne, sizeof *c->e, &ok);
+    c->f_verts = take(c, nhalf, sizeof *c->f_verts, &ok);
+    c->f_edges = take(c, nhalf, sizeof *c->f_edges, &ok);
+    c->v_first = take(c, (size_t)c->nv + 1, sizeof *c->v_first, &ok);
+    c->v_edges = take(c, nhalf, sizeof *c->v_edges, &ok);
+    c->v_adj = take(c, nhalf, sizeof *c->v_adj, &ok);
+    half *hs = pxi_alloc_array(nhalf, sizeof *hs);
+    if (!ok || !hs) {
+        pxi_free(hs, nhalf * sizeof *hs);
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory building a polytope of %u vertices",
+                         c->nv);
+    }
+    for (uint32_t i = 0; i < c->nv; ++i)
+        c->v[i] = pxi_v(h->vertices[3 * i], h->vertices[3 * i + 1], h->vertices[3 * i + 2]);
+
+    /* Faces: boundary loops and planes. */
+    for (uint32_t f = 0; f < c->nf; ++f) {
+        uint32_t first = (uint32_t)h->face_offsets[f], n = (uint32_t)(h->face_offsets[f + 1] - first);
+        memcpy(c->f_verts + first, h->face_indices + first, n * sizeof(uint32_t));
+        pxi_face *F = &c->f[f];
+        F->first = first;
+        F->count = n;
+        F->n = unit(polygon_normal(c->v, c->f_verts + first, n));
+        double d = 0.0;
+        for (uint32_t k = 0; k < n; ++k) d += pxi_dot(F->n, c->v[c->f_verts[first + k]]);
+        F->d = d / n;
+        for (uint32_t k = 0; k < n; ++k) {
+            uint32_t a = c->f_verts[first + k], b = c->f_verts[first + (k + 1) % n];
+            half *x = &hs[first + k];
+            x->lo = a < b ? a : b;
+            x->hi = a < b ? b : a;
+            x->face = f;
+            x->slot = first + k;
+            x->forward = a < b;
+        }
+    }
+    /* Pair the two directed copies of every edge. Sorting makes the edge
+     * numbering deterministic. */
+    qsort(hs, nhalf, sizeof *hs, half_cmp);
+    px_status st = PX_OK;
+    for (size_t k = 0; k < nhalf; k += 2) {
+        const half *bwd = &hs[k], *fwd = &hs[k + 1]; /* forward sorts last */
+        if (bwd->lo != fwd->lo || bwd->hi != fwd->hi || bwd->forward || !fwd->forward) {
+            st = pxi_error(err, PX_ERR_INTERNAL, "hull edge (%u,%u) is not shared by exactly two faces",
+                           bwd->lo, bwd->hi);
+            break;
+        }
+        uint32_t id = (uint32_t)(k / 2);
+        pxi_edge *E = &c->e[id];
+        E->tail = fwd->lo;
+        E->head = fwd->hi;
+        E->left = fwd->face; /* traverses tail -> head counter-clockwise */
+        E->right = bwd->face;
+        c->f_edges[fwd->slot] = id;
+        c->f_edges[bwd->slot] = id;
+        E->u = unit(pxi_sub(c->v[E->head], c->v[E->tail]));
+        E->wl = unit(pxi_cross(c->f[E->left].n, E->u));
+        E->wr = unit(pxi_cross(E->u, c->f[E->right].n));
+    }
+    pxi_free(hs, nhalf * sizeof *hs);
+    if (st != PX_OK) return st;
+
+    /* Vertex -> incident edges (CSR). */
+    memset(c->v_first, 0, ((size_t)c->nv + 1) * sizeof *c->v_first);
+    for (uint32_t i = 0; i < c->ne; ++i) {
+        c->v_first[c->e[i].tail + 1]++;
+        c->v_first[c->e[i].head + 1]++;
+    }
+    for (uint32_t i = 0; i < c->nv; ++i) c->v_first[i + 1] += c->v_first[i];
+    uint32_t *fill = pxi_alloc_array(c->nv, sizeof *fill);
+    if (!fill) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory building vertex adjacency");
+    memcpy(fill, c->v_first, c->nv * sizeof *fill);
+    for (uint32_t i = 0; i < c->ne; ++i) {
+        uint32_t t = c->e[i].tail, hd = c->e[i].head;
+        c->v_edges[fill[t]] = i;
+        c->v_adj[fill[t]++] = hd;
+        c->v_edges[fill[hd]] = i;
+        c->v_adj[fill[hd]++] = t;
+    }
+    pxi_free(fill, c->nv * sizeof *fill);
+
+    /* Centre, radius and coordinate scale. */
+    px_vec3 s = {0, 0, 0};
+    double scale = 0.0;
+    for (uint32_t i = 0; i < c->nv; ++i) {
+        s = pxi_add(s, pxi_scale(c->v[i], 1.0 / c->nv));
+        double m = pxi_max_abs(c->v[i]);
+        if (m > scale) scale = m;
+    }
+    c->center = s;
+    double r2 = 0.0;
+    for (uint32_t i = 0; i < c->nv; ++i) {
+        double q = pxi_len(pxi_sub(c->v[i], s));
+        if (q > r2) r2 = q;
+    }
+    c->radius = r2;
+    c->scale = scale;
+    return PX_OK;
+}
+
+static uint32_t default_lut_resolution(uint32_t nv) {
+    /* About one cell per 6 vertices, between 2 and 64 cells per cube side:
+     * at most 6*64*64*4 = 96 KiB, i.e. < 0.5 byte per vertex at 200k. Small
+     * hulls climb from a fixed vertex instead (support.c). */
+    if (nv < 48) return 0;
+    uint32_t r = (uint32_t)sqrt(nv / 36.0);
+    if (r < 2) r = 2;
+    if (r > 64) r = 64;
+    return r;
+}
+
+px_convex *px_convex_from_points(const double *xyz, size_t count, const px_convex_options *options,
+                                 px_error *err) {
+    if (err) {
+        err->code = PX_OK;
+        err->message[0] = 0;
+    }
+    if (!xyz) {
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_from_points: points array is NULL");
+        return NULL;
+    }
+    if (count == 0 || count > PXI_MAX_POINTS) {
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_from_points: point count %zu is outside 1..%u",
+                  count, PXI_MAX_POINTS);
+        return NULL;
+    }
+    for (size_t i = 0; i < 3 * count; ++i)
+        if (!isfinite(xyz[i])) {
+            pxi_error(err, PX_ERR_NON_FINITE,
+                      "px_convex_from_points: point %zu has a non-finite coordinate %c", i / 3, "xyz"[i % 3]);
+            return NULL;
+        }
+    if (count < 4) {
+        pxi_error(err, PX_ERR_DEGENERATE,
+                  "px_convex_from_points: %zu points cannot span a solid (at least 4 are needed)", count);
+        return NULL;
+    }
+    pxcd_hull *hull = NULL;
+    int dim = 3;
+    char msg[200] = {0};
+    pxcd_status hs = pxcd_hull_compute(xyz, count, &hull, &dim, msg, sizeof msg);
+    if (hs == PXCD_DEGENERATE) {
+        static const char *what[] = {"all points coincide", "all points are collinear",
+                                     "all points are coplanar"};
+        pxi_error(err, PX_ERR_DEGENERATE,
+                  "px_convex_from_points: %s, so the hull is not a solid (dimension %d)",
+                  what[dim >= 0 && dim <= 2 ? dim : 2], dim);
+        return NULL;
+    }
+    if (hs != PXCD_OK || !hull) {
+        pxi_error(err, strstr(msg, "memory") ? PX_ERR_OUT_OF_MEMORY : PX_ERR_INTERNAL,
+                  "px_convex_from_points: hull computation failed: %s", msg);
+        return NULL;
+    }
+    px_convex *c = pxi_alloc(sizeof *c);
+    if (!c) {
+        pxcd_hull_free(hull);
+        pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_convex_from_points: out of memory");
+        return NULL;
+    }
+    memset(c, 0, sizeof *c);
+    c->bytes = sizeof *c;
+    px_status st = build_from_hull(c, hull, err);
+    pxcd_hull_free(hull);
+    if (st == PX_OK) {
+        uint32_t res =
+            options && options->lut_resolution ? options->lut_resolution : default_lut_resolution(c->nv);
+        if (res > 256) res = 256;
+        st = pxi_lut_build(c, res);
+        if (st != PX_OK) pxi_error(err, st, "px_convex_from_points: out of memory for the direction table");
+    }
+    if (st != PX_OK) {
+        px_convex_destroy(c);
+        return NULL;
+    }
+    return c;
+}
+
+uint32_t px_convex_vertex_count(const px_convex *c) { return c ? c->nv : 0; }
+uint32_t px_convex_edge_count(const px_convex *c) { return c ? c->ne : 0; }
+uint32_t px_convex_face_count(const px_convex *c) { return c ? c->nf : 0; }
+size_t px_convex_memory_bytes(const px_convex *c) { return c ? c->bytes : 0; }
+
+px_vec3 px_convex_vertex(const px_convex *c, uint32_t i) {
+    if (!c || i >= c->nv) return pxi_v(0, 0, 0);
+    return c->v[i];
+}
+
+int px_convex_edge_vertices(const px_convex *c, uint32_t e, uint32_t out[2]) {
+    if (!c || e >= c->ne || !out) return 0;
+    out[0] = c->e[e].tail;
+    out[1] = c->e[e].head;
+    return 1;
+}
+
+uint32_t px_convex_face_size(const px_convex *c, uint32_t f) { return c && f < c->nf ? c->f[f].count : 0; }
+
+uint32_t px_convex_face_vertex(const px_convex *c, uint32_t f, uint32_t k) {
+    if (!c || f >= c->nf || k >= c->f[f].count) return UINT32_MAX;
+    return c->f_verts[c->f[f].first + k];
+}
+
+int px_convex_face_plane(const px_convex *c, uint32_t f, px_vec3 *n, double *d) {
+    if (!c || f >= c->nf) return 0;
+    if (n) *n = c->f[f].n;
+    if (d) *d = c->f[f].d;
+    return 1;
+}
+
+/* Structural validation. Convexity is checked locally at every edge (the
+ * dihedral turns outward) on all hulls; a closed, connected, locally convex
+ * polyhedral surface bounds a convex body (van Heijenoort 1952). The global
+ * vertex-below-every-plane test runs too when V*F is small enough. */
+px_status px_convex_validate(const px_convex *c, px_error *err) {
+    if (!c) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "polytope is NULL");
+    if ((int64_t)c->nv - (int64_t)c->ne + (int64_t)c->nf != 2)
+        return pxi_error(err, PX_ERR_INTERNAL, "Euler's formula fails: V=%u E=%u F=%u", c->nv, c->ne, c->nf);
+    double tol = 1e-9 * (c->scale > 0 ? c->scale : 1.0);
+    for (uint32_t f = 0; f < c->nf; ++f) {
+        const pxi_face *F = &c->f[f];
+        if (F->count < 3) return pxi_error(err, PX_ERR_INTERNAL, "face %u has %u vertices", f, F->count);
+        if (fabs(pxi_len(F->n) - 1.0) > 1e-12)
+            return pxi_error(err, PX_ERR_INTERNAL, "face %u normal not unit", f);
+        for (uint32_t k = 0; k < F->count; ++k) {
+            uint32_t a = c->f_verts[F->first + k], b = c->f_verts[F->first + (k + 1) % F->count];
+            const pxi_edge *E = &c->e[c->f_edges[F->first + k]];
+            int left = E->tail == a && E->head == b && E->left == f;
+            int right = E->tail == b && E->head == a && E->right == f;
+            if (!left && !right)
+                return pxi_error(err, PX_ERR_INTERNAL,
+                                 "face %u boundary %u->%u disagrees with edge adjacency", f, a, b);
+            if (fabs(pxi_dot(F->n, c->v[a]) - F->d) > tol)
+                return pxi_error(err, PX_ERR_INTERNAL, "face %u is not planar at vertex %u", f, a);
+        }
+        /* Outward: the centre lies strictly below every face plane. */
+        if (!(pxi_dot(F->n, c->center) < F->d))
+            return pxi_error(err, PX_ERR_INTERNAL, "face %u normal points inward", f);
+    }
+    for (uint32_t i = 0; i < c->ne; ++i) {
+        const pxi_edge *E = &c->e[i];
+        if (E->tail >= c->nv || E->head >= c->nv || E->left >= c->nf || E->right >= c->nf ||
+            E->left == E->right)
+            return pxi_error(err, PX_ERR_INTERNAL, "edge %u has invalid adjacency", i);
+        /* Convex dihedral: (n_L x n_R) . u >= 0 (REFERENCES §1.8). */
+        double turn = pxi_dot(pxi_cross(c->f[E->left].n, c->f[E->right].n), E->u);
+        if (turn < -1e-12) return pxi_error(err, PX_ERR_INTERNAL, "edge %u is reflex (%.3g)", i, turn);
+    }
+    for (uint32_t v = 0; v < c->nv; ++v) {
+        uint32_t deg = c->v_first[v + 1] - c->v_first[v];
+        if (deg < 3) return pxi_error(err, PX_ERR_INTERNAL, "vertex %u has degree %u", v, deg);
+        for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
+            const pxi_edge *E = &c->e[c->v_edges[k]];
+            if ((E->tail != v || E->head != c->v_adj[k]) && (E->head != v || E->tail != c->v_adj[k]))
+                return pxi_error(err, PX_ERR_INTERNAL, "vertex %u adjacency disagrees with edge %u", v,
+                                 c->v_edges[k]);
+        }
+    }
+    if ((uint64_t)c->nv * c->nf <= 4000000u) {
+        for (uint32_t f = 0; f < c->nf; ++f)
+            for (uint32_t v = 0; v < c->nv; ++v)
+                if (pxi_dot(c->f[f].n, c->v[v]) - c->f[f].d > tol)
+                    return pxi_error(err, PX_ERR_INTERNAL, "vertex %u lies above face %u: not convex", v, f);
+    }
+    return PX_OK;
+}

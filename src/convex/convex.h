@@ -1,0 +1,75 @@
+/* The convex polytope structure (internal layout of px_convex).
+ *
+ * Conventions (docs/lin-canny.md, shared REFERENCES §1.1):
+ * - outward unit face normals n_f, face plane n_f . p = d_f;
+ * - edge e runs tail -> head, u = unit(head - tail);
+ * - the LEFT face L of e is the face whose counter-clockwise boundary (seen
+ *   from outside) contains tail -> head; the RIGHT face R contains head -> tail;
+ * - wl = n_L x u lies in L's plane and points into L; wr = u x n_R lies in R's
+ *   plane and points into R. These are the FE constraint-plane normals.
+ * Voronoi regions (all planes derived from stored vectors, nothing duplicated):
+ * - VR(vertex v): (p - v) . u_out <= 0 for every incident edge leaving v;
+ * - VR(edge e):   (p - t) . u >= 0, (p - h) . u <= 0, (p - t) . wl <= 0, (p - t) . wr <= 0;
+ * - VR(face f):   (p - t_e) . w_{f,e} >= 0 for each boundary edge, n_f . p >= d_f.
+ */
+#ifndef PXI_CONVEX_H
+#define PXI_CONVEX_H
+
+#include <stdint.h>
+
+#include "proxima/proxima.h"
+
+typedef struct pxi_edge {
+    uint32_t tail, head;  /* vertex ids */
+    uint32_t left, right; /* face ids */
+    px_vec3 u;            /* unit direction tail -> head */
+    px_vec3 wl, wr;       /* in-plane inward normals of the left and right face */
+} pxi_edge;
+
+typedef struct pxi_face {
+    px_vec3 n;             /* outward unit normal */
+    double d;              /* plane offset: n . p = d */
+    uint32_t first, count; /* boundary in f_verts / f_edges, CCW from outside */
+} pxi_face;
+
+/* Cube-map direction table (PhysX-style "Gauss map" lookup): for each of the
+ * 6 cube faces a res x res grid of cells, each holding the vertex extreme in
+ * the direction of the cell centre. A support query looks up its cell and
+ * finishes by hill climbing, which is exact on a convex polytope. */
+typedef struct pxi_lut {
+    uint32_t res;
+    uint32_t *cell; /* 6 * res * res vertex ids */
+} pxi_lut;
+
+struct px_convex {
+    uint32_t nv, ne, nf;
+    px_vec3 *v;        /* nv vertex positions, body frame */
+    uint32_t *v_first; /* nv + 1: incident edges of v are v_edges[v_first[v] .. v_first[v+1]) */
+    uint32_t *v_edges; /* 2 * ne incident edge ids */
+    uint32_t *v_adj;   /* 2 * ne: v_adj[k] = the other end of v_edges[k] */
+    pxi_edge *e;       /* ne */
+    pxi_face *f;       /* nf */
+    uint32_t *f_verts; /* 2 * ne: face boundary vertices, CCW */
+    uint32_t *f_edges; /* 2 * ne: f_edges[first + k] joins f_verts[first + k] -> f_verts[first + k + 1 (mod
+                          count)] */
+    px_vec3 center;    /* mean of the vertices (an interior point) */
+    double radius;     /* max |v - center| */
+    double scale;      /* max |coordinate| over all vertices (>= radius scale), for relative tolerances */
+    pxi_lut lut;
+    size_t bytes; /* everything allocated for this polytope */
+};
+
+/* Vertex of `c` extreme along direction `d` (body frame): argmax v . d.
+ * Starts at `start` (UINT32_MAX: from the lookup table) and hill-climbs over
+ * the vertex graph with strict improvement only, so it terminates (also on
+ * NaN, where no comparison succeeds). Exact up to ties. */
+uint32_t pxi_support(const px_convex *c, px_vec3 d, uint32_t start);
+
+/* Starting vertex for direction d from the lookup table (no climbing). */
+uint32_t pxi_lut_lookup(const px_convex *c, px_vec3 d);
+
+/* Builds the lookup table of `c` (called once by the constructor). */
+px_status pxi_lut_build(px_convex *c, uint32_t res);
+void pxi_lut_destroy(px_convex *c);
+
+#endif

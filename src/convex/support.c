@@ -1,0 +1,114 @@
+/* Support (extreme vertex) queries: a cube-map direction table plus hill
+ * climbing over the vertex graph.
+ *
+ * Sources: hill climbing on the 1-skeleton (Cameron, "Enhancing GJK", ICRA
+ * 1997; any local maximum of d.x over a convex polytope's vertex graph is
+ * global); the cube-map table follows the idea of PhysX's precomputed
+ * "Gauss map" (REFERENCES §3): 6 faces x res x res cells, each storing the
+ * vertex extreme along the cell's centre direction. A query looks up its cell
+ * and climbs the few remaining steps, so its cost does not grow with the
+ * number of vertices as long as a cell covers a bounded number of them.
+ * Why not a Dobkin-Kirkpatrick hierarchy: see docs/lin-canny.md.
+ */
+#include <math.h>
+#include <string.h>
+
+#include "convex/convex.h"
+#include "core/core.h"
+#include "math/vec3.h"
+
+/* Greedy steepest ascent with strict improvement: terminates (d.x strictly
+ * grows, so no vertex repeats) and stops at once on NaN directions. */
+static uint32_t climb(const px_convex *c, px_vec3 d, uint32_t v) {
+    double best = pxi_dot(c->v[v], d);
+    for (;;) {
+        uint32_t next = v;
+        for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
+            uint32_t w = c->v_adj[k];
+            double s = pxi_dot(c->v[w], d);
+            if (s > best) {
+                best = s;
+                next = w;
+            }
+        }
+        if (next == v) return v;
+        v = next;
+    }
+}
+
+/* Cell of a direction: the cube face is the axis of largest |component| and
+ * its sign; the other two components divided by it give cell coordinates. */
+static uint32_t cell_of(uint32_t res, px_vec3 d) {
+    double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
+    uint32_t face;
+    double a, b, m;
+    if (ax >= ay && ax >= az) {
+        face = d.x >= 0 ? 0 : 1;
+        m = ax;
+        a = d.y;
+        b = d.z;
+    } else if (ay >= az) {
+        face = d.y >= 0 ? 2 : 3;
+        m = ay;
+        a = d.z;
+        b = d.x;
+    } else {
+        face = d.z >= 0 ? 4 : 5;
+        m = az;
+        a = d.x;
+        b = d.y;
+    }
+    if (!(m > 0)) return 0; /* zero or NaN direction: any cell will do */
+    double fa = (a / m + 1.0) * 0.5 * res, fb = (b / m + 1.0) * 0.5 * res;
+    uint32_t ia = fa <= 0 ? 0 : fa >= res ? res - 1 : (uint32_t)fa;
+    uint32_t ib = fb <= 0 ? 0 : fb >= res ? res - 1 : (uint32_t)fb;
+    return (face * res + ia) * res + ib;
+}
+
+static px_vec3 cell_direction(uint32_t res, uint32_t face, uint32_t ia, uint32_t ib) {
+    double a = (ia + 0.5) / res * 2.0 - 1.0, b = (ib + 0.5) / res * 2.0 - 1.0;
+    double s = (face & 1) ? -1.0 : 1.0;
+    switch (face >> 1) {
+    case 0: return pxi_v(s, a, b);
+    case 1: return pxi_v(b, s, a);
+    default: return pxi_v(a, b, s);
+    }
+}
+
+uint32_t pxi_lut_lookup(const px_convex *c, px_vec3 d) {
+    if (!c->lut.cell) return 0;
+    return c->lut.cell[cell_of(c->lut.res, d)];
+}
+
+uint32_t pxi_support(const px_convex *c, px_vec3 d, uint32_t start) {
+    if (start >= c->nv) start = pxi_lut_lookup(c, d);
+    return climb(c, d, start);
+}
+
+px_status pxi_lut_build(px_convex *c, uint32_t res) {
+    c->lut.res = 0;
+    c->lut.cell = NULL;
+    if (res == 0) return PX_OK;
+    size_t n = 6 * (size_t)res * res;
+    uint32_t *cell = pxi_alloc_array(n, sizeof *cell);
+    if (!cell) return PX_ERR_OUT_OF_MEMORY;
+    c->bytes += n * sizeof *cell;
+    /* Neighbouring cells have neighbouring answers: start each climb from
+     * the previous cell's vertex (boustrophedon order keeps them adjacent). */
+    uint32_t v = 0;
+    for (uint32_t face = 0; face < 6; ++face)
+        for (uint32_t ia = 0; ia < res; ++ia)
+            for (uint32_t j = 0; j < res; ++j) {
+                uint32_t ib = (ia & 1) ? res - 1 - j : j;
+                v = climb(c, cell_direction(res, face, ia, ib), v);
+                cell[(face * res + ia) * res + ib] = v;
+            }
+    c->lut.res = res;
+    c->lut.cell = cell;
+    return PX_OK;
+}
+
+void pxi_lut_destroy(px_convex *c) {
+    if (c->lut.cell) pxi_free(c->lut.cell, 6 * (size_t)c->lut.res * c->lut.res * sizeof *c->lut.cell);
+    c->lut.cell = NULL;
+}

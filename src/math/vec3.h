@@ -1,0 +1,61 @@
+/* Small inline vector and pose helpers used by every layer (internal). */
+#ifndef PXI_VEC3_H
+#define PXI_VEC3_H
+
+#include <math.h>
+
+#include "proxima/proxima.h"
+
+static inline px_vec3 pxi_v(double x, double y, double z) {
+    px_vec3 r = {x, y, z};
+    return r;
+}
+static inline px_vec3 pxi_add(px_vec3 a, px_vec3 b) { return pxi_v(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline px_vec3 pxi_sub(px_vec3 a, px_vec3 b) { return pxi_v(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline px_vec3 pxi_scale(px_vec3 a, double s) { return pxi_v(a.x * s, a.y * s, a.z * s); }
+static inline px_vec3 pxi_neg(px_vec3 a) { return pxi_v(-a.x, -a.y, -a.z); }
+static inline double pxi_dot(px_vec3 a, px_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline px_vec3 pxi_cross(px_vec3 a, px_vec3 b) {
+    return pxi_v(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline double pxi_len2(px_vec3 a) { return pxi_dot(a, a); }
+static inline double pxi_len(px_vec3 a) { return sqrt(pxi_dot(a, a)); }
+/* a + s * b */
+static inline px_vec3 pxi_madd(px_vec3 a, px_vec3 b, double s) {
+    return pxi_v(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z);
+}
+static inline double pxi_max_abs(px_vec3 a) {
+    double m = fabs(a.x);
+    if (fabs(a.y) > m) m = fabs(a.y);
+    if (fabs(a.z) > m) m = fabs(a.z);
+    return m;
+}
+static inline int pxi_is_finite3(px_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+
+/* R * p (rotation only), R row-major. */
+static inline px_vec3 pxi_rot(const double r[9], px_vec3 p) {
+    return pxi_v(r[0] * p.x + r[1] * p.y + r[2] * p.z, r[3] * p.x + r[4] * p.y + r[5] * p.z,
+                 r[6] * p.x + r[7] * p.y + r[8] * p.z);
+}
+/* R^T * p */
+static inline px_vec3 pxi_rot_t(const double r[9], px_vec3 p) {
+    return pxi_v(r[0] * p.x + r[3] * p.y + r[6] * p.z, r[1] * p.x + r[4] * p.y + r[7] * p.z,
+                 r[2] * p.x + r[5] * p.y + r[8] * p.z);
+}
+static inline px_vec3 pxi_xform(const px_pose *T, px_vec3 p) { return pxi_add(pxi_rot(T->r, p), T->t); }
+/* T^-1 * p */
+static inline px_vec3 pxi_xform_inv(const px_pose *T, px_vec3 p) { return pxi_rot_t(T->r, pxi_sub(p, T->t)); }
+
+/* T_AB = T_B^-1 * T_A: maps A's body frame into B's. The translations are
+ * subtracted first (exact when the bodies are close; REFERENCES §1.8, §7). */
+static inline px_pose pxi_relative(const px_pose *ta, const px_pose *tb) {
+    px_pose out;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            out.r[3 * i + j] =
+                tb->r[i] * ta->r[j] + tb->r[3 + i] * ta->r[3 + j] + tb->r[6 + i] * ta->r[6 + j];
+    out.t = pxi_rot_t(tb->r, pxi_sub(ta->t, tb->t));
+    return out;
+}
+
+#endif

@@ -241,8 +241,10 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     uint32_t best_e = NONE;
     for (uint32_t k = ci->v_first[v]; k < ci->v_first[v + 1]; ++k) {
         const pxi_edge *E = &ci->e[ci->v_edges[k]];
-        double g = h * pxi_dot(n_i, E->u);
+        /* Signs only: h * (n.u) would underflow to 0 at tiny scales. */
+        double g = pxi_dot(n_i, E->u);
         if (E->tail != v) g = -g;
+        if (h < 0.0) g = -g;
         if (g < worst) {
             worst = g;
             best_e = ci->v_edges[k];
@@ -350,7 +352,8 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
     }
     px_vec3 plo = lerp(p0, p1, lo), phi = lerp(p0, p1, hi);
     double hl = pxi_dot(F->n, plo) - F->d, hh = pxi_dot(F->n, phi) - F->d;
-    if (hl * hh <= 0.0 || !(hl == hl && hh == hh)) {
+    /* Sign tests, not products: a product of two tiny heights underflows. */
+    if ((hl <= 0.0) != (hh <= 0.0) || hl == 0.0 || hh == 0.0 || !(hl == hl && hh == hh)) {
         /* The clipped edge meets the face plane inside the prism: the edge
          * pierces (or touches) the face. Witness: the crossing point. */
         double lam = hl != hh ? lo + (hi - lo) * (hl / (hl - hh)) : lo;
@@ -364,7 +367,7 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
      * decrease to the end of the clipped part. There the closest feature is
      * the prism side that clipped it, or the edge's own endpoint. */
     double slope = pxi_dot(F->n, pxi_sub(p1, p0));
-    if (hl * slope > 0.0) {
+    if (slope != 0.0 && (hl > 0.0) == (slope > 0.0)) {
         if (nlo != NONE)
             x->f[j] = feat(PX_FEATURE_EDGE, nlo);
         else
@@ -443,7 +446,10 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     x.c[0] = a;
     x.c[1] = b;
     x.T[0] = pxi_relative(pose_a, pose_b);
-    x.T[1] = pxi_relative(pose_b, pose_a);
+    /* T_BA = T_AB^-1 = (R^T, -R^T t), cheaper than a second product. */
+    for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) x.T[1].r[3 * r + k] = x.T[0].r[3 * k + r];
+    x.T[1].t = pxi_neg(pxi_rot_t(x.T[0].r, x.T[0].t));
     x.dist = 0.0;
     x.p[0] = x.p[1] = pxi_v(0, 0, 0);
 

@@ -8,9 +8,11 @@
 //     Schönherr's algorithm). Traits:
 //     Polytope_distance_d_traits_3<Homogeneous<Gmpzf>, Gmpzf, Gmpzf>, i.e.
 //     exact arithmetic for both the solver (ET) and the pricing (NT). The
-//     manual's "fast exact" configuration uses NT = double for pricing, which
-//     under- and overflows at extreme scales (pivoting decisions go wrong
-//     around 1e-150), so it is deliberately not used.
+//     manual's "fast exact" configuration (Homogeneous<double>, NT = double)
+//     prices in doubles, which under- and overflow at extreme scales: on two
+//     tetrahedra at gap s it returns an invalid result (is_valid() false) for
+//     s = 1e-170 and fails an assertion (QP not optimal) for s = 1e150, so it
+//     is deliberately not used.
 //   - Gmpzf(double) is exact, and homogeneous points with w = 1 represent
 //     the input doubles exactly.
 //   - The result is the exact rational num/den. We convert it to double with
@@ -20,8 +22,12 @@
 //     wider than double's, so num and den never overflow separately, and
 //     mpfr_get_d rounds subnormal results correctly too. The distance itself
 //     is sqrt(num/den) rounded once to double (not sqrt of the rounded
-//     square), so it is correct even when the squared distance underflows
-//     (distances below ~1e-162).
+//     square), so it stays correctly rounded when the squared distance is
+//     subnormal (distance below ~1.5e-154) or underflows to 0 (below ~2e-162).
+//   - The result is certified with Polytope_distance_d::is_valid(), an exact
+//     check that all of P and all of Q lie on the proper sides of the two
+//     planes through the realizing points normal to their difference. It is
+//     linear in the number of points and cheap next to the solve.
 
 #include "pxcd.h"
 
@@ -137,6 +143,8 @@ extern "C" pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const
         const std::vector<Point> p = to_points(p_xyz, np);
         const std::vector<Point> q = to_points(q_xyz, nq);
         const Polytope_distance pd(p.begin(), p.end(), q.begin(), q.end());
+
+        if (!pd.is_valid()) throw Distance_error("CGAL's result failed its exact validity check");
 
         const ET num = pd.squared_distance_numerator();
         const ET den = pd.squared_distance_denominator();

@@ -4,25 +4,35 @@
 // Algorithm and sources:
 //   - Affine dimension: exact predicates CGAL::collinear / CGAL::coplanar
 //     (CGAL 5.5 manual, "2D and 3D Linear Geometry Kernel", Global Functions).
-//     Epick evaluates predicates exactly (static + interval filters, exact
-//     fallback), so the dimension we report is the true dimension of the
-//     input doubles.
+//     Epick evaluates predicates exactly (static and interval filters with an
+//     exact fallback), so the reported dimension is that of the input doubles.
 //   - Hull: CGAL::convex_hull_3 (CGAL 5.5 manual, "3D Convex Hulls", section
 //     "Static Convex Hull Construction"; quickhull of Barber, Dobkin and
-//     Huhdanpaa, ACM TOMS 22(4), 1996) with
-//     Exact_predicates_inexact_constructions_kernel into a
-//     CGAL::Surface_mesh. The result is triangulated and outward oriented.
+//     Huhdanpaa, ACM TOMS 22(4), 1996), kernel
+//     Exact_predicates_inexact_constructions_kernel, with the traits
+//     Convex_hull_traits_3<Epick, Default, Tag_true>: its "planes" are point
+//     triples, so every side-of-plane test is an exact orientation predicate.
+//     We use the overload that outputs an indexed triangle set (points +
+//     triangles) rather than a Surface_mesh: it runs the same algorithm with
+//     the same traits (those are also what the Surface_mesh overload picks by
+//     default), but the Surface_mesh overload spends about as long again
+//     copying the hull into the mesh through hash maps (measured: ~1.0 s vs
+//     ~1.9 s for 200k points on an ellipsoid). We need only triangle
+//     adjacency, which is cheap to rebuild. Do NOT use that overload without
+//     the traits: it then falls back to the bare kernel, whose Plane_3 is
+//     constructed in floating point and makes the hull inexact.
 //   - Polygons: adjacent hull triangles whose four points are exactly
 //     coplanar (CGAL::coplanar) are merged with a union-find; the boundary of
-//     each group is traced into one CCW loop.
+//     each group is traced into one loop, outward (CCW from outside) like the
+//     triangles.
 //
-// Why the extra clean-up step after convex_hull_3: quickhull only adds a
-// point that is strictly outside the current hull, but a point added early
-// can later end up in the relative interior of a hull edge or facet (the
-// "farthest point" is chosen with inexact plane distances, and ties are
-// possible). Such a point is still a mesh vertex, because the faces around
-// it that are coplanar with the new point are not strictly visible and are
-// kept. After the merge:
+// Why a clean-up step after convex_hull_3: quickhull only adds a point that
+// is strictly outside the current hull, but a point added early can later end
+// up in the relative interior of a hull edge or facet (the "farthest point"
+// is chosen among the outside set of one facet only, ties are possible).
+// Such a point stays a vertex, because the triangles around it that are
+// coplanar with the new point are not strictly visible and are kept. After
+// the merge:
 //   - a non-extreme vertex inside a facet is strictly inside the merged
 //     region, so it is not on the boundary loop and disappears by itself;
 //   - a non-extreme vertex inside a hull edge shows up, in the loops of the
@@ -31,41 +41,78 @@
 // Dropping exactly-collinear loop vertices therefore leaves exactly the
 // extreme points, and both facets of an edge drop the same vertices, so
 // edges stay paired. The final topological check (Euler, edge pairing)
-// turns any surprise into PXCD_ERROR rather than returning a broken mesh.
+// turns any surprise into PXCD_ERROR instead of a broken hull.
+//
+// Valgrind: Epick's interval filters switch the FPU to upward rounding, which
+// valgrind does not emulate (its SSE arithmetic always rounds to nearest),
+// so under valgrind filtered predicates can return wrong signs on
+// near-degenerate input and quickhull can crash (seen on a point set one ulp
+// off coplanar). CGAL's own start-up check for this aborts, so it is
+// disabled (CGAL_DISABLE_ROUNDING_MATH_CHECK); instead we run the same check
+// once (directed_rounding_works) and, if rounding modes do not work, compute
+// with Simple_cartesian<Exact_rational>: no filters, no dependence on the
+// FPU, same algorithm, slower. The environment variable
+// PXCD_HULL_EXACT_KERNEL=1 forces that path (used by the tests).
+//
+// Determinism: quickhull's output order depends on memory addresses (CGAL
+// keys a std::map by vertex handles), so equal inputs gave differently
+// ordered triangles from one call to the next (seen in our tests). The hull itself (extreme points, facets) is
+// unique, so we canonicalize: vertices are numbered by the index of their
+// first occurrence in the input and take that input point's coordinates
+// (bit-identical), each loop starts at its smallest id, and loops are sorted
+// by their first two ids (unique: a directed edge belongs to one face).
 
 #include "pxcd.h"
 
+#include <CGAL/Convex_hull_traits_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Surface_mesh.h>
+#include <CGAL/Exact_rational.h>
+#include <CGAL/FPU.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/exceptions.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <new>
 #include <numeric>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point_3 = Kernel::Point_3;
-using Mesh = CGAL::Surface_mesh<Point_3>;
-using halfedge_descriptor = Mesh::Halfedge_index;
-using face_descriptor = Mesh::Face_index;
+// Fast path: filtered exact predicates; Tag_true selects the point-triple
+// side-of-plane predicate with static filters.
+using Fast_kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Fast_traits = CGAL::Convex_hull_traits_3<Fast_kernel, CGAL::Default, CGAL::Tag_true>;
+// Fallback when directed rounding does not work (valgrind): plain rationals.
+using Exact_kernel = CGAL::Simple_cartesian<CGAL::Exact_rational>;
+using Exact_traits = CGAL::Convex_hull_traits_3<Exact_kernel>;
+
+using Triangle = std::array<std::size_t, 3>;
+using Xyz = std::array<double, 3>;
+
+constexpr uint32_t kNone = UINT32_MAX;
 
 void set_msg(char *msg, size_t msg_len, const char *text) {
     if (msg != nullptr && msg_len > 0) std::snprintf(msg, msg_len, "%s", text);
 }
 
+// Internal consistency failures, reported as PXCD_ERROR.
+struct Hull_error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 // Affine dimension of the point set (0..3), with exact predicates. Looks for
 // a second distinct point, then a point off their line, then a point off
 // their plane; each scan is linear and stops at the first witness.
-int affine_dimension(const std::vector<Point_3> &pts) {
+template <class Point_3> int affine_dimension(const std::vector<Point_3> &pts) {
     const Point_3 &a = pts[0];
     size_t i = 1;
     while (i < pts.size() && pts[i] == a) ++i;
@@ -81,8 +128,7 @@ int affine_dimension(const std::vector<Point_3> &pts) {
     return 3;
 }
 
-// Union-find with path halving; the union keeps the smaller index as root so
-// the result does not depend on the order of the unions.
+// Union-find with path halving; the union keeps the smaller index as root.
 struct Union_find {
     std::vector<uint32_t> parent;
     explicit Union_find(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
@@ -102,115 +148,199 @@ struct Union_find {
     }
 };
 
-// Polygonal faces in compact form, before conversion to malloc'd C arrays.
-struct Polygons {
-    std::vector<Mesh::Vertex_index> loop_vertices; // concatenated loops
-    std::vector<size_t> offsets{0};                // faces + 1 entries
+// Closed triangle mesh with implicit halfedges: halfedge h = 3 t + i goes
+// from tri[t][i] to tri[t][(i + 1) % 3]; opposite[] (filled by link()) is
+// the only stored connectivity.
+template <class Point_3> struct Tri_mesh {
+    std::vector<Point_3> points;
+    std::vector<Triangle> tris;
+    std::vector<uint32_t> opposite;
+
+    static uint32_t next(uint32_t h) { return h % 3 == 2 ? h - 2 : h + 1; }
+    static uint32_t face(uint32_t h) { return h / 3; }
+    uint32_t source(uint32_t h) const { return static_cast<uint32_t>(tris[h / 3][h % 3]); }
+    uint32_t target(uint32_t h) const { return source(next(h)); }
+    const Point_3 &point(uint32_t v) const { return points[v]; }
+
+    void link();
 };
 
-// Exceptions used for internal consistency failures (reported as PXCD_ERROR).
-struct Hull_error : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+// For directed edges e = src[e] -> dst[e] over vertices 0..vertex_count-1,
+// returns rev with rev[e] = the edge dst[e] -> src[e]. Throws unless every
+// edge has exactly one reverse; this also rules out repeated directed edges
+// (the reverse of a repeated edge would see two candidates). Linear time:
+// edges are bucketed by source (compressed rows), and the reverse of u -> v
+// is looked up among the few edges leaving v.
+std::vector<uint32_t> pair_reverse_edges(size_t vertex_count, const std::vector<uint32_t> &src,
+                                         const std::vector<uint32_t> &dst) {
+    const size_t ne = src.size();
+    if (ne >= kNone || vertex_count >= kNone) throw Hull_error("hull too large for 32-bit indices");
+    std::vector<uint32_t> first(vertex_count + 1, 0);
+    for (uint32_t u : src) {
+        if (u >= vertex_count) throw Hull_error("vertex index out of range");
+        ++first[u + 1];
+    }
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1), out_dst(ne), out_edge(ne);
+    for (uint32_t e = 0; e < ne; ++e) {
+        const uint32_t k = fill[src[e]]++;
+        out_dst[k] = dst[e];
+        out_edge[k] = e;
+    }
+    std::vector<uint32_t> rev(ne, kNone);
+    for (uint32_t e = 0; e < ne; ++e) {
+        const uint32_t u = src[e], v = dst[e];
+        if (v >= vertex_count) throw Hull_error("vertex index out of range");
+        for (uint32_t k = first[v]; k < first[v + 1]; ++k)
+            if (out_dst[k] == u) {
+                if (rev[e] != kNone) throw Hull_error("hull edges are not paired");
+                rev[e] = out_edge[k];
+            }
+        if (rev[e] == kNone) throw Hull_error("hull edges are not paired");
+    }
+    return rev;
+}
 
-Polygons merge_coplanar_triangles(const Mesh &mesh) {
-    const size_t nf = mesh.number_of_faces();
-    // convex_hull_3 builds a fresh mesh, so there are no removed elements and
-    // indices are dense; checked here because everything below relies on it.
-    if (mesh.has_garbage() || mesh.number_of_faces() == 0)
-        throw Hull_error("unexpected mesh layout from convex_hull_3");
+template <class Point_3> void Tri_mesh<Point_3>::link() {
+    const size_t nh = 3 * tris.size();
+    if (nh >= kNone) throw Hull_error("hull too large for 32-bit indices");
+    std::vector<uint32_t> src(nh), dst(nh);
+    for (uint32_t h = 0; h < nh; ++h) {
+        const std::size_t u = tris[h / 3][h % 3], v = tris[h / 3][(h + 1) % 3];
+        if (u >= points.size() || v >= points.size())
+            throw Hull_error("bad vertex index from convex_hull_3");
+        src[h] = static_cast<uint32_t>(u);
+        dst[h] = static_cast<uint32_t>(v);
+    }
+    opposite = pair_reverse_edges(points.size(), src, dst);
+}
 
-    // 1. Group triangles through edges whose two triangles are coplanar.
+// Merges exactly coplanar adjacent triangles; returns the facet loops
+// (mesh vertex ids, outward), concatenated, with offsets (size F + 1).
+template <class Point_3>
+void merge_coplanar_triangles(const Tri_mesh<Point_3> &mesh, std::vector<uint32_t> &loops,
+                              std::vector<size_t> &offsets) {
+    using Mesh = Tri_mesh<Point_3>;
+    const size_t nf = mesh.tris.size(), nh = 3 * nf;
+
+    // 1. Group triangles across edges whose two triangles are coplanar.
     //    Hull triangles are never degenerate (a new quickhull triangle joins
     //    a point strictly above a visible face to an edge of that face), so
-    //    coplanarity of the 4 points means the triangles span the same plane,
-    //    and groups are exactly the hull facets.
+    //    four coplanar points mean the same supporting plane, and groups are
+    //    exactly the hull facets.
     Union_find uf(nf);
-    for (auto e : mesh.edges()) {
-        halfedge_descriptor h = mesh.halfedge(e);
-        halfedge_descriptor o = mesh.opposite(h);
+    for (uint32_t h = 0; h < nh; ++h) {
+        const uint32_t o = mesh.opposite[h];
+        if (o < h) continue; // each edge once
         const Point_3 &a = mesh.point(mesh.source(h));
         const Point_3 &b = mesh.point(mesh.target(h));
-        const Point_3 &c = mesh.point(mesh.target(mesh.next(h)));
-        const Point_3 &d = mesh.point(mesh.target(mesh.next(o)));
-        if (CGAL::coplanar(a, b, c, d))
-            uf.unite(static_cast<uint32_t>(mesh.face(h).idx()),
-                     static_cast<uint32_t>(mesh.face(o).idx()));
+        const Point_3 &c = mesh.point(mesh.target(Mesh::next(h)));
+        const Point_3 &d = mesh.point(mesh.target(Mesh::next(o)));
+        if (CGAL::coplanar(a, b, c, d)) uf.unite(Mesh::face(h), Mesh::face(o));
     }
     std::vector<uint32_t> group(nf);
-    for (size_t f = 0; f < nf; ++f) group[f] = uf.find(static_cast<uint32_t>(f));
-
-    auto group_of = [&](halfedge_descriptor h) { return group[mesh.face(h).idx()]; };
-    auto is_boundary = [&](halfedge_descriptor h) {
-        return group_of(h) != group_of(mesh.opposite(h));
+    for (uint32_t f = 0; f < nf; ++f) group[f] = uf.find(f);
+    auto is_boundary = [&](uint32_t h) {
+        return group[Mesh::face(h)] != group[Mesh::face(mesh.opposite[h])];
     };
 
-    // 2. For each group (in order of its smallest face index: deterministic),
-    //    the first boundary halfedge and the number of boundary halfedges.
-    const halfedge_descriptor none;
-    std::vector<halfedge_descriptor> start(nf, none);
-    std::vector<size_t> boundary_count(nf, 0);
-    std::vector<uint32_t> roots;
-    for (size_t f = 0; f < nf; ++f) {
-        const uint32_t g = group[f];
-        if (g == f) roots.push_back(g);
-        for (halfedge_descriptor h : mesh.halfedges_around_face(mesh.halfedge(face_descriptor(f)))) {
-            if (!is_boundary(h)) continue;
-            if (start[g] == none) start[g] = h;
-            ++boundary_count[g];
-        }
+    // 2. Per group: first boundary halfedge and number of boundary halfedges.
+    std::vector<uint32_t> start(nf, kNone), boundary_count(nf, 0), roots;
+    for (uint32_t h = 0; h < nh; ++h) {
+        const uint32_t g = group[Mesh::face(h)];
+        if (h % 3 == 0 && g == Mesh::face(h)) roots.push_back(g);
+        if (!is_boundary(h)) continue;
+        if (start[g] == kNone) start[g] = h;
+        ++boundary_count[g];
     }
 
     // 3. Trace each group's boundary. From boundary halfedge h (ending at v),
-    //    the next boundary halfedge of the same group leaves v: turn around v
-    //    through the group's triangles until the opposite face is in another
-    //    group. A facet is a disk, so this visits every boundary halfedge of
-    //    the group once; the count check catches anything else.
-    //    Then drop loop vertices exactly collinear with their neighbours
-    //    (non-extreme points inside a hull edge, see the file comment).
-    Polygons out;
-    out.offsets.reserve(roots.size() + 1);
-    std::vector<Mesh::Vertex_index> loop;
+    //    the next boundary halfedge of the group leaves v: turn around v
+    //    through the group's triangles until the opposite triangle belongs to
+    //    another group. A facet is a disk, so this visits every boundary
+    //    halfedge of the group exactly once; the count check catches anything
+    //    else. Then drop loop vertices exactly collinear with their
+    //    neighbours (non-extreme points inside a hull edge, see above).
+    loops.clear();
+    offsets.assign(1, 0);
+    std::vector<uint32_t> loop;
     std::vector<char> drop;
     for (uint32_t g : roots) {
         loop.clear();
-        const halfedge_descriptor first = start[g];
-        if (first == none) throw Hull_error("hull facet without boundary");
-        halfedge_descriptor h = first;
+        const uint32_t first = start[g];
+        if (first == kNone) throw Hull_error("hull facet without boundary");
+        uint32_t h = first;
         do {
             loop.push_back(mesh.source(h));
             if (loop.size() > boundary_count[g])
                 throw Hull_error("hull facet boundary is not a simple loop");
-            halfedge_descriptor n = mesh.next(h);
+            uint32_t n = Mesh::next(h);
             size_t guard = 0;
             while (!is_boundary(n)) {
-                n = mesh.next(mesh.opposite(n));
-                if (++guard > nf) throw Hull_error("cannot trace hull facet boundary");
+                n = Mesh::next(mesh.opposite[n]);
+                if (++guard > nh) throw Hull_error("cannot trace a hull facet boundary");
             }
             h = n;
         } while (h != first);
         if (loop.size() != boundary_count[g])
             throw Hull_error("hull facet boundary is not a simple loop");
 
+        // A 3-vertex loop bounds a non-degenerate triangle: nothing to drop.
         const size_t m = loop.size();
         drop.assign(m, 0);
-        for (size_t i = 0; i < m; ++i) {
-            const Point_3 &p = mesh.point(loop[(i + m - 1) % m]);
-            const Point_3 &q = mesh.point(loop[i]);
-            const Point_3 &r = mesh.point(loop[(i + 1) % m]);
-            drop[i] = CGAL::collinear(p, q, r) ? 1 : 0;
-        }
-        size_t kept = 0;
+        for (size_t i = 0; m > 3 && i < m; ++i)
+            drop[i] = CGAL::collinear(mesh.point(loop[(i + m - 1) % m]), mesh.point(loop[i]),
+                                      mesh.point(loop[(i + 1) % m]));
+        const size_t before = loops.size();
         for (size_t i = 0; i < m; ++i)
-            if (!drop[i]) {
-                out.loop_vertices.push_back(loop[i]);
-                ++kept;
-            }
-        if (kept < 3) throw Hull_error("degenerate hull facet after merging");
-        out.offsets.push_back(out.loop_vertices.size());
+            if (!drop[i]) loops.push_back(loop[i]);
+        if (loops.size() - before < 3) throw Hull_error("degenerate hull facet after merging");
+        offsets.push_back(loops.size());
     }
-    return out;
 }
+
+// Open-addressing hash table from coordinates to an index into `points`
+// (distinct points). Keys compare with == like CGAL's Point_3, so -0.0 and
+// 0.0 match; the hash normalizes zeros (x + 0.0 turns -0.0 into 0.0).
+class Point_table {
+  public:
+    Point_table(const std::vector<Xyz> &points, const std::vector<uint32_t> &keys) : points_(points) {
+        size_t cap = 16;
+        while (cap < 2 * keys.size()) cap *= 2;
+        mask_ = cap - 1;
+        slots_.assign(cap, kNone);
+        for (uint32_t v : keys) {
+            size_t i = hash(points[v].data()) & mask_;
+            while (slots_[i] != kNone) i = (i + 1) & mask_;
+            slots_[i] = v;
+        }
+    }
+    // Index of the point with exactly these coordinates, or kNone.
+    uint32_t find(const double *c) const {
+        for (size_t i = hash(c) & mask_;; i = (i + 1) & mask_) {
+            const uint32_t v = slots_[i];
+            if (v == kNone) return kNone;
+            const Xyz &p = points_[v];
+            if (p[0] == c[0] && p[1] == c[1] && p[2] == c[2]) return v;
+        }
+    }
+
+  private:
+    static size_t hash(const double *c) {
+        uint64_t h = 0x9E3779B97F4A7C15ull;
+        for (int k = 0; k < 3; ++k) {
+            const double x = c[k] + 0.0;
+            uint64_t bits;
+            std::memcpy(&bits, &x, sizeof bits);
+            h = (h ^ bits) * 0xFF51AFD7ED558CCDull;
+            h ^= h >> 32;
+        }
+        return static_cast<size_t>(h);
+    }
+    const std::vector<Xyz> &points_;
+    std::vector<uint32_t> slots_;
+    size_t mask_ = 0;
+};
 
 // Checks the combinatorics promised by pxcd.h: no repeated vertex in a loop,
 // every undirected edge used exactly once in each direction, and Euler's
@@ -219,125 +349,199 @@ void check_topology(size_t vertex_count, const std::vector<size_t> &offsets,
                     const std::vector<uint32_t> &indices) {
     const size_t face_count = offsets.size() - 1;
     std::vector<size_t> stamp(vertex_count, SIZE_MAX);
-    // key = (min << 33) | (max << 1) | (direction is min->max ? 0 : 1)
-    std::vector<uint64_t> keys;
-    keys.reserve(indices.size());
+    std::vector<uint32_t> src(indices.size()), dst(indices.size());
     for (size_t f = 0; f < face_count; ++f) {
         const size_t b = offsets[f], e = offsets[f + 1];
         for (size_t i = b; i < e; ++i) {
-            const uint64_t u = indices[i];
-            const uint64_t v = indices[i + 1 < e ? i + 1 : b];
-            if (stamp[u] == f) throw Hull_error("hull facet repeats a vertex");
+            const uint32_t u = indices[i];
+            if (stamp[u] == f) throw Hull_error("a hull facet repeats a vertex");
             stamp[u] = f;
-            const uint64_t lo = std::min(u, v), hi = std::max(u, v);
-            keys.push_back((lo << 33) | (hi << 1) | (u < v ? 0u : 1u));
+            src[i] = u;
+            dst[i] = indices[i + 1 < e ? i + 1 : b];
         }
     }
-    std::sort(keys.begin(), keys.end());
-    if (keys.size() % 2 != 0) throw Hull_error("hull edges are not paired");
-    for (size_t i = 0; i < keys.size(); i += 2) {
-        // Each undirected edge must appear as exactly the pair (dir 0, dir 1).
-        if ((keys[i] & 1u) != 0 || keys[i + 1] != (keys[i] | 1u) ||
-            (i + 2 < keys.size() && (keys[i + 2] >> 1) == (keys[i] >> 1)))
-            throw Hull_error("hull edges are not paired");
-    }
-    const size_t edge_count = keys.size() / 2;
-    if (vertex_count + face_count != edge_count + 2)
+    // Each directed edge has exactly one reverse, so none repeats, and
+    // undirected edges are exactly pairs of directed ones.
+    pair_reverse_edges(vertex_count, src, dst);
+    if (vertex_count + face_count != indices.size() / 2 + 2)
         throw Hull_error("hull violates Euler's formula");
+}
+
+// Hull facets as loops over `points` (hull vertices, as doubles), before
+// canonical numbering.
+struct Facets {
+    std::vector<Xyz> points;
+    std::vector<uint32_t> loops;
+    std::vector<size_t> offsets;
+};
+
+// Affine dimension, and when it is 3 the facets, computed with kernel K.
+template <class K, class Traits>
+int compute_facets(const double *xyz, size_t count, Facets &out) {
+    using Point_3 = typename K::Point_3;
+    std::vector<Point_3> pts;
+    pts.reserve(count);
+    for (size_t i = 0; i < count; ++i) pts.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+
+    const int dim = affine_dimension(pts);
+    if (dim < 3) return dim;
+
+    // The traits-taking overload has an extra template parameter that cannot
+    // be deduced in CGAL 5.5 (unused; any type works), hence the explicit
+    // template arguments.
+    Tri_mesh<Point_3> mesh;
+    using Iterator = typename std::vector<Point_3>::const_iterator;
+    CGAL::convex_hull_3<Iterator, void, std::vector<Point_3>, std::vector<Triangle>, Traits>(
+        pts.cbegin(), pts.cend(), mesh.points, mesh.tris, Traits());
+    std::vector<Point_3>().swap(pts); // release early
+    mesh.link();
+    merge_coplanar_triangles(mesh, out.loops, out.offsets);
+
+    // Hull points are copies of input doubles, so to_double is exact.
+    out.points.resize(mesh.points.size());
+    for (size_t v = 0; v < mesh.points.size(); ++v) {
+        const Point_3 &p = mesh.points[v];
+        out.points[v] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    }
+    return 3;
+}
+
+// CGAL's own test (Interval_nt.h, Test_runtime_rounding_modes): under
+// upward rounding, -(-a * b) and a * b differ for inexact products.
+bool directed_rounding_works() {
+    using CGAL::IA_up; // the CGAL_IA_* macros expect to be used inside namespace CGAL
+    CGAL::Protect_FPU_rounding<true> protect(CGAL_FE_UPWARD);
+    return -CGAL_IA_MUL(-1.1, 10.1) != CGAL_IA_MUL(1.1, 10.1) &&
+           -CGAL_IA_DIV(-1., 10) != CGAL_IA_DIV(1., 10);
+}
+
+bool use_exact_kernel() {
+    static const bool exact = [] {
+        const char *force = std::getenv("PXCD_HULL_EXACT_KERNEL");
+        return (force != nullptr && force[0] != '\0' && force[0] != '0') || !directed_rounding_works();
+    }();
+    return exact;
+}
+
+pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
+    Facets facets;
+    const int dim = use_exact_kernel()
+                        ? compute_facets<Exact_kernel, Exact_traits>(xyz, count, facets)
+                        : compute_facets<Fast_kernel, Fast_traits>(xyz, count, facets);
+    if (dimension != nullptr) *dimension = dim;
+    if (dim < 3) return nullptr;
+    const std::vector<uint32_t> &loops = facets.loops;
+    const std::vector<size_t> &offsets = facets.offsets;
+    const size_t face_count = offsets.size() - 1;
+    const size_t point_count = facets.points.size();
+
+    // Canonical vertex numbering: by first occurrence in the input. The used
+    // hull vertices go into a hash table keyed by coordinates; one pass over
+    // the input finds each one's first occurrence.
+    std::vector<uint32_t> used;
+    {
+        std::vector<char> is_used(point_count, 0);
+        for (uint32_t v : loops) is_used[v] = 1;
+        for (uint32_t v = 0; v < point_count; ++v)
+            if (is_used[v]) used.push_back(v);
+    }
+    std::vector<size_t> first_input(point_count, SIZE_MAX);
+    {
+        Point_table table(facets.points, used);
+        size_t found = 0;
+        for (size_t i = 0; i < count && found < used.size(); ++i) {
+            const uint32_t v = table.find(&xyz[3 * i]);
+            if (v != kNone && first_input[v] == SIZE_MAX) {
+                first_input[v] = i;
+                ++found;
+            }
+        }
+        if (found != used.size()) throw Hull_error("a hull vertex is not an input point");
+    }
+    std::sort(used.begin(), used.end(),
+              [&](uint32_t a, uint32_t b) { return first_input[a] < first_input[b]; });
+    std::vector<uint32_t> new_id(point_count, kNone);
+    for (uint32_t i = 0; i < used.size(); ++i) new_id[used[i]] = i;
+
+    // Canonical loops: renumbered, rotated to start at the smallest id,
+    // sorted by their first two ids.
+    std::vector<uint32_t> indices(loops.size());
+    for (size_t f = 0; f < face_count; ++f) {
+        const size_t b = offsets[f], e = offsets[f + 1];
+        for (size_t i = b; i < e; ++i) indices[i] = new_id[loops[i]];
+        std::rotate(indices.begin() + b, std::min_element(indices.begin() + b, indices.begin() + e),
+                    indices.begin() + e);
+    }
+    std::vector<std::pair<uint64_t, uint32_t>> face_order(face_count);
+    for (uint32_t f = 0; f < face_count; ++f) {
+        const uint32_t *p = &indices[offsets[f]];
+        face_order[f] = {(uint64_t(p[0]) << 32) | p[1], f};
+    }
+    std::sort(face_order.begin(), face_order.end());
+    std::vector<size_t> out_offsets(1, 0);
+    std::vector<uint32_t> out_indices;
+    out_offsets.reserve(face_count + 1);
+    out_indices.reserve(indices.size());
+    for (const auto &key_face : face_order) {
+        const uint32_t f = key_face.second;
+        out_indices.insert(out_indices.end(), indices.begin() + offsets[f],
+                           indices.begin() + offsets[f + 1]);
+        out_offsets.push_back(out_indices.size());
+    }
+    check_topology(used.size(), out_offsets, out_indices);
+
+    // Copy into malloc'd arrays (the C side frees them with pxcd_hull_free).
+    pxcd_hull *hull = static_cast<pxcd_hull *>(std::calloc(1, sizeof(pxcd_hull)));
+    if (hull == nullptr) throw std::bad_alloc();
+    hull->vertex_count = used.size();
+    hull->face_count = face_count;
+    hull->vertices = static_cast<double *>(std::malloc(3 * used.size() * sizeof(double)));
+    hull->face_offsets = static_cast<size_t *>(std::malloc(out_offsets.size() * sizeof(size_t)));
+    hull->face_indices = static_cast<uint32_t *>(std::malloc(out_indices.size() * sizeof(uint32_t)));
+    if (hull->vertices == nullptr || hull->face_offsets == nullptr || hull->face_indices == nullptr) {
+        pxcd_hull_free(hull);
+        throw std::bad_alloc();
+    }
+    for (size_t i = 0; i < used.size(); ++i)
+        std::copy(&xyz[3 * first_input[used[i]]], &xyz[3 * first_input[used[i]] + 3],
+                  &hull->vertices[3 * i]);
+    std::copy(out_offsets.begin(), out_offsets.end(), hull->face_offsets);
+    std::copy(out_indices.begin(), out_indices.end(), hull->face_indices);
+    return hull;
 }
 
 } // namespace
 
 extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out,
                                          int *dimension, char *msg, size_t msg_len) {
-    if (out != nullptr) *out = nullptr;
     if (out == nullptr) {
         set_msg(msg, msg_len, "pxcd_hull_compute: out is NULL");
         return PXCD_ERROR;
     }
+    *out = nullptr;
     if (count == 0 || xyz == nullptr) {
         set_msg(msg, msg_len, "pxcd_hull_compute: no input points");
         return PXCD_ERROR;
     }
-    pxcd_hull *hull = nullptr;
+    const char *what = nullptr;
+    char buf[512];
     try {
-        std::vector<Point_3> pts;
-        pts.reserve(count);
-        for (size_t i = 0; i < count; ++i)
-            pts.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-
-        const int dim = affine_dimension(pts);
-        if (dim < 3) {
-            if (dimension != nullptr) *dimension = dim;
-            return PXCD_DEGENERATE;
-        }
-
-        Mesh mesh;
-        CGAL::convex_hull_3(pts.begin(), pts.end(), mesh);
-        std::vector<Point_3>().swap(pts); // release early: mesh has copies
-
-        const Polygons polys = merge_coplanar_triangles(mesh);
-
-        // Renumber used vertices 0..V-1 by first appearance in the loops.
-        if (mesh.number_of_vertices() > UINT32_MAX)
-            throw Hull_error("too many hull vertices for 32-bit ids");
-        std::vector<uint32_t> new_id(mesh.number_of_vertices(), UINT32_MAX);
-        std::vector<Mesh::Vertex_index> used;
-        std::vector<uint32_t> indices;
-        indices.reserve(polys.loop_vertices.size());
-        for (Mesh::Vertex_index v : polys.loop_vertices) {
-            uint32_t &id = new_id[v.idx()];
-            if (id == UINT32_MAX) {
-                id = static_cast<uint32_t>(used.size());
-                used.push_back(v);
-            }
-            indices.push_back(id);
-        }
-        check_topology(used.size(), polys.offsets, indices);
-
-        // Copy into malloc'd arrays (freed by pxcd_hull_free on the C side).
-        hull = static_cast<pxcd_hull *>(std::calloc(1, sizeof(pxcd_hull)));
-        if (hull == nullptr) throw std::bad_alloc();
-        hull->vertex_count = used.size();
-        hull->face_count = polys.offsets.size() - 1;
-        hull->vertices = static_cast<double *>(std::malloc(3 * used.size() * sizeof(double)));
-        hull->face_offsets =
-            static_cast<size_t *>(std::malloc(polys.offsets.size() * sizeof(size_t)));
-        hull->face_indices = static_cast<uint32_t *>(std::malloc(indices.size() * sizeof(uint32_t)));
-        if (hull->vertices == nullptr || hull->face_offsets == nullptr ||
-            hull->face_indices == nullptr)
-            throw std::bad_alloc();
-        // Epick points store the input doubles unchanged, so these are
-        // bit-identical copies of input coordinates.
-        for (size_t i = 0; i < used.size(); ++i) {
-            const Point_3 &p = mesh.point(used[i]);
-            hull->vertices[3 * i] = p.x();
-            hull->vertices[3 * i + 1] = p.y();
-            hull->vertices[3 * i + 2] = p.z();
-        }
-        std::copy(polys.offsets.begin(), polys.offsets.end(), hull->face_offsets);
-        std::copy(indices.begin(), indices.end(), hull->face_indices);
-
-        if (dimension != nullptr) *dimension = 3;
+        pxcd_hull *hull = compute(xyz, count, dimension);
+        if (hull == nullptr) return PXCD_DEGENERATE;
         *out = hull;
         return PXCD_OK;
     } catch (const std::bad_alloc &) {
-        pxcd_hull_free(hull);
-        set_msg(msg, msg_len, "pxcd_hull_compute: out of memory");
+        what = "pxcd_hull_compute: out of memory";
     } catch (const CGAL::Failure_exception &e) {
-        pxcd_hull_free(hull);
-        char buf[512];
         std::snprintf(buf, sizeof buf, "pxcd_hull_compute: CGAL failure: %s", e.what());
-        set_msg(msg, msg_len, buf);
+        what = buf;
     } catch (const std::exception &e) {
-        pxcd_hull_free(hull);
-        char buf[512];
         std::snprintf(buf, sizeof buf, "pxcd_hull_compute: %s", e.what());
-        set_msg(msg, msg_len, buf);
+        what = buf;
     } catch (...) {
-        pxcd_hull_free(hull);
-        set_msg(msg, msg_len, "pxcd_hull_compute: unknown exception");
+        what = "pxcd_hull_compute: unknown exception";
     }
+    set_msg(msg, msg_len, what);
     return PXCD_ERROR;
 }
 

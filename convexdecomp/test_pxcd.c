@@ -57,6 +57,8 @@ static double now_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static double cpu_seconds(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
 static void shuffle_points(double *xyz, size_t n) {
     for (size_t i = n; i > 1; --i) {
         size_t j = (size_t)(rnd01() * (double)i);
@@ -75,10 +77,16 @@ static int cmp_u64(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
-/* Returns 1 if the hull passes all generic checks (reports failures). When
- * exact_ints is set the input coordinates are small integers and the
- * geometric checks are exact. */
-static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int exact_ints) {
+/* How check_hull checks the geometry. */
+enum {
+    GEOM_FLOAT = 0, /* floating point, with a tolerance */
+    GEOM_EXACT = 1, /* inputs are small integers or halves: exact checks */
+    GEOM_NONE = 2   /* ill-conditioned (nearly flat) hull: no geometry */
+};
+
+/* Returns 1 if the hull passes all checks (and prints why not). */
+static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom) {
+    const int exact_ints = geom == GEOM_EXACT;
     int ok = 1;
     const size_t V = h->vertex_count, F = h->face_count, NI = h->face_offsets[F];
     if (h->face_offsets[0] != 0 || NI % 2 != 0 || V < 4 || F < 4) {
@@ -128,6 +136,8 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int exact
             found = memcmp(&h->vertices[3 * v], &xyz[3 * i], 3 * sizeof(double)) == 0;
         if (!found) { printf("  vertex %zu is not an input point\n", v); ok = 0; }
     }
+
+    if (!ok || geom == GEOM_NONE) return ok;
 
     /* Geometry: outward orientation, points inside. */
     double c[3] = {0, 0, 0}, scale = 0;
@@ -216,7 +226,7 @@ static void test_cube_with_extras(void) {
             corners &= fabs(h->vertices[i]) == 1.0;
         CHECK(corners, "a hull vertex is not a cube corner");
         CHECK(dim == 3, "dim=%d", dim);
-        CHECK(check_hull(h, xyz, n, 1), "cube hull checks");
+        CHECK(check_hull(h, xyz, n, GEOM_EXACT), "cube hull checks");
         pxcd_hull_free(h);
     }
 }
@@ -230,7 +240,7 @@ static void test_tetrahedron(void) {
     if (!h) return;
     CHECK(h->vertex_count == 4 && h->face_count == 4 && edge_count(h) == 6,
           "V=%zu F=%zu E=%zu", h->vertex_count, h->face_count, edge_count(h));
-    CHECK(check_hull(h, xyz, 5, 0), "tetrahedron hull checks");
+    CHECK(check_hull(h, xyz, 5, GEOM_FLOAT), "tetrahedron hull checks");
     pxcd_hull_free(h);
 }
 
@@ -248,7 +258,7 @@ static void test_sphere(size_t n) {
         /* Rounded points are not exactly on the sphere, but with this few
          * points essentially all are extreme and in general position. */
         CHECK(h->vertex_count > n * 9 / 10 && h->vertex_count <= n, "V=%zu of %zu", h->vertex_count, n);
-        CHECK(check_hull(h, xyz, n, 0), "sphere hull checks");
+        CHECK(check_hull(h, xyz, n, GEOM_FLOAT), "sphere hull checks");
         /* Deterministic: same input, same output. */
         pxcd_hull *g = hull_of(xyz, n, &st, &dim);
         CHECK(g && g->vertex_count == h->vertex_count && g->face_count == h->face_count &&
@@ -294,19 +304,23 @@ static void test_box_edges(void) {
                     p[a2] = b * size[a2] / (K - 1);
                     memcpy(&xyz[3 * n++], p, sizeof p);
                 }
+    double *pts = malloc(sizeof xyz);
     for (int round = 0; round < 30; ++round) {
+        /* Even rounds: edge points only; odd rounds: edges and faces. */
         size_t m = round % 2 ? n : n_edges;
-        shuffle_points(xyz, m);
+        memcpy(pts, xyz, m * 3 * sizeof(double));
+        shuffle_points(pts, m);
         pxcd_status st;
         int dim;
-        pxcd_hull *h = hull_of(xyz, m, &st, &dim);
+        pxcd_hull *h = hull_of(pts, m, &st, &dim);
         CHECK(st == PXCD_OK && h, "status %d", (int)st);
         if (!h) continue;
         CHECK(h->vertex_count == 8 && h->face_count == 6 && edge_count(h) == 12,
               "round %d: V=%zu F=%zu E=%zu", round, h->vertex_count, h->face_count, edge_count(h));
-        CHECK(check_hull(h, xyz, m, 1), "box hull checks");
+        CHECK(check_hull(h, pts, m, GEOM_EXACT), "box hull checks");
         pxcd_hull_free(h);
     }
+    free(pts);
 }
 
 /* Random small-integer points: heavy coplanarity, exact checks. */
@@ -322,7 +336,7 @@ static void test_random_lattice(void) {
         pxcd_hull *h = hull_of(xyz, n, &st, &dim);
         CHECK(st == PXCD_OK && h, "status %d", (int)st);
         if (!h) continue;
-        CHECK(check_hull(h, xyz, n, 1), "lattice round %d (range %d, n %zu)", round, range, n);
+        CHECK(check_hull(h, xyz, n, GEOM_EXACT), "lattice round %d (range %d, n %zu)", round, range, n);
         pxcd_hull_free(h);
     }
     /* Octahedron with its lattice interior: 6 vertices, 8 triangles. */
@@ -341,7 +355,65 @@ static void test_random_lattice(void) {
     pxcd_hull *h = hull_of(oct, n, &st, &dim);
     CHECK(st == PXCD_OK && h && h->vertex_count == 6 && h->face_count == 8,
           "octahedron: V=%zu F=%zu", h ? h->vertex_count : 0, h ? h->face_count : 0);
-    if (h) CHECK(check_hull(h, oct, n, 1), "octahedron hull checks");
+    if (h) CHECK(check_hull(h, oct, n, GEOM_EXACT), "octahedron hull checks");
+    pxcd_hull_free(h);
+}
+
+/* The 27-point cube grid scaled to extreme magnitudes and offset: the
+ * predicates overflow/underflow the filters and must fall back to exact
+ * arithmetic. Also signed zeros: the vertex keeps its first occurrence's
+ * bits. */
+static void test_hull_scales(void) {
+    const double scales[] = {1e-300, 1e-150, 1e150, 1e300};
+    double xyz[27 * 3];
+    for (size_t k = 0; k < sizeof scales / sizeof scales[0]; ++k) {
+        double s = scales[k];
+        size_t n = 0;
+        for (int x = -1; x <= 1; ++x)
+            for (int y = -1; y <= 1; ++y)
+                for (int z = -1; z <= 1; ++z) {
+                    xyz[3 * n] = x * s + 3 * s, xyz[3 * n + 1] = y * s, xyz[3 * n + 2] = z * s - 5 * s;
+                    ++n;
+                }
+        shuffle_points(xyz, n);
+        pxcd_status st;
+        int dim;
+        pxcd_hull *h = hull_of(xyz, n, &st, &dim);
+        CHECK(st == PXCD_OK && h && h->vertex_count == 8 && h->face_count == 6,
+              "scale %g: st=%d V=%zu F=%zu", s, (int)st, h ? h->vertex_count : 0, h ? h->face_count : 0);
+        if (h) CHECK(check_hull(h, xyz, n, GEOM_NONE), "scale %g hull checks", s);
+        pxcd_hull_free(h);
+    }
+
+    /* Unit cube corners; the origin comes first as (-0, 0, -0), later as
+     * (0, 0, 0) and (0, -0, 0). */
+    double cube[11 * 3] = {-0.0, 0, -0.0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1,
+                           0, 0, 0, 0.5, 0.5, 0.5, 0, -0.0, 0};
+    pxcd_status st;
+    int dim;
+    pxcd_hull *h = hull_of(cube, 11, &st, &dim);
+    CHECK(st == PXCD_OK && h && h->vertex_count == 8 && h->face_count == 6, "signed-zero cube");
+    if (h) {
+        /* Vertex 0 is the first input point, with its bits. */
+        CHECK(memcmp(&h->vertices[0], &cube[0], 3 * sizeof(double)) == 0 && signbit(h->vertices[0]) &&
+                  signbit(h->vertices[2]) && !signbit(h->vertices[1]),
+              "signed zeros not preserved: (%g %g %g)", h->vertices[0], h->vertices[1], h->vertices[2]);
+        /* Vertices come in input order: vertex i is input point i here. */
+        CHECK(memcmp(h->vertices, cube, 24 * sizeof(double)) == 0, "vertices not in input order");
+        /* Faces start at their smallest id and are sorted. */
+        int canonical = 1;
+        for (size_t f = 0; f < h->face_count; ++f) {
+            const uint32_t *p = &h->face_indices[h->face_offsets[f]];
+            size_t m = h->face_offsets[f + 1] - h->face_offsets[f];
+            for (size_t i = 1; i < m; ++i) canonical &= p[0] < p[i];
+            if (f > 0) {
+                const uint32_t *q = &h->face_indices[h->face_offsets[f - 1]];
+                canonical &= q[0] < p[0] || (q[0] == p[0] && q[1] < p[1]);
+            }
+        }
+        CHECK(canonical, "faces not canonical");
+        CHECK(check_hull(h, cube, 11, GEOM_EXACT), "signed-zero cube hull checks");
+    }
     pxcd_hull_free(h);
 }
 
@@ -376,7 +448,7 @@ static void test_degenerate(void) {
     plane[3 * 49 + 2] = nextafter(plane[3 * 49 + 2], INFINITY);
     h = hull_of(plane, 50, &st, &dim);
     CHECK(st == PXCD_OK && dim == 3 && h, "nearly coplanar: st=%d dim=%d", (int)st, dim);
-    if (h) CHECK(check_hull(h, plane, 50, 0), "nearly coplanar hull checks");
+    if (h) CHECK(check_hull(h, plane, 50, GEOM_NONE), "nearly coplanar hull checks");
     pxcd_hull_free(h);
 
     char msg[128] = "";
@@ -466,6 +538,58 @@ static void test_distance_cubes(void) {
 
     st = pxcd_exact_distance(A, 0, B, 8, &d, &d2, &zero, NULL, NULL, msg, sizeof msg);
     CHECK(st == PXCD_ERROR && msg[0] != 0, "empty P: st=%d", (int)st);
+
+    /* Single points: equal, then apart (3-4-5 triangle). */
+    double p1[] = {1, 2, 3}, q1[] = {1, 2, 3}, q2[] = {4, 6, 3};
+    st = pxcd_exact_distance(p1, 1, q1, 1, &d, &d2, &zero, NULL, NULL, msg, sizeof msg);
+    CHECK(st == PXCD_OK && zero == 1 && d == 0, "equal points: st=%d d=%g zero=%d", (int)st, d, zero);
+    st = pxcd_exact_distance(p1, 1, q2, 1, &d, &d2, &zero, NULL, NULL, msg, sizeof msg);
+    CHECK(st == PXCD_OK && zero == 0 && d == 5 && d2 == 25, "points: st=%d d=%g d2=%g", (int)st, d, d2);
+}
+
+/* Random point clouds at random scales and offsets: the realizing points
+ * must be |rp - rq| = d apart, and the plane through rp (rq) normal to
+ * rq - rp must have all of P (Q) on its far side, up to rounding. */
+static void test_distance_random(void) {
+    enum { N = 60 };
+    double P[3 * N], Q[3 * N];
+    int separated = 0, overlapping = 0;
+    for (int round = 0; round < 60; ++round) {
+        double scale = pow(10.0, -100 + 200 * rnd01()), gap = 3 * rnd01();
+        size_t np = 1 + (size_t)(rnd01() * N), nq = 1 + (size_t)(rnd01() * N);
+        for (size_t i = 0; i < 3 * np; ++i) P[i] = scale * (2 * rnd01() - 1);
+        for (size_t i = 0; i < 3 * nq; ++i) Q[i] = scale * (2 * rnd01() - 1 + (i % 3 == (size_t)round % 3 ? gap : 0));
+        double d = -1, d2 = -1, rp[3], rq[3];
+        int zero = -1;
+        char msg[256] = "";
+        pxcd_status st = pxcd_exact_distance(P, np, Q, nq, &d, &d2, &zero, rp, rq, msg, sizeof msg);
+        CHECK(st == PXCD_OK, "random round %d: %s", round, msg);
+        if (st != PXCD_OK) continue;
+        double n[3] = {rq[0] - rp[0], rq[1] - rp[1], rq[2] - rp[2]};
+        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (zero) {
+            ++overlapping;
+            CHECK(d == 0 && d2 == 0 && len <= 1e-12 * scale, "random round %d: zero but d=%g", round, d);
+            continue;
+        }
+        ++separated;
+        CHECK(fabs(len - d) <= 1e-12 * scale && fabs(d * d - d2) <= 1e-12 * d2,
+              "random round %d: |rp-rq|=%.17g d=%.17g d2=%.17g", round, len, d, d2);
+        double worst = 0;
+        for (size_t i = 0; i < np; ++i) {
+            const double *p = &P[3 * i];
+            double s = (n[0] * (p[0] - rp[0]) + n[1] * (p[1] - rp[1]) + n[2] * (p[2] - rp[2])) / len;
+            if (s > worst) worst = s;
+        }
+        for (size_t i = 0; i < nq; ++i) {
+            const double *q = &Q[3 * i];
+            double s = -(n[0] * (q[0] - rq[0]) + n[1] * (q[1] - rq[1]) + n[2] * (q[2] - rq[2])) / len;
+            if (s > worst) worst = s;
+        }
+        CHECK(worst <= 1e-12 * scale, "random round %d: a point is %g beyond its support plane", round, worst);
+    }
+    CHECK(separated > 10 && overlapping > 5, "random cases: %d separated, %d overlapping", separated,
+          overlapping);
 }
 
 /* ---------- benchmark ---------- */
@@ -484,11 +608,11 @@ static void bench(void) {
     double *xyz = ellipsoid(n, 3, 2, 1, 0);
     pxcd_status st;
     int dim;
-    double t0 = now_seconds();
+    double t0 = now_seconds(), c0 = cpu_seconds();
     pxcd_hull *h = hull_of(xyz, n, &st, &dim);
-    double t1 = now_seconds();
-    printf("bench: hull of %zu ellipsoid points: %.3f s, V=%zu F=%zu\n", n, t1 - t0,
-           h ? h->vertex_count : 0, h ? h->face_count : 0);
+    double t1 = now_seconds(), c1 = cpu_seconds();
+    printf("bench: hull of %zu ellipsoid points: %.3f s wall, %.3f s cpu, V=%zu F=%zu\n", n, t1 - t0,
+           c1 - c0, h ? h->vertex_count : 0, h ? h->face_count : 0);
     pxcd_hull_free(h);
     free(xyz);
 
@@ -500,15 +624,30 @@ static void bench(void) {
         double d = 0, rp[3], rq[3];
         int zero = 0;
         char msg[256] = "";
-        t0 = now_seconds();
+        t0 = now_seconds(), c0 = cpu_seconds();
         st = pxcd_exact_distance(hp->vertices, hp->vertex_count, hq->vertices, hq->vertex_count, &d,
                                  NULL, &zero, rp, rq, msg, sizeof msg);
-        t1 = now_seconds();
-        printf("bench: exact distance %zu x %zu vertices: %.3f s, d=%.17g st=%d %s\n", hp->vertex_count,
-               hq->vertex_count, t1 - t0, d, (int)st, msg);
+        t1 = now_seconds(), c1 = cpu_seconds();
+        printf("bench: exact distance %zu x %zu vertices: %.3f s wall, %.3f s cpu, d=%.17g st=%d %s\n",
+               hp->vertex_count, hq->vertex_count, t1 - t0, c1 - c0, d, (int)st, msg);
     }
     pxcd_hull_free(hp);
     pxcd_hull_free(hq);
+    free(P);
+    free(Q);
+
+    /* Two hulls of 200k vertices each. */
+    P = ellipsoid(n, 1, 1.5, 2, 0), Q = ellipsoid(n, 2, 1, 1, 3.5);
+    {
+        double d = 0;
+        int zero = 0;
+        char msg[256] = "";
+        t0 = now_seconds(), c0 = cpu_seconds();
+        st = pxcd_exact_distance(P, n, Q, n, &d, NULL, &zero, NULL, NULL, msg, sizeof msg);
+        t1 = now_seconds(), c1 = cpu_seconds();
+        printf("bench: exact distance %zu x %zu points: %.3f s wall, %.3f s cpu, d=%.17g st=%d %s\n", n, n,
+               t1 - t0, c1 - c0, d, (int)st, msg);
+    }
     free(P);
     free(Q);
 }
@@ -519,9 +658,11 @@ int main(int argc, char **argv) {
     test_sphere(2000);
     test_box_edges();
     test_random_lattice();
+    test_hull_scales();
     test_degenerate();
     test_distance_scales();
     test_distance_cubes();
+    test_distance_random();
     if (argc > 1 && strcmp(argv[1], "--bench") == 0) bench();
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;

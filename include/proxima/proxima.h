@@ -94,8 +94,8 @@ px_pose px_pose_from_rt(const double r[9], const double t[3]);
 /// `px_pose_check` rejects.
 px_pose px_pose_from_quat(const double q[4], const double t[3]);
 
-/// PX_OK when every entry is finite and R is a rotation within 1e-6
-/// (|R^T R - I| and |det R - 1|); otherwise PX_ERR_NON_FINITE or
+/// PX_OK when every entry is finite and R is a proper rotation within 1e-6
+/// (rows 0 and 1 orthonormal, row 2 = row 0 x row 1); otherwise PX_ERR_NON_FINITE or
 /// PX_ERR_INVALID_POSE, with a message when `err` is not NULL.
 px_status px_pose_check(const px_pose *pose, px_error *err);
 
@@ -226,5 +226,8 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
 #ifdef __cplusplus
 }
 #endif
+
+/* File loading (Assimp): px_convex_from_file, px_mesh_points_from_file. */
+#include "proxima/io.h"
 
 #endif /* PROXIMA_PROXIMA_H */

@@ -101,11 +101,45 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     }
     for (uint32_t i = 0; i < c->nv; ++i)
         c->v[i] = pxi_v(h->vertices[3 * i], h->vertices[3 * i + 1], h->vertices[3 * i + 2]);
+    memcpy(c->f_verts, h->face_indices, nhalf * sizeof(uint32_t));
+
+    /* Outward orientation is the contract of pxcd.h, but it costs O(F) to
+     * make sure: the signed volume of the fans from an interior point must
+     * be positive; if it is negative every loop is reversed. */
+    px_vec3 mid = {0, 0, 0};
+    double big = 0.0;
+    for (uint32_t i = 0; i < c->nv; ++i) {
+        double m = pxi_max_abs(c->v[i]);
+        if (m > big) big = m;
+    }
+    /* Coordinates divided by the largest one: no overflow at 1e139, no
+     * underflow at 1e-23 (triple products of raw coordinates would). */
+    double inv = big > 0.0 ? 1.0 / big : 1.0;
+    for (uint32_t i = 0; i < c->nv; ++i) mid = pxi_add(mid, pxi_scale(c->v[i], inv / c->nv));
+    double vol = 0.0;
+    for (uint32_t f = 0; f < c->nf; ++f) {
+        const uint32_t *ids = c->f_verts + h->face_offsets[f];
+        uint32_t n = (uint32_t)(h->face_offsets[f + 1] - h->face_offsets[f]);
+        px_vec3 a = pxi_sub(pxi_scale(c->v[ids[0]], inv), mid);
+        for (uint32_t k = 1; k + 1 < n; ++k)
+            vol += pxi_dot(a, pxi_cross(pxi_sub(pxi_scale(c->v[ids[k]], inv), mid),
+                                        pxi_sub(pxi_scale(c->v[ids[k + 1]], inv), mid)));
+    }
+    if (vol < 0.0) {
+        for (uint32_t f = 0; f < c->nf; ++f) {
+            uint32_t *ids = c->f_verts + h->face_offsets[f];
+            uint32_t n = (uint32_t)(h->face_offsets[f + 1] - h->face_offsets[f]);
+            for (uint32_t k = 0; k < n / 2; ++k) {
+                uint32_t t = ids[k];
+                ids[k] = ids[n - 1 - k];
+                ids[n - 1 - k] = t;
+            }
+        }
+    }
 
     /* Faces: boundary loops and planes. */
     for (uint32_t f = 0; f < c->nf; ++f) {
         uint32_t first = (uint32_t)h->face_offsets[f], n = (uint32_t)(h->face_offsets[f + 1] - first);
-        memcpy(c->f_verts + first, h->face_indices + first, n * sizeof(uint32_t));
         pxi_face *F = &c->f[f];
         F->first = first;
         F->count = n;

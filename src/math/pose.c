@@ -23,8 +23,10 @@ px_pose px_pose_from_quat(const double q[4], const double t[3]) {
     px_pose p = px_pose_identity();
     if (t) p.t = pxi_v(t[0], t[1], t[2]);
     if (!q) return p;
-    double n = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (!(n > 0.0) || !isfinite(n)) {
+    /* isfinite first: an ordered comparison with NaN raises FE_INVALID. */
+    int finite = isfinite(q[0]) && isfinite(q[1]) && isfinite(q[2]) && isfinite(q[3]);
+    double n = finite ? sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) : 0.0;
+    if (!finite || !isfinite(n) || n == 0.0) {
         /* Leave a pose that px_pose_check rejects rather than inventing one. */
         for (int i = 0; i < 9; ++i) p.r[i] = NAN;
         return p;
@@ -44,23 +46,26 @@ px_pose px_pose_from_quat(const double q[4], const double t[3]) {
 
 px_status px_pose_check(const px_pose *pose, px_error *err) {
     if (!pose) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "pose is NULL");
-    for (int i = 0; i < 9; ++i)
-        if (!isfinite(pose->r[i]))
-            return pxi_error(err, PX_ERR_NON_FINITE, "pose rotation entry r[%d] is not finite", i);
-    if (!pxi_is_finite3(pose->t)) return pxi_error(err, PX_ERR_NON_FINITE, "pose translation is not finite");
     const double *r = pose->r;
-    double worst = 0.0;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            double s = r[i] * r[j] + r[3 + i] * r[3 + j] + r[6 + i] * r[6 + j];
-            double dev = fabs(s - (i == j ? 1.0 : 0.0));
-            if (dev > worst) worst = dev;
-        }
-    double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
-                 r[2] * (r[3] * r[7] - r[4] * r[6]);
-    if (worst > 1e-6 || fabs(det - 1.0) > 1e-6)
-        return pxi_error(err, PX_ERR_INVALID_POSE,
-                         "pose rotation is not a rotation: |R^T R - I| = %.3g, det R = %.17g", worst, det);
+    for (int i = 0; i < 9; ++i)
+        if (!isfinite(r[i]))
+            return pxi_error(err, PX_ERR_NON_FINITE, "pose rotation entry r[%d] is not finite", i);
+    if (!isfinite(pose->t.x) || !isfinite(pose->t.y) || !isfinite(pose->t.z))
+        return pxi_error(err, PX_ERR_NON_FINITE, "pose translation is not finite");
+    /* Rows orthonormal and det +1 (row 2 = row 0 x row 1), within 1e-6. */
+    double n0 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - 1.0;
+    double n1 = r[3] * r[3] + r[4] * r[4] + r[5] * r[5] - 1.0;
+    double d01 = r[0] * r[3] + r[1] * r[4] + r[2] * r[5];
+    double cx = r[1] * r[5] - r[2] * r[4] - r[6], cy = r[2] * r[3] - r[0] * r[5] - r[7],
+           cz = r[0] * r[4] - r[1] * r[3] - r[8];
+    const double tol = 1e-6;
+    if (!(fabs(n0) <= tol && fabs(n1) <= tol && fabs(d01) <= tol && fabs(cx) <= tol && fabs(cy) <= tol &&
+          fabs(cz) <= tol))
+        return pxi_error(
+            err, PX_ERR_INVALID_POSE,
+            "pose rotation is not a proper rotation (rows not orthonormal or det != +1 within "
+            "1e-6: |r0|^2-1 = %.3g, |r1|^2-1 = %.3g, r0.r1 = %.3g, r2 - r0 x r1 = (%.3g %.3g %.3g))",
+            n0, n1, d01, cx, cy, cz);
     return PX_OK;
 }
 

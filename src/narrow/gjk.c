@@ -29,6 +29,7 @@ typedef struct simplex {
     sx_point p[4];
     double lam[4];
     int n;
+    double margin; /* origin inside: its least distance to a face plane */
 } simplex;
 
 /* Keep the points whose flag is set, with their weights. */
@@ -77,7 +78,7 @@ static void closest_triangle(simplex *s) {
     }
     double vc = d1 * d4 - d3 * d2;
     if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-        double v = d1 / (d1 - d3);
+        double v = d1 - d3 > 0.0 ? d1 / (d1 - d3) : 0.0; /* 0/0 on degenerate input */
         use[0] = use[1] = 1, lam[0] = 1 - v, lam[1] = v;
         keep(s, use, lam);
         return;
@@ -90,14 +91,14 @@ static void closest_triangle(simplex *s) {
     }
     double vb = d5 * d2 - d1 * d6;
     if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-        double w = d2 / (d2 - d6);
+        double w = d2 - d6 > 0.0 ? d2 / (d2 - d6) : 0.0;
         use[0] = use[2] = 1, lam[0] = 1 - w, lam[2] = w;
         keep(s, use, lam);
         return;
     }
     double va = d3 * d6 - d5 * d4;
     if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        double den = (d4 - d3) + (d5 - d6), w = den > 0.0 ? (d4 - d3) / den : 0.0;
         use[1] = use[2] = 1, lam[1] = 1 - w, lam[2] = w;
         keep(s, use, lam);
         return;
@@ -145,6 +146,21 @@ static int closest_tetra(simplex *s) {
         double v0 = pxi_dot(w1, pxi_cross(w2, w3)), v1 = -pxi_dot(w0, pxi_cross(w2, w3));
         double v2 = pxi_dot(w0, pxi_cross(w1, w3)), v3 = -pxi_dot(w0, pxi_cross(w1, w2));
         double tot = v0 + v1 + v2 + v3;
+        /* Trust the containment only for a tetrahedron of real volume: a
+         * flat one (support points that coincide within rounding, as for a
+         * 1e-6 body at 1e12) decides its side tests on noise. */
+        double m = 0.0;
+        for (int f = 0; f < 4; ++f)
+            if (pxi_max_abs(s->p[f].w) > m) m = pxi_max_abs(s->p[f].w);
+        int fat =
+            fabs(tot) > 1e-9 * m * m * m && v0 / tot >= 0 && v1 / tot >= 0 && v2 / tot >= 0 && v3 / tot >= 0;
+        s->margin = fat ? INFINITY : 0.0;
+        for (int f = 0; f < 4; ++f) {
+            px_vec3 a = s->p[faces[f][0]].w, b = s->p[faces[f][1]].w, c = s->p[faces[f][2]].w;
+            px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
+            double len = pxi_len(n), dist = len > 0.0 ? fabs(pxi_dot(a, n)) / len : 0.0;
+            if (fat && dist < s->margin) s->margin = dist;
+        }
         if (tot != 0.0 && isfinite(tot)) {
             s->lam[0] = v0 / tot, s->lam[1] = v1 / tot, s->lam[2] = v2 / tot, s->lam[3] = v3 / tot;
         } else {
@@ -162,12 +178,15 @@ static px_vec3 simplex_point(const simplex *s) {
     return v;
 }
 
-static sx_point support(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 v) {
-    /* Support of K = A - B in direction -v: A extreme along -v, B along +v. */
+/* Support of K = A - B in direction -v: A extreme along -v, B along +v.
+ * Points of K are stored multiplied by `k`, a power of two that brings the
+ * problem to unit scale: the simplex solver forms fourth powers of lengths,
+ * which would overflow for bodies of 1e80 or underflow for bodies of 1e-80. */
+static sx_point support(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 v, double k) {
     sx_point p;
     p.ia = pxi_support(a, pxi_rot_t(t_ab->r, pxi_neg(v)), UINT32_MAX);
     p.ib = pxi_support(b, v, UINT32_MAX);
-    p.w = pxi_sub(pxi_xform(t_ab, a->v[p.ia]), b->v[p.ib]);
+    p.w = pxi_scale(pxi_sub(pxi_xform(t_ab, a->v[p.ia]), b->v[p.ib]), k);
     return p;
 }
 
@@ -175,12 +194,15 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
              uint32_t max_iterations, pxi_gjk_result *out) {
     memset(out, 0, sizeof *out);
     simplex s;
+    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
+    double k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
     /* First direction: centre to centre; a fixed non-axis direction when the
      * centres coincide (fcl #346, libccd #25). */
     px_vec3 v = pxi_sub(pxi_xform(t_ab, a->center), b->center);
     if (!(pxi_len2(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
     s.n = 1;
-    s.p[0] = support(a, b, t_ab, v);
+    s.margin = 0.0;
+    s.p[0] = support(a, b, t_ab, v, k);
     s.lam[0] = 1.0;
     v = s.p[0].w;
     double vv = pxi_len2(v), rel2 = rel_tol * rel_tol;
@@ -192,14 +214,14 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
             break;
         }
         ++it;
-        sx_point w = support(a, b, t_ab, v);
+        sx_point w = support(a, b, t_ab, v, k);
         /* van den Bergen: stop when the duality gap |v|^2 - v.w is small
          * relative to |v|^2. Written so that NaN stops the loop. */
         double gap = vv - pxi_dot(v, w.w);
         if (!(gap > rel2 * vv)) break;
         int dup = 0;
-        for (int k = 0; k < s.n; ++k)
-            if (s.p[k].ia == w.ia && s.p[k].ib == w.ib) dup = 1;
+        for (int m = 0; m < s.n; ++m)
+            if (s.p[m].ia == w.ia && s.p[m].ib == w.ib) dup = 1;
         if (dup) break;
         simplex prev = s;
         s.lam[s.n] = 0.0;
@@ -224,18 +246,19 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
     /* Witnesses from the barycentric weights of the final simplex. */
     px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
     double big = -1.0;
-    for (int k = 0; k < s.n; ++k) {
-        pa = pxi_madd(pa, a->v[s.p[k].ia], s.lam[k]);
-        pb = pxi_madd(pb, b->v[s.p[k].ib], s.lam[k]);
-        if (s.lam[k] > big) {
-            big = s.lam[k];
-            out->va = s.p[k].ia;
-            out->vb = s.p[k].ib;
+    for (int m = 0; m < s.n; ++m) {
+        pa = pxi_madd(pa, a->v[s.p[m].ia], s.lam[m]);
+        pb = pxi_madd(pb, b->v[s.p[m].ib], s.lam[m]);
+        if (s.lam[m] > big) {
+            big = s.lam[m];
+            out->va = s.p[m].ia;
+            out->vb = s.p[m].ib;
         }
     }
     out->pa = pa;
     out->pb = pb;
     out->intersecting = inside;
-    out->distance = inside ? 0.0 : sqrt(vv);
+    out->distance = inside ? 0.0 : sqrt(vv) / k;
+    out->inside_margin = inside && s.n == 4 ? s.margin / k : 0.0;
     out->iterations = it;
 }

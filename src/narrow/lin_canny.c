@@ -30,8 +30,12 @@
  * Frames: body i's feature geometry is in its own frame; T[i] maps body i's
  * frame into the other body's. Only the points under test are transformed.
  */
+#include <float.h>
 #include <math.h>
 #include <string.h>
+#ifdef PXI_TRACE_WALK
+#include <stdio.h>
+#endif
 
 #include "convex/convex.h"
 #include "core/core.h"
@@ -48,6 +52,7 @@ typedef struct lc_ctx {
     px_feature f[2]; /* current features */
     px_vec3 p[2];    /* at the end: closest (or witness) points, each in its own body frame */
     double dist;
+    double tie; /* 0, or the relative margin of the tie-breaking mode (see noise()) */
 } lc_ctx;
 
 static inline px_vec3 to_other(const lc_ctx *x, int i, px_vec3 p) { return pxi_xform(&x->T[i], p); }
@@ -61,11 +66,24 @@ static inline px_feature feat(uint32_t type, uint32_t index) {
 /* ---- Applicability tests: how far p lies outside a feature's region. ---- */
 /* Each returns the largest violation (> 0: outside, across that plane) and
  * the neighbouring feature across the most violated plane (Lin; SWIFT
- * comments that stepping to the first violated plane is wrong). */
+ * comments that stepping to the first violated plane is wrong).
+ *
+ * Exact V-Clip compares with 0, and so does the first walk. But p was
+ * transformed from the other body's frame and carries an error of a few ulps
+ * of its coordinates, so a plane distance below 8 eps (|p| + |v|) (v a point
+ * of the plane) is no evidence either way: exactly parallel edges and faces
+ * (two copies of a body with the same orientation) then make the walk
+ * alternate between a face and its boundary edge. When the walk revisits a
+ * pair it is rerun from there in tie-breaking mode, where a violation must
+ * exceed that margin (hysteresis, like I-COLLIDE's flared planes). The margin
+ * is relative to the coordinates, so the walk stays scale-free. Tie-breaking
+ * is not the default because a margin also accepts real but tiny violations,
+ * and along nearly parallel edges (1e-9 rad) those add up to a visible error. */
+static inline double noise(double k, px_vec3 p, px_vec3 v) { return k * (pxi_max_abs(p) + pxi_max_abs(v)); }
 
-static double vertex_violation(const px_convex *c, uint32_t v, px_vec3 p, uint32_t *edge) {
+static int vertex_violation(double tie, const px_convex *c, uint32_t v, px_vec3 p, uint32_t *edge) {
     px_vec3 dp = pxi_sub(p, c->v[v]);
-    double worst = 0.0;
+    double worst = noise(tie, p, c->v[v]);
     *edge = NONE;
     for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
         const pxi_edge *E = &c->e[c->v_edges[k]];
@@ -76,27 +94,28 @@ static double vertex_violation(const px_convex *c, uint32_t v, px_vec3 p, uint32
             *edge = c->v_edges[k];
         }
     }
-    return worst;
+    return *edge != NONE;
 }
 
-static double edge_violation(const px_convex *c, uint32_t e, px_vec3 p, px_feature *nbr) {
+static int edge_violation(double tie, const px_convex *c, uint32_t e, px_vec3 p, px_feature *nbr) {
     const pxi_edge *E = &c->e[e];
     px_vec3 dt = pxi_sub(p, c->v[E->tail]);
-    double worst = 0.0, s;
+    double worst = noise(tie, p, c->v[E->tail]), s;
+    nbr->type = PX_FEATURE_NONE;
     if ((s = -pxi_dot(dt, E->u)) > worst) worst = s, *nbr = feat(PX_FEATURE_VERTEX, E->tail);
     if ((s = pxi_dot(pxi_sub(p, c->v[E->head]), E->u)) > worst)
         worst = s, *nbr = feat(PX_FEATURE_VERTEX, E->head);
     if ((s = pxi_dot(dt, E->wl)) > worst) worst = s, *nbr = feat(PX_FEATURE_FACE, E->left);
     if ((s = pxi_dot(dt, E->wr)) > worst) worst = s, *nbr = feat(PX_FEATURE_FACE, E->right);
-    return worst;
+    return nbr->type != PX_FEATURE_NONE;
 }
 
 /* In-plane inward normal of face f along its boundary edge e. */
 static inline px_vec3 face_side_normal(uint32_t f, const pxi_edge *E) { return E->left == f ? E->wl : E->wr; }
 
-static double face_violation(const px_convex *c, uint32_t f, px_vec3 p, uint32_t *edge) {
+static int face_violation(double tie, const px_convex *c, uint32_t f, px_vec3 p, uint32_t *edge) {
     const pxi_face *F = &c->f[f];
-    double worst = 0.0;
+    double worst = noise(tie, p, c->v[c->f_verts[F->first]]);
     *edge = NONE;
     for (uint32_t k = 0; k < F->count; ++k) {
         uint32_t e = c->f_edges[F->first + k];
@@ -107,7 +126,7 @@ static double face_violation(const px_convex *c, uint32_t f, px_vec3 p, uint32_t
             *edge = e;
         }
     }
-    return worst;
+    return *edge != NONE;
 }
 
 /* ---- Segment helpers. ---- */
@@ -115,11 +134,31 @@ static double face_violation(const px_convex *c, uint32_t f, px_vec3 p, uint32_t
 static inline double clamp01(double x) { return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x; }
 
 /* Closest points of two segments (Ericson, Real-Time Collision Detection
- * §5.1.9, rewritten). Near-parallel pairs (relative 1e-14, REFERENCES §1.8)
- * take the middle of the projected overlap, so the point is interior to both
- * edges when they overlap and the region tests below see no false violation. */
+ * §5.1.9, rewritten). The closed form divides by a e - b^2 = |d1|^2 |d2|^2
+ * sin^2(angle); its parameters carry an error of about eps / sin^2, harmless
+ * where the minimum is well defined. For nearly parallel segments (sin^2 below
+ * 1e-6) the distance is nearly constant along the overlap and the closed form
+ * is noise, so the answer is the best of well-conditioned candidates: the four
+ * endpoint-to-segment projections, plus the closed form if it lands inside
+ * both segments. Each candidate is a real pair of points, so the minimum is
+ * never below the true distance and misses it by at most second order. */
+static double seg_dist2(px_vec3 d1, px_vec3 d2, px_vec3 r, double s, double t) {
+    /* |p0 + s d1 - (q0 + t d2)|^2 with r = p0 - q0 */
+    return pxi_len2(pxi_sub(pxi_madd(r, d1, s), pxi_scale(d2, t)));
+}
+
 void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double *s_out, double *t_out) {
     px_vec3 d1 = pxi_sub(p1, p0), d2 = pxi_sub(q1, q0), r = pxi_sub(p0, q0);
+    /* Work at unit scale (a power of two, so exactly): a * e below is a
+     * fourth power of lengths and would overflow at 1e80 or underflow at
+     * 1e-80; the parameters s, t do not depend on the scale. */
+    double m = pxi_max_abs(d1);
+    if (pxi_max_abs(d2) > m) m = pxi_max_abs(d2);
+    if (pxi_max_abs(r) > m) m = pxi_max_abs(r);
+    if (m > 0.0 && isfinite(m)) {
+        double k = ldexp(1.0, -ilogb(m));
+        d1 = pxi_scale(d1, k), d2 = pxi_scale(d2, k), r = pxi_scale(r, k);
+    }
     double a = pxi_dot(d1, d1), e = pxi_dot(d2, d2), f = pxi_dot(d2, r);
     double c = pxi_dot(d1, r), b = pxi_dot(d1, d2);
     double s, t;
@@ -129,29 +168,68 @@ void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double 
         return;
     }
     double denom = a * e - b * b;
-    if (denom > 1e-14 * a * e) {
+    if (denom > 1e-6 * a * e) {
         s = clamp01((b * f - c * e) / denom);
-    } else {
-        /* Parallel: the interval of p-parameters covered by q's projection. */
+        t = (b * s + f) / e;
+        if (t < 0.0) {
+            t = 0.0;
+            s = clamp01(-c / a);
+        } else if (t > 1.0) {
+            t = 1.0;
+            s = clamp01((b - c) / a);
+        }
+        *s_out = s;
+        *t_out = t;
+        return;
+    }
+    /* Nearly parallel. Candidates: endpoints of one against the other. */
+    double cs[5], ct[5];
+    int n = 0;
+    cs[n] = 0.0, ct[n++] = clamp01(f / e);       /* p0 on q */
+    cs[n] = 1.0, ct[n++] = clamp01((b + f) / e); /* p1 on q */
+    cs[n] = clamp01(-c / a), ct[n++] = 0.0;      /* q0 on p */
+    cs[n] = clamp01((b - c) / a), ct[n++] = 1.0; /* q1 on p */
+    /* The crossing of the two lines, from the cross product: a e - b^2
+     * cancels catastrophically at small angles (sin^2 1e-9 = 1e-18 < eps),
+     * |d1 x d2|^2 keeps relative precision eps / sin. */
+    px_vec3 cr = pxi_cross(d1, d2), qp = pxi_neg(r);
+    double den2 = pxi_dot(cr, cr);
+    if (den2 > 0.0) {
+        double si = pxi_dot(pxi_cross(qp, d2), cr) / den2, ti = pxi_dot(pxi_cross(qp, d1), cr) / den2;
+        if (si >= 0.0 && si <= 1.0 && ti >= 0.0 && ti <= 1.0) cs[n] = si, ct[n++] = ti;
+    }
+    double best = INFINITY;
+    s = t = 0.0;
+    for (int k = 0; k < n; ++k) {
+        double d = seg_dist2(d1, d2, r, cs[k], ct[k]);
+        if (d < best) best = d, s = cs[k], t = ct[k];
+    }
+    /* Exactly parallel with overlap: every overlap point is closest; prefer
+     * the middle of the overlap so that both points are edge interiors and
+     * the region tests see no false violation at a shared endpoint plane. */
+    if (den2 <= 1e-30 * a * e) {
         double s0 = -c / a, s1 = (b - c) / a;
         double lo = s0 < s1 ? s0 : s1, hi = s0 < s1 ? s1 : s0;
         if (lo < 0.0) lo = 0.0;
         if (hi > 1.0) hi = 1.0;
-        s = lo <= hi ? 0.5 * (lo + hi) : (s0 + s1 < 1.0 ? 0.0 : 1.0);
-    }
-    t = (b * s + f) / e;
-    if (t < 0.0) {
-        t = 0.0;
-        s = clamp01(-c / a);
-    } else if (t > 1.0) {
-        t = 1.0;
-        s = clamp01((b - c) / a);
+        if (lo < hi) {
+            double sm = 0.5 * (lo + hi), tm = clamp01((b * sm + f) / e);
+            if (seg_dist2(d1, d2, r, sm, tm) <= best) s = sm, t = tm;
+        }
     }
     *s_out = s;
     *t_out = t;
 }
 
 static inline px_vec3 lerp(px_vec3 a, px_vec3 b, double s) { return pxi_madd(a, pxi_sub(b, a), s); }
+
+/* Head of edge E of body i in the other body's frame, given its tail there:
+ * tail plus the rotated edge vector, so that the edge keeps its own direction
+ * and length exactly up to one rotation, whatever the translation. */
+static inline px_vec3 edge_head_in_other(const lc_ctx *x, int i, const pxi_edge *E, px_vec3 tail_other) {
+    const px_convex *c = x->c[i];
+    return pxi_add(tail_other, dir_to_other(x, i, pxi_sub(c->v[E->head], c->v[E->tail])));
+}
 
 /* ---- State handlers. i is the body of the first feature, j = 1 - i. ---- */
 
@@ -160,12 +238,12 @@ static int vertex_vertex(lc_ctx *x, int i) {
     const px_convex *ci = x->c[i], *cj = x->c[j];
     uint32_t vi = x->f[i].index, vj = x->f[j].index, e;
     px_vec3 q = to_other(x, i, ci->v[vi]); /* vi in j's frame */
-    if (vertex_violation(cj, vj, q, &e) > 0.0) {
+    if (vertex_violation(x->tie, cj, vj, q, &e)) {
         x->f[j] = feat(PX_FEATURE_EDGE, e);
         return LC_CONTINUE;
     }
     px_vec3 r = to_other(x, j, cj->v[vj]);
-    if (vertex_violation(ci, vi, r, &e) > 0.0) {
+    if (vertex_violation(x->tie, ci, vi, r, &e)) {
         x->f[i] = feat(PX_FEATURE_EDGE, e);
         return LC_CONTINUE;
     }
@@ -175,6 +253,47 @@ static int vertex_vertex(lc_ctx *x, int i) {
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
 }
 
+/* Mirtich's clipping of segment [p0, p1] (in v's body frame) against the
+ * cone VR(v): 1 = v stays a candidate, 0 = move v to edge *edge, -1 =
+ * compound exclusion (caller falls back to the closest-point test). The
+ * derivative of |P - v| along the segment at a clip point is (P - v) . dir;
+ * there P - v is normal to the clipping edge, so for a segment nearly
+ * parallel to that edge the sign comes from the small angle between them,
+ * far above rounding, where the foot-point test of Lin-Canny would compare
+ * two quantities that differ only at second order. */
+static int clip_against_vertex(const px_convex *c, uint32_t v, px_vec3 p0, px_vec3 p1, uint32_t *edge) {
+    double lo = 0.0, hi = 1.0;
+    uint32_t elo = NONE, ehi = NONE;
+    px_vec3 d0 = pxi_sub(p0, c->v[v]), d1 = pxi_sub(p1, c->v[v]);
+    for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
+        const pxi_edge *E = &c->e[c->v_edges[k]];
+        double a = -pxi_dot(d0, E->u), b = -pxi_dot(d1, E->u); /* region side >= 0 */
+        if (E->tail != v) a = -a, b = -b;
+        if (a < 0.0 && b < 0.0) {
+            *edge = c->v_edges[k];
+            return 0;
+        }
+        if (a < 0.0) {
+            double lam = a / (a - b);
+            if (lam > lo) lo = lam, elo = c->v_edges[k];
+        } else if (b < 0.0) {
+            double lam = a / (a - b);
+            if (lam < hi) hi = lam, ehi = c->v_edges[k];
+        }
+    }
+    if (lo > hi) return -1;
+    px_vec3 dir = pxi_sub(p1, p0);
+    if (elo != NONE && pxi_dot(lerp(d0, d1, lo), dir) > 0.0) {
+        *edge = elo;
+        return 0;
+    }
+    if (ehi != NONE && pxi_dot(lerp(d0, d1, hi), dir) < 0.0) {
+        *edge = ehi;
+        return 0;
+    }
+    return 1;
+}
+
 static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     int j = 1 - i;
     const px_convex *ci = x->c[i], *cj = x->c[j];
@@ -182,7 +301,7 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     const pxi_edge *E = &cj->e[e];
     px_vec3 q = to_other(x, i, ci->v[v]);
     px_feature nbr;
-    if (edge_violation(cj, e, q, &nbr) > 0.0) {
+    if (edge_violation(x->tie, cj, e, q, &nbr)) {
         x->f[j] = nbr;
         return LC_CONTINUE;
     }
@@ -190,9 +309,20 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     px_vec3 d = pxi_sub(h, t);
     double lam = clamp01(pxi_dot(pxi_sub(q, t), d) / pxi_dot(d, d));
     px_vec3 y = lerp(t, h, lam);
-    if (vertex_violation(ci, v, to_other(x, j, y), &ev) > 0.0) {
-        x->f[i] = feat(PX_FEATURE_EDGE, ev);
-        return LC_CONTINUE;
+    int clip = x->tie == 0.0 ? -1 : 0;
+    if (clip < 0) { /* exact mode: clip E against the cone of v (V-Clip) */
+        px_vec3 r0 = to_other(x, j, t), r1 = edge_head_in_other(x, j, E, r0);
+        clip = clip_against_vertex(ci, v, r0, r1, &ev);
+        if (clip == 0) {
+            x->f[i] = feat(PX_FEATURE_EDGE, ev);
+            return LC_CONTINUE;
+        }
+    }
+    if (clip < 0 || x->tie != 0.0) { /* closest-point test: tie-breaking mode, compound exclusion */
+        if (vertex_violation(x->tie, ci, v, to_other(x, j, y), &ev)) {
+            x->f[i] = feat(PX_FEATURE_EDGE, ev);
+            return LC_CONTINUE;
+        }
     }
     x->p[i] = ci->v[v];
     x->p[j] = y;
@@ -223,11 +353,14 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     uint32_t v = x->f[i].index, f = x->f[j].index, e;
     const pxi_face *F = &cj->f[f];
     px_vec3 q = to_other(x, i, ci->v[v]);
-    if (face_violation(cj, f, q, &e) > 0.0) {
+    if (face_violation(x->tie, cj, f, q, &e)) {
         x->f[j] = feat(PX_FEATURE_EDGE, e);
         return LC_CONTINUE;
     }
-    double h = pxi_dot(F->n, q) - F->d;
+    /* Height measured from a vertex of the face, not from the origin: the
+     * rounding error then scales with the body, not with its position. */
+    const px_vec3 f0 = cj->v[cj->f_verts[F->first]];
+    double h = pxi_dot(F->n, pxi_sub(q, f0));
     x->p[i] = ci->v[v];
     if (h == 0.0) { /* the vertex lies on the face: touching */
         x->p[j] = q;
@@ -237,7 +370,7 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     /* Is the foot of the perpendicular in VR(v)? An edge at v along which
      * |height| decreases (h * n.u_out < 0) is closer to F (Mirtich §4). */
     px_vec3 n_i = dir_to_other(x, j, F->n);
-    double worst = 0.0;
+    double worst = -4.0 * DBL_EPSILON; /* an edge parallel to F within rounding is no closer */
     uint32_t best_e = NONE;
     for (uint32_t k = ci->v_first[v]; k < ci->v_first[v + 1]; ++k) {
         const pxi_edge *E = &ci->e[ci->v_edges[k]];
@@ -271,23 +404,110 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     return LC_CONTINUE;
 }
 
+/* Mirtich's clipping test of segment [p0, p1] (in the frame of edge e's
+ * body) against VR(e). Returns 1 if e is still a candidate for the segment,
+ * else 0 with *nbr the neighbour of e to move to:
+ * - the segment lies wholly beyond one region plane: that plane's neighbour
+ *   ("simple exclusion");
+ * - otherwise, on the part of the segment inside the region, the distance to
+ *   e's line grows as the segment leaves the region at lo (or shrinks as it
+ *   leaves at hi): the neighbour across that plane is closer. The sign of
+ *   the derivative is (P - Q) . (p1 - p0), Q the foot of P on e's line.
+ * Compared with testing one closest point against the region, this decides
+ * from the whole edge, which matters when e's region is a wedge thinner than
+ * rounding (faces meeting at a dihedral of 1e-12): then the segment leaves it
+ * at once and the derivative still says which side is closer.
+ * Returns -1 on a compound exclusion (two planes cut the segment off from
+ * both ends); the caller then falls back to the closest-point test. */
+/* Sign of the derivative of the distance from P (moving along dir) to the
+ * line of edge E, at a point P where the segment crosses region plane k of
+ * E (0 tail, 1 head, 2 left face, 3 right face). On a VE plane the foot of P
+ * is that endpoint: (P - v) . dir. On an FE plane P - foot is normal to the
+ * face, so the derivative is (height of P above the face) * (n . dir): the
+ * same sign as (P - foot) . dir, but computed without the in-plane part of
+ * P - foot, which is zero in exact arithmetic and pure rounding noise in
+ * doubles (it would swamp a true slope of 1e-17 where faces meet at 1e-12). */
+static double edge_slope(const px_convex *c, const pxi_edge *E, int k, px_vec3 P, px_vec3 dir) {
+    if (k < 2) return pxi_dot(pxi_sub(P, c->v[k == 0 ? E->tail : E->head]), dir);
+    px_vec3 n = c->f[k == 2 ? E->left : E->right].n;
+    double h = pxi_dot(pxi_sub(P, c->v[E->tail]), n), s = pxi_dot(n, dir);
+    return (h > 0.0) == (s > 0.0) ? (h == 0.0 || s == 0.0 ? 0.0 : 1.0) : -1.0;
+}
+
+static int clip_against_edge(const px_convex *c, uint32_t e, px_vec3 p0, px_vec3 p1, px_feature *nbr) {
+    const pxi_edge *E = &c->e[e];
+    px_vec3 t = c->v[E->tail], h = c->v[E->head];
+    px_vec3 d0 = pxi_sub(p0, t), d1 = pxi_sub(p1, t);
+    /* Region side is >= 0 for each plane. */
+    double a[4] = {pxi_dot(d0, E->u), pxi_dot(pxi_sub(h, p0), E->u), -pxi_dot(d0, E->wl),
+                   -pxi_dot(d0, E->wr)};
+    double b[4] = {pxi_dot(d1, E->u), pxi_dot(pxi_sub(h, p1), E->u), -pxi_dot(d1, E->wl),
+                   -pxi_dot(d1, E->wr)};
+    px_feature n[4] = {feat(PX_FEATURE_VERTEX, E->tail), feat(PX_FEATURE_VERTEX, E->head),
+                       feat(PX_FEATURE_FACE, E->left), feat(PX_FEATURE_FACE, E->right)};
+    double lo = 0.0, hi = 1.0;
+    int nlo = -1, nhi = -1;
+    for (int k = 0; k < 4; ++k) {
+        if (a[k] < 0.0 && b[k] < 0.0) {
+            *nbr = n[k];
+            return 0;
+        }
+        if (a[k] < 0.0) {
+            double lam = a[k] / (a[k] - b[k]);
+            if (lam > lo) lo = lam, nlo = k;
+        } else if (b[k] < 0.0) {
+            double lam = a[k] / (a[k] - b[k]);
+            if (lam < hi) hi = lam, nhi = k;
+        }
+    }
+    if (lo > hi) return -1;
+    px_vec3 dir = pxi_sub(p1, p0);
+    if (nlo >= 0 && edge_slope(c, E, nlo, lerp(p0, p1, lo), dir) > 0.0) {
+        *nbr = n[nlo];
+        return 0;
+    }
+    if (nhi >= 0 && edge_slope(c, E, nhi, lerp(p0, p1, hi), dir) < 0.0) {
+        *nbr = n[nhi];
+        return 0;
+    }
+    return 1;
+}
+
 static int edge_edge(lc_ctx *x, int i) {
     int j = 1 - i;
     const px_convex *ci = x->c[i], *cj = x->c[j];
     const pxi_edge *Ei = &ci->e[x->f[i].index], *Ej = &cj->e[x->f[j].index];
-    px_vec3 p0 = to_other(x, i, ci->v[Ei->tail]), p1 = to_other(x, i, ci->v[Ei->head]);
+    px_vec3 p0 = to_other(x, i, ci->v[Ei->tail]), p1 = edge_head_in_other(x, i, Ei, p0);
     px_vec3 q0 = cj->v[Ej->tail], q1 = cj->v[Ej->head];
+    px_feature nbr;
+    int compound = 0;
+    if (x->tie == 0.0) { /* exact mode: V-Clip's clipping tests, each edge against the other's region */
+        int r = clip_against_edge(cj, x->f[j].index, p0, p1, &nbr);
+        if (r == 0) {
+            x->f[j] = nbr;
+            return LC_CONTINUE;
+        }
+        px_vec3 r0 = to_other(x, j, q0), r1 = edge_head_in_other(x, j, Ej, r0);
+        int r2 = clip_against_edge(ci, x->f[i].index, r0, r1, &nbr);
+        if (r2 == 0) {
+            x->f[i] = nbr;
+            return LC_CONTINUE;
+        }
+        compound = r < 0 || r2 < 0;
+    }
     double s, t;
     pxi_segment_closest(p0, p1, q0, q1, &s, &t);
     px_vec3 xp = lerp(p0, p1, s), yq = lerp(q0, q1, t);
-    px_feature nbr;
-    if (edge_violation(cj, x->f[j].index, xp, &nbr) > 0.0) {
-        x->f[j] = nbr;
-        return LC_CONTINUE;
-    }
-    if (edge_violation(ci, x->f[i].index, to_other(x, j, yq), &nbr) > 0.0) {
-        x->f[i] = nbr;
-        return LC_CONTINUE;
+    if (compound || x->tie != 0.0) {
+        /* Closest-point tests (Lin-Canny proper), also the tie-breaking mode. */
+        if (edge_violation(x->tie, cj, x->f[j].index, xp, &nbr)) {
+            x->f[j] = nbr;
+            return LC_CONTINUE;
+        }
+        if (edge_violation(x->tie, ci, x->f[i].index, to_other(x, j, yq), &nbr)) {
+            x->f[i] = nbr;
+            return LC_CONTINUE;
+        }
     }
     x->p[i] = lerp(ci->v[Ei->tail], ci->v[Ei->head], s);
     x->p[j] = yq;
@@ -323,7 +543,7 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
     const pxi_edge *Ei = &ci->e[x->f[i].index];
     uint32_t f = x->f[j].index;
     const pxi_face *F = &cj->f[f];
-    px_vec3 p0 = to_other(x, i, ci->v[Ei->tail]), p1 = to_other(x, i, ci->v[Ei->head]);
+    px_vec3 p0 = to_other(x, i, ci->v[Ei->tail]), p1 = edge_head_in_other(x, i, Ei, p0);
     /* Clip the edge against the prism over F (Mirtich's clipEdge). */
     double lo = 0.0, hi = 1.0;
     uint32_t nlo = NONE, nhi = NONE;
@@ -351,7 +571,8 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
         return LC_CONTINUE;
     }
     px_vec3 plo = lerp(p0, p1, lo), phi = lerp(p0, p1, hi);
-    double hl = pxi_dot(F->n, plo) - F->d, hh = pxi_dot(F->n, phi) - F->d;
+    const px_vec3 f0 = cj->v[cj->f_verts[F->first]];
+    double hl = pxi_dot(F->n, pxi_sub(plo, f0)), hh = pxi_dot(F->n, pxi_sub(phi, f0));
     /* Sign tests, not products: a product of two tiny heights underflows. */
     if ((hl <= 0.0) != (hh <= 0.0) || hl == 0.0 || hh == 0.0 || !(hl == hl && hh == hh)) {
         /* The clipped edge meets the face plane inside the prism: the edge
@@ -366,7 +587,10 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
     /* Same side: |height| is linear along the clipped edge; follow its
      * decrease to the end of the clipped part. There the closest feature is
      * the prism side that clipped it, or the edge's own endpoint. */
-    double slope = pxi_dot(F->n, pxi_sub(p1, p0));
+    /* The slope from the rotated direction alone: a difference of two
+     * translated points loses the edge's direction when the translation is
+     * large next to the edge (a 1e-6 edge at 1e12: all rounding). */
+    double slope = pxi_dot(F->n, dir_to_other(x, i, Ei->u));
     if (slope != 0.0 && (hl > 0.0) == (slope > 0.0)) {
         if (nlo != NONE)
             x->f[j] = feat(PX_FEATURE_EDGE, nlo);
@@ -416,6 +640,10 @@ static int lc_walk(lc_ctx *x, uint32_t max_steps, uint32_t *iterations) {
     memset(ring, 0xff, sizeof ring);
     for (uint32_t step = 0; step < max_steps; ++step) {
         int r = lc_step(x);
+#ifdef PXI_TRACE_WALK
+        fprintf(stderr, "step %u: r=%d A %u:%u B %u:%u\n", step, r, x->f[0].type, x->f[0].index, x->f[1].type,
+                x->f[1].index);
+#endif
         if (r != LC_CONTINUE) return r;
         ++*iterations;
         /* In exact arithmetic no pair repeats (the distance never grows, and
@@ -428,6 +656,37 @@ static int lc_walk(lc_ctx *x, uint32_t max_steps, uint32_t *iterations) {
         ring[1][step & 7] = x->f[1];
     }
     return -1;
+}
+
+/* A terminal pair proves separation only if its tests were decided beyond
+ * rounding. Near contact that can fail: two copies of one body at one pose
+ * end at a vertex pair, or a vertex on a face, with d ~ 1e-16 although the
+ * solids overlap completely. Two checks, both only in that rare band:
+ * - a distance within the rounding noise of the coordinates is contact;
+ * - where the pair has a face, its normal (exact, unlike the direction
+ *   between two nearly coincident points) gives a separating-plane test:
+ *   B's highest and A's lowest vertex along it, by support queries. If they
+ *   overlap by more than the noise, the solids intersect.
+ * Returns 1 when the pair is really contact. */
+static int contact_within_rounding(const lc_ctx *x) {
+    const px_convex *a = x->c[0], *b = x->c[1];
+    px_vec3 pa = pxi_xform(&x->T[0], x->p[0]);
+    double noise_d = 16.0 * DBL_EPSILON * (pxi_max_abs(pa) + pxi_max_abs(x->p[1]));
+    if (x->dist <= noise_d) return 1;
+    double span =
+        a->radius + b->radius + pxi_len(x->T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
+    if (x->dist > 1e-8 * span) return 0;
+    px_vec3 n; /* B -> A, B's frame */
+    if (x->f[1].type == PX_FEATURE_FACE)
+        n = b->f[x->f[1].index].n;
+    else if (x->f[0].type == PX_FEATURE_FACE)
+        n = pxi_neg(pxi_rot(x->T[0].r, a->f[x->f[0].index].n));
+    else
+        return 0;
+    uint32_t vb = pxi_support(b, n, UINT32_MAX);
+    uint32_t va = pxi_support(a, pxi_rot_t(x->T[0].r, pxi_neg(n)), UINT32_MAX);
+    double gap = pxi_dot(n, pxi_xform(&x->T[0], a->v[va])) - pxi_dot(n, b->v[vb]);
+    return gap < -64.0 * DBL_EPSILON * span;
 }
 
 static void zero_result(px_distance_result *r) {
@@ -465,10 +724,14 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         pxi_gjk(a, b, &x.T[0], 1e-3, 64, &g);
         x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
         x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
-        if (g.intersecting) {
+        double span =
+            a->radius + b->radius + pxi_len(x.T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
+        if (g.intersecting && g.inside_margin > 64.0 * DBL_EPSILON * span) {
             /* The origin lies in a simplex of A - B: the solids overlap, and
              * the barycentric combination is a common point. Walking to a
-             * penetration witness from here would cost O(n) for nothing. */
+             * penetration witness from here would cost O(n) for nothing. Only
+             * trusted when the origin is inside by more than rounding noise;
+             * near contact the walk decides. */
             result->intersecting = 1;
             result->point_a = pxi_xform(pose_a, g.pa);
             result->point_b = pxi_xform(pose_b, g.pb);
@@ -484,7 +747,14 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     uint64_t total = (uint64_t)a->nv + a->ne + a->nf + b->nv + b->ne + b->nf;
     uint32_t cap = total > 100000000u ? 400000000u : (uint32_t)(4 * total + 64);
     uint32_t iterations = 0, fallbacks = 0;
+    x.tie = 0.0;
     int r = lc_walk(&x, cap, &iterations);
+    if (r < 0) {
+        /* A revisited pair: round-off ties between neighbouring regions.
+         * Continue from there with tie-breaking margins (see noise()). */
+        x.tie = 8.0 * DBL_EPSILON;
+        r = lc_walk(&x, cap, &iterations);
+    }
     if (r < 0) {
         /* Safeguard: restart once from GJK's answer at full precision. */
         ++fallbacks;
@@ -502,6 +772,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
             r = g.intersecting ? LC_PENETRATION : LC_DONE;
         }
     }
+    if (r == LC_DONE && contact_within_rounding(&x)) r = LC_PENETRATION;
     result->distance = r == LC_PENETRATION ? 0.0 : x.dist;
     result->intersecting = r == LC_PENETRATION;
     result->point_a = pxi_xform(pose_a, x.p[0]);

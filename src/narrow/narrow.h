@@ -13,6 +13,7 @@ typedef struct pxi_gjk_result {
     px_vec3 pa, pb;  /* closest points, pa in A's frame, pb in B's frame */
     uint32_t va, vb; /* vertices of A and B carrying the largest weight */
     int intersecting;
+    double inside_margin; /* intersecting: distance of the origin to the simplex boundary (0 if unknown) */
     uint32_t iterations;
 } pxi_gjk_result;
 

@@ -362,7 +362,8 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     const px_vec3 f0 = cj->v[cj->f_verts[F->first]];
     double h = pxi_dot(F->n, pxi_sub(q, f0));
     x->p[i] = ci->v[v];
-    if (h == 0.0) { /* the vertex lies on the face: touching */
+    if (fabs(h) <= 16.0 * DBL_EPSILON * (pxi_max_abs(q) + cj->scale)) {
+        /* The vertex lies on the face plane up to the rounding of q: contact. */
         x->p[j] = q;
         x->dist = 0.0;
         return LC_PENETRATION;
@@ -395,7 +396,9 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     /* Local minimum: v is beneath F inside its prism. */
     double hb;
     uint32_t g = highest_face(cj, q, &hb);
-    if (!(hb > 0.0)) { /* inside or on every face plane (NaN also ends here) */
+    /* Inside or on every face plane, up to the rounding of q (NaN also ends
+     * here): a vertex lying on the other body's surface is contact. */
+    if (!(hb > 16.0 * DBL_EPSILON * (pxi_max_abs(q) + cj->scale))) {
         x->p[j] = q;
         x->dist = 0.0;
         return LC_PENETRATION;
@@ -573,12 +576,23 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
     px_vec3 plo = lerp(p0, p1, lo), phi = lerp(p0, p1, hi);
     const px_vec3 f0 = cj->v[cj->f_verts[F->first]];
     double hl = pxi_dot(F->n, pxi_sub(plo, f0)), hh = pxi_dot(F->n, pxi_sub(phi, f0));
-    /* Sign tests, not products: a product of two tiny heights underflows. */
-    if ((hl <= 0.0) != (hh <= 0.0) || hl == 0.0 || hh == 0.0 || !(hl == hl && hh == hh)) {
+    /* Sign tests, not products: a product of two tiny heights underflows.
+     * A height within the rounding of the points is contact, as in
+     * vertex_face (deciding its sign here and there independently would let
+     * the two states undo each other). */
+    double hnoise = 16.0 * DBL_EPSILON * (pxi_max_abs(plo) + pxi_max_abs(phi) + cj->scale);
+    if (fabs(hl) <= hnoise || fabs(hh) <= hnoise || (hl <= 0.0) != (hh <= 0.0) || hl == 0.0 || hh == 0.0 ||
+        !(hl == hl && hh == hh)) {
         /* The clipped edge meets the face plane inside the prism: the edge
          * pierces (or touches) the face. Witness: the crossing point. */
-        double lam = hl != hh ? lo + (hi - lo) * (hl / (hl - hh)) : lo;
-        if (!(lam >= lo && lam <= hi)) lam = lo;
+        double lam;
+        if ((hl < 0.0) != (hh < 0.0) && hl != hh) { /* a real crossing */
+            lam = lo + (hi - lo) * (hl / (hl - hh));
+            if (!(lam >= lo)) lam = lo;
+            if (!(lam <= hi)) lam = hi;
+        } else { /* an end within rounding of the plane: that end */
+            lam = fabs(hl) <= fabs(hh) ? lo : hi;
+        }
         x->p[j] = lerp(p0, p1, lam);
         x->p[i] = lerp(ci->v[Ei->tail], ci->v[Ei->head], lam);
         x->dist = 0.0;
@@ -734,7 +748,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
              * near contact the walk decides. */
             result->intersecting = 1;
             result->point_a = pxi_xform(pose_a, g.pa);
-            result->point_b = pxi_xform(pose_b, g.pb);
+            result->point_b = result->point_a;
             result->feature_a = x.f[0];
             result->feature_b = x.f[1];
             if (cache) {
@@ -776,7 +790,9 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     result->distance = r == LC_PENETRATION ? 0.0 : x.dist;
     result->intersecting = r == LC_PENETRATION;
     result->point_a = pxi_xform(pose_a, x.p[0]);
-    result->point_b = pxi_xform(pose_b, x.p[1]);
+    /* Intersecting: one common point, reported once (the two frames' copies
+     * differ by rounding, or by the noise band of contact_within_rounding). */
+    result->point_b = r == LC_PENETRATION ? result->point_a : pxi_xform(pose_b, x.p[1]);
     result->feature_a = x.f[0];
     result->feature_b = x.f[1];
     result->iterations = iterations;

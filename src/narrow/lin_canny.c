@@ -253,6 +253,13 @@ static int vertex_vertex(lc_ctx *x, int i) {
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
 }
 
+/* dir without its component along unit u. On a VE plane P - v is normal
+ * to u in exact arithmetic, so (P - v) . dir = (P - v) . perp(dir, u); the
+ * left side multiplies the rounding error of P along u by |dir . u|, which
+ * for nearly parallel edges is the whole of dir and swamps a true slope of
+ * order angle^2. */
+static inline px_vec3 perp(px_vec3 dir, px_vec3 u) { return pxi_madd(dir, u, -pxi_dot(dir, u)); }
+
 /* Mirtich's clipping of segment [p0, p1] (in v's body frame) against the
  * cone VR(v): 1 = v stays a candidate, 0 = move v to edge *edge, -1 =
  * compound exclusion (caller falls back to the closest-point test). The
@@ -283,11 +290,11 @@ static int clip_against_vertex(const px_convex *c, uint32_t v, px_vec3 p0, px_ve
     }
     if (lo > hi) return -1;
     px_vec3 dir = pxi_sub(p1, p0);
-    if (elo != NONE && pxi_dot(lerp(d0, d1, lo), dir) > 0.0) {
+    if (elo != NONE && pxi_dot(lerp(d0, d1, lo), perp(dir, c->e[elo].u)) > 0.0) {
         *edge = elo;
         return 0;
     }
-    if (ehi != NONE && pxi_dot(lerp(d0, d1, hi), dir) < 0.0) {
+    if (ehi != NONE && pxi_dot(lerp(d0, d1, hi), perp(dir, c->e[ehi].u)) < 0.0) {
         *edge = ehi;
         return 0;
     }
@@ -431,7 +438,7 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
  * P - foot, which is zero in exact arithmetic and pure rounding noise in
  * doubles (it would swamp a true slope of 1e-17 where faces meet at 1e-12). */
 static double edge_slope(const px_convex *c, const pxi_edge *E, int k, px_vec3 P, px_vec3 dir) {
-    if (k < 2) return pxi_dot(pxi_sub(P, c->v[k == 0 ? E->tail : E->head]), dir);
+    if (k < 2) return pxi_dot(pxi_sub(P, c->v[k == 0 ? E->tail : E->head]), perp(dir, E->u));
     px_vec3 n = c->f[k == 2 ? E->left : E->right].n;
     double h = pxi_dot(pxi_sub(P, c->v[E->tail]), n), s = pxi_dot(n, dir);
     return (h > 0.0) == (s > 0.0) ? (h == 0.0 || s == 0.0 ? 0.0 : 1.0) : -1.0;

@@ -1,0 +1,407 @@
+/* px_convex construction (issue 3 §2, §4): every polytope built here is
+ * validated (px_convex_validate) and compared with CGAL's hull of the same
+ * points (pxcd_hull_compute): counts, vertex sets, Euler, and our own
+ * independent checks of planes, convexity and edge/face incidence. Then
+ * coplanar merging (cube with face centres and edge midpoints), degenerate
+ * inputs with their documented statuses, memory per vertex, and the
+ * allocator: leak count and failure injection at every allocation. */
+#include <stdint.h>
+
+#include "check.h"
+#include "gen.h"
+#include "oracle.h"
+#include "proxima/proxima.h"
+#include "pxcd.h"
+#include "test_util.h"
+
+/* ------------------------------------------------------ counting allocator */
+
+typedef struct counting {
+    long long calls;   /* successful + failed alloc calls */
+    long long live;    /* live allocations */
+    long long bytes;   /* live bytes */
+    long long fail_at; /* fail the fail_at-th call (1-based); 0 = never */
+    long long bad_free;
+} counting;
+
+#define HDR 16
+
+static void *c_alloc(void *user, size_t size) {
+    counting *c = user;
+    c->calls++;
+    if (c->fail_at && c->calls == c->fail_at) return NULL;
+    unsigned char *p = malloc(size + HDR);
+    if (!p) return NULL;
+    memcpy(p, &size, sizeof size);
+    c->live++;
+    c->bytes += (long long)size;
+    return p + HDR;
+}
+
+static void c_free(void *user, void *ptr, size_t size) {
+    counting *c = user;
+    if (!ptr) return;
+    unsigned char *p = (unsigned char *)ptr - HDR;
+    size_t stored;
+    memcpy(&stored, p, sizeof stored);
+    if (stored != size) c->bad_free++; /* free must receive the requested size */
+    c->live--;
+    c->bytes -= (long long)stored;
+    free(p);
+}
+
+static counting g_count;
+
+static void install_counting(void) {
+    px_allocator al = {c_alloc, c_free, &g_count};
+    px_set_allocator(&al);
+}
+
+/* ------------------------------------------------------- structure checks */
+
+static int cmp_xyz(const void *a, const void *b) { return memcmp(a, b, 3 * sizeof(double)); }
+
+static double g_max_bytes_per_vertex = 0, g_min_bytes_per_vertex = 1e300;
+static long g_polytopes = 0;
+
+/* Independent structural checks of `c` built from `xyz` (n points). */
+static void check_polytope(const px_convex *c, const double *xyz, size_t n, const char *what) {
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_status st = px_convex_validate(c, &err);
+    CHECK(st == PX_OK, "%s: validate: %s", what, err.message);
+    g_polytopes++;
+    uint32_t V = px_convex_vertex_count(c), E = px_convex_edge_count(c), F = px_convex_face_count(c);
+    CHECK((long)V - (long)E + (long)F == 2, "%s: Euler V=%u E=%u F=%u", what, V, E, F);
+
+    /* CGAL's hull of the same points. */
+    pxcd_hull *h = NULL;
+    int dim = -1;
+    char msg[256];
+    CHECK(pxcd_hull_compute(xyz, n, &h, &dim, msg, sizeof msg) == PXCD_OK, "%s: pxcd hull: %s", what, msg);
+    if (h) {
+        size_t he = 0;
+        for (size_t f = 0; f < h->face_count; ++f) he += h->face_offsets[f + 1] - h->face_offsets[f];
+        CHECK(h->vertex_count == V && h->face_count == F && he == 2 * (size_t)E,
+              "%s: counts V=%u E=%u F=%u, CGAL V=%zu E=%zu F=%zu", what, V, E, F, h->vertex_count, he / 2,
+              h->face_count);
+        /* Same vertex set (bitwise): sort both. */
+        if (h->vertex_count == V) {
+            double *a = malloc(3 * (size_t)V * sizeof *a), *b = malloc(3 * (size_t)V * sizeof *b);
+            tc_vertices(c, a);
+            memcpy(b, h->vertices, 3 * (size_t)V * sizeof *b);
+            qsort(a, V, 3 * sizeof(double), cmp_xyz);
+            qsort(b, V, 3 * sizeof(double), cmp_xyz);
+            CHECK(memcmp(a, b, 3 * (size_t)V * sizeof *a) == 0, "%s: vertex set differs from CGAL's", what);
+            free(a);
+            free(b);
+        }
+        pxcd_hull_free(h);
+    }
+
+    /* Planes from the accessors vs the oracle's own (Newell) planes;
+     * convexity; every edge used once in each direction by the faces. */
+    or_poly P;
+    if (or_poly_init(&P, c, NULL) != 0) {
+        CHECK(0, "%s: oracle cannot read the polytope", what);
+        return;
+    }
+    double scale = P.body_radius;
+    int bad_plane = 0, nonconvex = 0, bad_incidence = 0, bad_winding = 0;
+    for (uint32_t f = 0; f < F; ++f) {
+        px_vec3 nrm;
+        double d;
+        if (!px_convex_face_plane(c, f, &nrm, &d)) {
+            bad_plane++;
+            continue;
+        }
+        double dotn = nrm.x * P.fn[f].x + nrm.y * P.fn[f].y + nrm.z * P.fn[f].z;
+        double len = sqrt(nrm.x * nrm.x + nrm.y * nrm.y + nrm.z * nrm.z);
+        if (fabs(len - 1) > 1e-12 || dotn < 1 - 1e-12 || fabs(d - P.fd[f]) > 1e-12 * scale) bad_plane++;
+        /* the face loop must be counter-clockwise seen from outside */
+        if (P.fw[f].x * P.fn[f].x + P.fw[f].y * P.fn[f].y + P.fw[f].z * P.fn[f].z < 0) bad_winding++;
+        for (uint32_t v = 0; v < V; ++v) {
+            px_vec3 p = P.v[v];
+            if (P.fn[f].x * p.x + P.fn[f].y * p.y + P.fn[f].z * p.z - P.fd[f] > 1e-12 * scale) nonconvex++;
+        }
+    }
+    CHECK(bad_plane == 0, "%s: %d face planes disagree with the face polygons", what, bad_plane);
+    CHECK(bad_winding == 0, "%s: %d faces listed clockwise (seen from outside)", what, bad_winding);
+    CHECK(nonconvex == 0, "%s: %d vertex/face pairs violate convexity", what, nonconvex);
+    CHECK(px_convex_face_plane(c, F, NULL, NULL) == 0 && px_convex_face_size(c, F) == 0,
+          "%s: out of range face", what);
+    {
+        uint32_t ab[2];
+        CHECK(px_convex_edge_vertices(c, E, ab) == 0, "%s: out of range edge", what);
+    }
+    /* Directed edge use: +1 for tail->head, +2 for head->tail in a face.
+     * Edges are looked up through per-vertex incidence lists. */
+    unsigned char *use = calloc(E, 1);
+    uint32_t *vfirst = calloc(V + 1, sizeof *vfirst), *vlist = calloc(2 * (size_t)E, sizeof *vlist);
+    for (uint32_t e = 0; e < 2 * E; ++e) vfirst[P.ev[e] + 1]++;
+    for (uint32_t v = 0; v < V; ++v) vfirst[v + 1] += vfirst[v];
+    uint32_t *fill = calloc(V, sizeof *fill);
+    for (uint32_t e = 0; e < 2 * E; ++e) vlist[vfirst[P.ev[e]] + fill[P.ev[e]]++] = e / 2;
+    for (uint32_t f = 0; f < F; ++f) {
+        uint32_t k = px_convex_face_size(c, f);
+        for (uint32_t j = 0; j < k; ++j) {
+            uint32_t a = px_convex_face_vertex(c, f, j), b = px_convex_face_vertex(c, f, (j + 1) % k);
+            int found = 0;
+            for (uint32_t q = vfirst[a]; q < vfirst[a + 1]; ++q) {
+                uint32_t e = vlist[q];
+                if (P.ev[2 * e] == a && P.ev[2 * e + 1] == b) use[e] += 1, found = 1;
+                if (P.ev[2 * e] == b && P.ev[2 * e + 1] == a) use[e] += 2, found = 1;
+            }
+            if (!found) bad_incidence++;
+        }
+    }
+    for (uint32_t e = 0; e < E; ++e)
+        if (use[e] != 3) bad_incidence++;
+    free(vfirst);
+    free(vlist);
+    free(fill);
+    CHECK(bad_incidence == 0, "%s: %d edge/face incidence errors", what, bad_incidence);
+    free(use);
+    or_poly_free(&P);
+
+    size_t bytes = px_convex_memory_bytes(c);
+    double bpv = (double)bytes / V;
+    CHECK(bytes > 0 && bpv < 1024, "%s: %zu bytes for %u vertices (%.0f per vertex)", what, bytes, V, bpv);
+    if (bpv > g_max_bytes_per_vertex) g_max_bytes_per_vertex = bpv;
+    if (bpv < g_min_bytes_per_vertex) g_min_bytes_per_vertex = bpv;
+}
+
+static px_convex *build_checked(const double *xyz, size_t n, const char *what) {
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    CHECK(c != NULL, "%s: px_convex_from_points failed: %s", what, err.message);
+    if (c) check_polytope(c, xyz, n, what);
+    return c;
+}
+
+/* --------------------------------------------------------------- the tests */
+
+static void test_random_polytopes(int count) {
+    tg_rng rng;
+    tg_seed(&rng, 3001);
+    double *xyz = malloc(3 * 2000 * sizeof *xyz);
+    printf("  %-16s %6s %6s %6s %10s\n", "shape", "n", "V", "F", "bytes/V");
+    for (int i = 0; i < count; ++i) {
+        tg_kind kind = (tg_kind)(i % TG_KIND_COUNT);
+        size_t n = i < TG_KIND_COUNT * 3 ? (size_t)(i < TG_KIND_COUNT       ? 8
+                                                    : i < 2 * TG_KIND_COUNT ? 200
+                                                                            : 2000)
+                                         : tg_log_int(&rng, 4, 2000);
+        if (n < 8) n = 8;
+        double size = pow(10.0, tg_range(&rng, -3, 3));
+        n = tg_shape(&rng, kind, n, size, xyz);
+        char what[96];
+        snprintf(what, sizeof what, "random #%d %s n=%zu size=%.3g", i, tg_kind_name(kind), n, size);
+        px_convex *c = build_checked(xyz, n, what);
+        if (c && (i % 37 == 0 || n >= 2000))
+            printf("  %-16s %6zu %6u %6u %10.0f\n", tg_kind_name(kind), n, px_convex_vertex_count(c),
+                   px_convex_face_count(c), (double)px_convex_memory_bytes(c) / px_convex_vertex_count(c));
+        px_convex_destroy(c);
+    }
+    /* Exactly 4 vertices: tetrahedra at many scales. */
+    for (int i = 0; i < 50; ++i) {
+        double t[12];
+        tg_random_tetrahedron(&rng, pow(10.0, tg_range(&rng, -20, 20)), t);
+        px_convex *c = build_checked(t, 4, "tetrahedron");
+        CHECK(c && px_convex_vertex_count(c) == 4 && px_convex_face_count(c) == 4, "tetra counts");
+        px_convex_destroy(c);
+    }
+    free(xyz);
+}
+
+static void test_coplanar_merging(void) {
+    /* Cube corners + face centres + edge midpoints + body centre: 27 points. */
+    double pts[27 * 3];
+    int k = 0;
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z) pts[3 * k] = x, pts[3 * k + 1] = y, pts[3 * k + 2] = z, ++k;
+    px_convex *c = build_checked(pts, 27, "cube 3x3x3 grid");
+    if (c) {
+        CHECK(px_convex_vertex_count(c) == 8 && px_convex_face_count(c) == 6 && px_convex_edge_count(c) == 12,
+              "cube with face centres: V=%u E=%u F=%u", px_convex_vertex_count(c), px_convex_edge_count(c),
+              px_convex_face_count(c));
+        for (uint32_t f = 0; f < px_convex_face_count(c); ++f)
+            CHECK(px_convex_face_size(c, f) == 4, "cube face %u has %u vertices", f,
+                  px_convex_face_size(c, f));
+    }
+    px_convex_destroy(c);
+    /* Cylinder: the caps are single k-gons; k rectangles around. */
+    for (size_t kk = 3; kk <= 200; kk = kk * 2 + 1) {
+        double *cy = malloc(6 * kk * sizeof *cy);
+        tg_cylinder(kk, 1.0, 0.5, cy);
+        c = build_checked(cy, 2 * kk, "cylinder");
+        CHECK(c && px_convex_face_count(c) == kk + 2 && px_convex_vertex_count(c) == 2 * kk,
+              "cylinder k=%zu: F=%u", kk, c ? px_convex_face_count(c) : 0);
+        px_convex_destroy(c);
+        free(cy);
+    }
+    /* Box with many random points on its faces (dyadic, so exactly coplanar). */
+    tg_rng rng;
+    tg_seed(&rng, 77);
+    double bp[3 * 208];
+    tg_box(2, 1, 0.5, bp);
+    for (int i = 8; i < 208; ++i) {
+        int axis = (int)tg_below(&rng, 3), side = (int)tg_below(&rng, 2);
+        double h[3] = {2, 1, 0.5};
+        for (int j = 0; j < 3; ++j)
+            bp[3 * i + j] = ldexp((double)tg_below(&rng, 1024), -10) * 2 * h[j] - h[j];
+        bp[3 * i + axis] = side ? h[axis] : -h[axis];
+    }
+    c = build_checked(bp, 208, "box with face points");
+    CHECK(c && px_convex_vertex_count(c) == 8 && px_convex_face_count(c) == 6, "box with face points merged");
+    px_convex_destroy(c);
+}
+
+static int contains_ci(const char *s, const char *w) {
+    for (; *s; ++s) {
+        size_t i = 0;
+        while (w[i] && s[i] && (s[i] | 32) == (w[i] | 32)) ++i;
+        if (!w[i]) return 1;
+    }
+    return 0;
+}
+
+static void expect_status(const double *xyz, size_t n, px_status want, const char *word, const char *what) {
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    CHECK(c == NULL, "%s: expected failure", what);
+    CHECK(err.code == want, "%s: status %s, expected %s (%s)", what, px_status_string(err.code),
+          px_status_string(want), err.message);
+    CHECK(err.message[0] != 0, "%s: empty message", what);
+    if (word)
+        CHECK(contains_ci(err.message, word), "%s: message \"%s\" does not say \"%s\"", what, err.message,
+              word);
+    px_convex_destroy(c);
+    /* err may be NULL */
+    c = px_convex_from_points(xyz, n, NULL, NULL);
+    CHECK(c == NULL, "%s: expected failure with err NULL", what);
+    px_convex_destroy(c);
+}
+
+static void test_degenerate_inputs(void) {
+    static const double tet[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    expect_status(NULL, 4, PX_ERR_INVALID_ARGUMENT, NULL, "NULL points");
+    expect_status(tet, 0, PX_ERR_INVALID_ARGUMENT, NULL, "count 0");
+    expect_status(tet, ((size_t)1 << 26) + 1, PX_ERR_INVALID_ARGUMENT, NULL, "count above 2^26");
+    expect_status(tet, 1, PX_ERR_DEGENERATE, NULL, "1 point");
+    expect_status(tet, 2, PX_ERR_DEGENERATE, NULL, "2 points");
+    expect_status(tet, 3, PX_ERR_DEGENERATE, NULL, "3 points");
+    double dup[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0};
+    expect_status(dup, 4, PX_ERR_DEGENERATE, NULL, "4 points, one duplicated");
+    double rep[30];
+    for (int i = 0; i < 30; ++i) rep[i] = (i % 3 == 0) ? 0.5 : -2.25;
+    expect_status(rep, 10, PX_ERR_DEGENERATE, NULL, "one point repeated 10 times");
+    double col[60];
+    for (int i = 0; i < 20; ++i) col[3 * i] = i, col[3 * i + 1] = 2.0 * i, col[3 * i + 2] = -3.0 * i;
+    expect_status(col, 20, PX_ERR_DEGENERATE, "collinear", "collinear points");
+    double pl[300];
+    tg_rng rng;
+    tg_seed(&rng, 5);
+    for (int i = 0; i < 100; ++i) {
+        double x = (double)tg_below(&rng, 1000), y = (double)tg_below(&rng, 1000);
+        pl[3 * i] = x, pl[3 * i + 1] = y, pl[3 * i + 2] = 3 * x - 2 * y + 7; /* exact, tilted plane */
+    }
+    expect_status(pl, 100, PX_ERR_DEGENERATE, "coplanar", "coplanar points");
+    /* Non-finite coordinates, at index 5 of 8 (box corners). */
+    const double bad[3] = {NAN, INFINITY, -INFINITY};
+    const char *names[3] = {"NaN", "+Inf", "-Inf"};
+    for (int b = 0; b < 3; ++b)
+        for (int comp = 0; comp < 3; ++comp) {
+            double box[24];
+            tg_box(1, 1, 1, box);
+            box[3 * 5 + comp] = bad[b];
+            char what[64];
+            snprintf(what, sizeof what, "%s coordinate (point 5, component %d)", names[b], comp);
+            expect_status(box, 8, PX_ERR_NON_FINITE, "5", what);
+        }
+    /* Accessors on NULL / out of range do not crash. */
+    px_convex_destroy(NULL);
+    px_error err;
+    CHECK(px_convex_validate(NULL, &err) != PX_OK, "validate(NULL)");
+}
+
+/* Leak check and failure injection at every allocation of a build (and of
+ * queries, which must not allocate at all). */
+static void test_allocator(void) {
+    tg_rng rng;
+    tg_seed(&rng, 99);
+    double xyz[3 * 300];
+    tg_points_sphere(&rng, 300, 1.0, xyz);
+    double box[24];
+    tg_box(0.5, 0.25, 2, box);
+
+    memset(&g_count, 0, sizeof g_count);
+    install_counting();
+    px_convex *a = px_convex_from_points(xyz, 300, NULL, NULL);
+    long long calls_a = g_count.calls;
+    px_convex *b = px_convex_from_points(box, 8, NULL, NULL);
+    long long calls_b = g_count.calls - calls_a;
+    CHECK(a && b, "builds under the counting allocator");
+    CHECK(g_count.live > 0 && g_count.bytes > 0, "allocations went through the hook (%lld live)",
+          g_count.live);
+    if (a) {
+        CHECK((long long)px_convex_memory_bytes(a) >= g_count.bytes / 4,
+              "memory_bytes %zu vs %lld bytes allocated", px_convex_memory_bytes(a), g_count.bytes);
+    }
+    /* Queries do not allocate. */
+    long long before = g_count.calls;
+    px_distance_cache cache;
+    memset(&cache, 0, sizeof cache);
+    for (int i = 0; i < 50 && a && b; ++i) {
+        px_pose pa = tg_pose_random(&rng, 2), pb = tg_pose_random(&rng, 2);
+        px_distance_result res;
+        px_distance(a, &pa, b, &pb, &cache, &res);
+    }
+    CHECK(g_count.calls == before, "px_distance allocated %lld times", g_count.calls - before);
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+    CHECK(g_count.live == 0 && g_count.bytes == 0, "leak: %lld allocations, %lld bytes live", g_count.live,
+          g_count.bytes);
+    CHECK(g_count.bad_free == 0, "%lld frees with a size different from the allocation", g_count.bad_free);
+    printf("  allocations per build: %lld (300-point sphere), %lld (box)\n", calls_a, calls_b);
+
+    /* Failure injection: fail the k-th call, for every k. */
+    int injected = 0;
+    for (int which = 0; which < 2; ++which) {
+        const double *p = which ? box : xyz;
+        size_t n = which ? 8 : 300;
+        long long total = which ? calls_b : calls_a;
+        for (long long k = 1; k <= total; ++k) {
+            memset(&g_count, 0, sizeof g_count);
+            g_count.fail_at = k;
+            px_error err;
+            memset(&err, 0, sizeof err);
+            px_convex *c = px_convex_from_points(p, n, NULL, &err);
+            CHECK(c == NULL && err.code == PX_ERR_OUT_OF_MEMORY,
+                  "failing allocation %lld of %lld: got %s (%s)", k, total,
+                  c ? "a polytope" : px_status_string(err.code), err.message);
+            CHECK(err.message[0] != 0, "OOM message empty");
+            px_convex_destroy(c);
+            CHECK(g_count.live == 0 && g_count.bytes == 0, "leak after failing allocation %lld: %lld live", k,
+                  g_count.live);
+            injected++;
+        }
+    }
+    printf("  failure injection: %d builds with one failing allocation\n", injected);
+    px_set_allocator(NULL);
+}
+
+int main(void) {
+    tu_init("test_convex");
+    double t0 = tu_now();
+    test_coplanar_merging();
+    test_degenerate_inputs();
+    test_random_polytopes(tu_scaled(300));
+    test_allocator();
+    printf("  %ld polytopes validated; bytes per vertex: min %.0f, max %.0f (limit 1024); %.2f s\n",
+           g_polytopes, g_min_bytes_per_vertex, g_max_bytes_per_vertex, tu_now() - t0);
+    return tu_finish();
+}

@@ -1,0 +1,236 @@
+/* px_distance against the brute-force oracle (issue 3 §4): >= 10,000 random
+ * queries per run on random hulls of 4 to 2,000 vertices (mostly small, a
+ * few large; balls, spheres, thin 1:8:40 and random ellipsoids, boxes,
+ * tetrahedra, cylinders, needles, slabs), both cold (NULL or zero cache)
+ * and along coherent motion sequences (small rotations and translations,
+ * warm cache, passing through contact). Every query is checked by
+ * tc_query_and_check (check.c): distance within 1e-12 (|t_AB| + R_A + R_B),
+ * intersecting flag (outside the touching band), witness points, features
+ * realising the distance. Fallbacks are counted and must be 0. A subset is
+ * compared with the exact distance (CGAL Polytope_distance_d). */
+#include "check.h"
+#include "gen.h"
+#include "math/vec3.h"
+#include "test_util.h"
+
+typedef struct pool_item {
+    px_convex *c;
+    tg_kind kind;
+    size_t n;
+    double size;
+} pool_item;
+
+#define POOL_SMALL 400
+#define POOL_LARGE 12
+static pool_item g_pool[POOL_SMALL + POOL_LARGE];
+
+typedef struct stats {
+    long queries, failed, band, intersecting, fallbacks, iterations, warm_queries, warm_iterations;
+    long exact_compared;
+    double worst_rel, worst_exact_rel;
+    unsigned fail_bits;
+} stats;
+static stats g_st;
+
+static void build_pool(void) {
+    tg_rng rng;
+    tg_seed(&rng, 4242);
+    double *xyz = malloc(3 * 2000 * sizeof *xyz);
+    for (int i = 0; i < POOL_SMALL + POOL_LARGE; ++i) {
+        pool_item *it = &g_pool[i];
+        it->kind = (tg_kind)tg_below(&rng, TG_KIND_COUNT);
+        size_t n = i < POOL_SMALL ? tg_log_int(&rng, 8, 80) : tg_log_int(&rng, 300, 2000);
+        it->size = tg_range(&rng, 0.3, 3.0);
+        it->n = tg_shape(&rng, it->kind, n, it->size, xyz);
+        px_error err;
+        it->c = px_convex_from_points(xyz, it->n, NULL, &err);
+        CHECK(it->c != NULL, "pool hull %d failed: %s", i, err.message);
+    }
+    free(xyz);
+}
+
+static const pool_item *pick(tg_rng *rng, int allow_large) {
+    if (allow_large && tg_below(rng, 100) < 2) return &g_pool[POOL_SMALL + tg_below(rng, POOL_LARGE)];
+    return &g_pool[tg_below(rng, POOL_SMALL)];
+}
+
+/* Pose of A placed near B: along a random direction at `factor` times the
+ * sum of the sizes (small factors overlap, large ones are disjoint). */
+static px_pose place_near(tg_rng *rng, const px_pose *pb, double reach, double factor) {
+    px_pose p = tg_pose_random(rng, 0);
+    px_vec3 dir = tg_unit(rng);
+    p.t = pxi_add(pb->t, pxi_scale(dir, factor * reach));
+    return p;
+}
+
+static void record(const tc_report *rep, const char *what, long idx) {
+    g_st.queries++;
+    if (rep->band) g_st.band++;
+    if (rep->res.intersecting) g_st.intersecting++;
+    g_st.fallbacks += rep->res.fallbacks;
+    g_st.iterations += rep->res.iterations;
+    if (!rep->res.intersecting && rep->scale > 0) {
+        double rel = fabs(rep->res.distance - rep->orc.distance) / rep->scale;
+        if (rel > g_st.worst_rel) g_st.worst_rel = rel;
+    }
+    if (rep->fail) {
+        g_st.failed++;
+        g_st.fail_bits |= (unsigned)rep->fail;
+    }
+    CHECK(rep->fail == 0, "%s #%ld: %s", what, idx, rep->msg);
+}
+
+static void exact_compare(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
+                          const tc_report *rep, long idx) {
+    double d = 0;
+    int zero = 0;
+    if (tc_exact(a, pa, b, pb, &d, &zero) != 0) {
+        CHECK(0, "exact distance failed for #%ld", idx);
+        return;
+    }
+    g_st.exact_compared++;
+    if (!zero && d > 0.01 * rep->scale) {
+        double rel = fabs(rep->res.distance - d) / d;
+        if (rel > g_st.worst_exact_rel) g_st.worst_exact_rel = rel;
+        CHECK(rel <= 1e-12 && !rep->res.intersecting, "exact #%ld: distance %.17g exact %.17g rel %.3g", idx,
+              rep->res.distance, d, rel);
+    } else if (zero && rep->orc.margin > rep->tol) {
+        CHECK(rep->res.intersecting, "exact #%ld: exact says intersecting, library d=%.17g", idx,
+              rep->res.distance);
+    }
+}
+
+static void test_cold(int count, int exact_every) {
+    tg_rng rng;
+    tg_seed(&rng, 1001);
+    for (int i = 0; i < count; ++i) {
+        const pool_item *A = pick(&rng, 1), *B = pick(&rng, i % 500 != 0);
+        px_pose pb = tg_pose_random(&rng, 5.0);
+        double factor = tg_range(&rng, 0.05, 1.5);
+        px_pose pa = place_near(&rng, &pb, 0.5 * (A->size + B->size), factor);
+        px_distance_cache cache;
+        memset(&cache, 0, sizeof cache);
+        tc_report rep;
+        tc_query_and_check(A->c, &pa, B->c, &pb, (i & 1) ? &cache : NULL, &rep);
+        record(&rep, "cold", i);
+        if (rep.fail && g_st.failed <= 5)
+            fprintf(stderr, "  repro: cold #%d A=%s n=%zu B=%s n=%zu factor %.3f\n", i, tg_kind_name(A->kind),
+                    A->n, tg_kind_name(B->kind), B->n, factor);
+        if (exact_every && i % exact_every == 0) exact_compare(A->c, &pa, B->c, &pb, &rep, i);
+    }
+}
+
+/* Coherent motion: A moves in small steps (rotation about a fixed axis and a
+ * translation along a line through B, so sequences pass through contact),
+ * B spins slowly. The warm cache is carried along; each step is also
+ * queried cold and both distances must agree. */
+static void test_motion(int sequences, int steps) {
+    tg_rng rng;
+    tg_seed(&rng, 2002);
+    long idx = 0;
+    for (int s = 0; s < sequences; ++s) {
+        const pool_item *A = pick(&rng, 1), *B = pick(&rng, 0);
+        double reach = 0.5 * (A->size + B->size);
+        px_pose pb = tg_pose_random(&rng, 3.0);
+        px_pose pa = place_near(&rng, &pb, reach, tg_range(&rng, 0.8, 1.6));
+        px_vec3 dir = pxi_sub(pb.t, pa.t);
+        dir = pxi_scale(dir, 1.0 / pxi_len(dir));
+        /* step length: 0.1% .. 3% of the reach, towards B */
+        double step = reach * pow(10.0, tg_range(&rng, -3, -1.5));
+        px_vec3 axis_a = tg_unit(&rng), axis_b = tg_unit(&rng);
+        double ang_a = tg_range(&rng, 0.001, 0.1), ang_b = tg_range(&rng, 0.0, 0.02);
+        double ra[9], rb[9];
+        tg_rot_axis_angle(axis_a, ang_a, ra);
+        tg_rot_axis_angle(axis_b, ang_b, rb);
+        px_distance_cache cache;
+        memset(&cache, 0, sizeof cache);
+        for (int k = 0; k < steps; ++k, ++idx) {
+            tc_report rep;
+            tc_query_and_check(A->c, &pa, B->c, &pb, &cache, &rep);
+            record(&rep, "motion", idx);
+            if (k > 0) {
+                g_st.warm_queries++;
+                g_st.warm_iterations += rep.res.iterations;
+            }
+            if (rep.fail && g_st.failed <= 5)
+                fprintf(stderr, "  repro: motion seq %d step %d A=%s n=%zu B=%s n=%zu\n", s, k,
+                        tg_kind_name(A->kind), A->n, tg_kind_name(B->kind), B->n);
+            /* Cold query on the same poses: same distance. */
+            px_distance_result cold;
+            px_status st = px_distance(A->c, &pa, B->c, &pb, NULL, &cold);
+            CHECK(st == PX_OK && fabs(cold.distance - rep.res.distance) <= rep.tol &&
+                      (rep.band || cold.intersecting == rep.res.intersecting),
+                  "motion #%ld: warm d=%.17g (int %d), cold d=%.17g (int %d)", idx, rep.res.distance,
+                  rep.res.intersecting, cold.distance, cold.intersecting);
+            /* Advance: rotate A about its centre, translate towards B; spin B. */
+            tg_mat_mul(ra, pa.r, pa.r);
+            tg_rot_orthonormalize(pa.r);
+            pa.t = pxi_add(pa.t, pxi_scale(dir, step));
+            tg_mat_mul(rb, pb.r, pb.r);
+            tg_rot_orthonormalize(pb.r);
+        }
+    }
+}
+
+/* Only T_AB matters (seed 000 §3.6): moving both bodies by the same rigid
+ * motion leaves the distance unchanged (within the tolerance: T_AB is
+ * rounded differently). A cache holding features out of range for the
+ * pair (reused from another pair) is ignored: the query runs cold. */
+static void test_frame_invariance_and_foreign_cache(int count) {
+    tg_rng rng;
+    tg_seed(&rng, 3003);
+    for (int i = 0; i < count; ++i) {
+        const pool_item *A = pick(&rng, 0), *B = pick(&rng, 0);
+        px_pose pb = tg_pose_random(&rng, 2.0);
+        px_pose pa = place_near(&rng, &pb, 0.5 * (A->size + B->size), tg_range(&rng, 0.05, 1.5));
+        px_pose g = tg_pose_random(&rng, 100.0), pa2 = pa, pb2 = pb;
+        tg_mat_mul(g.r, pa.r, pa2.r);
+        tg_mat_mul(g.r, pb.r, pb2.r);
+        pa2.t = pxi_xform(&g, pa.t);
+        pb2.t = pxi_xform(&g, pb.t);
+        px_distance_result r1, r2, r3;
+        px_distance(A->c, &pa, B->c, &pb, NULL, &r1);
+        px_distance(A->c, &pa2, B->c, &pb2, NULL, &r2);
+        double tol = 1e-12 * (tc_scale(A->c, &pa, B->c, &pb) + 100.0);
+        CHECK(fabs(r1.distance - r2.distance) <= tol, "frame invariance #%d: %.17g vs %.17g", i, r1.distance,
+              r2.distance);
+        px_distance_cache foreign;
+        memset(&foreign, 0, sizeof foreign);
+        foreign.feature_a.type = (uint32_t)(1 + i % 3);
+        foreign.feature_a.index = 100000u + (uint32_t)i;
+        foreign.feature_b.type = (i % 5 == 0) ? 9u : PX_FEATURE_VERTEX;
+        foreign.feature_b.index = (uint32_t)i;
+        px_status st = px_distance(A->c, &pa, B->c, &pb, &foreign, &r3);
+        CHECK(st == PX_OK && fabs(r3.distance - r1.distance) <= tol && r3.intersecting == r1.intersecting,
+              "foreign cache #%d: st %d d %.17g vs %.17g", i, st, r3.distance, r1.distance);
+    }
+}
+
+int main(void) {
+    tu_init("test_distance");
+    double t0 = tu_now();
+    build_pool();
+    double t1 = tu_now();
+    int cold = tu_scaled(6000), seq = tu_scaled(150), steps = 30;
+    test_cold(cold, cold / 300 > 0 ? cold / 300 : 1);
+    double t2 = tu_now();
+    test_motion(seq, steps);
+    double t3 = tu_now();
+    test_frame_invariance_and_foreign_cache(tu_scaled(500));
+    printf("  queries %ld (cold %d, motion %d x %d), failed %ld (bits 0x%x), touching band %ld, intersecting "
+           "%ld\n",
+           g_st.queries, cold, seq, steps, g_st.failed, g_st.fail_bits, g_st.band, g_st.intersecting);
+    printf(
+        "  worst |d - oracle| / (|t_AB| + R_A + R_B) = %.3g; exact subset %ld, worst relative error %.3g\n",
+        g_st.worst_rel, g_st.exact_compared, g_st.worst_exact_rel);
+    printf("  iterations: %.2f per query overall, %.2f per warm query; fallbacks %ld\n",
+           (double)g_st.iterations / (double)(g_st.queries ? g_st.queries : 1),
+           (double)g_st.warm_iterations / (double)(g_st.warm_queries ? g_st.warm_queries : 1),
+           g_st.fallbacks);
+    printf("  time: pool %.2f s, cold %.2f s, motion %.2f s\n", t1 - t0, t2 - t1, t3 - t2);
+    CHECK(g_st.fallbacks == 0, "%ld fallbacks on the random suite", g_st.fallbacks);
+    CHECK(tu_scale() < 1 || g_st.queries >= 10000, "only %ld queries", g_st.queries);
+    for (int i = 0; i < POOL_SMALL + POOL_LARGE; ++i) px_convex_destroy(g_pool[i].c);
+    printf("  pairs: %ld passed, %ld failed\n", g_st.queries - g_st.failed, g_st.failed);
+    return tu_finish();
+}

@@ -77,8 +77,7 @@ void set_exact(Mpfr &dst, const ET &v) {
     const size_t bits = mpz_sizeinbase(v.man(), 2);
     mpfr_set_prec(dst.x, static_cast<mpfr_prec_t>(std::max<size_t>(bits, MPFR_PREC_MIN)));
     mpfr_set_z_2exp(dst.x, v.man(), static_cast<mpfr_exp_t>(v.exp()), MPFR_RNDN);
-    if (!mpfr_number_p(dst.x))
-        throw Distance_error("exact value exceeds MPFR's exponent range");
+    if (!mpfr_number_p(dst.x)) throw Distance_error("exact value exceeds MPFR's exponent range");
 }
 
 // Correctly rounded (to nearest, ties to even) double of num/den, or of
@@ -105,8 +104,7 @@ double round_quotient(const ET &num, const ET &den, bool take_sqrt) {
         }
         if (exact || mpfr_can_round(r.x, prec - 2, MPFR_RNDN, MPFR_RNDZ, 54))
             return mpfr_get_d(r.x, MPFR_RNDN);
-        if (prec > (mpfr_prec_t(1) << 24))
-            throw Distance_error("cannot round the exact distance");
+        if (prec > (mpfr_prec_t(1) << 24)) throw Distance_error("cannot round the exact distance");
     }
 }
 
@@ -126,10 +124,10 @@ void realizing_point(Polytope_distance::Coordinate_iterator c, double *out) {
 
 } // namespace
 
-extern "C" pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_xyz,
-                                           size_t nq, double *distance, double *squared_distance,
-                                           int *is_zero, double *realizing_p, double *realizing_q,
-                                           char *msg, size_t msg_len) {
+extern "C" pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_xyz, size_t nq,
+                                           double *distance, double *squared_distance, int *is_zero,
+                                           double *realizing_p, double *realizing_q, char *msg,
+                                           size_t msg_len) {
     if (np == 0 || nq == 0 || p_xyz == nullptr || q_xyz == nullptr) {
         set_msg(msg, msg_len, "pxcd_exact_distance: both point sets must be non-empty");
         return PXCD_ERROR;

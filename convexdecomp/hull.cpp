@@ -56,11 +56,10 @@
 //
 // Determinism: quickhull's output order depends on memory addresses (CGAL
 // keys a std::map by vertex handles), so equal inputs gave differently
-// ordered triangles from one call to the next (seen in our tests). The hull itself (extreme points, facets) is
-// unique, so we canonicalize: vertices are numbered by the index of their
-// first occurrence in the input and take that input point's coordinates
-// (bit-identical), each loop starts at its smallest id, and loops are sorted
-// by their first two ids (unique: a directed edge belongs to one face).
+// ordered triangles from one call to the next (seen in our tests). The hull itself (extreme points, facets)
+// is unique, so we canonicalize: vertices are numbered by the index of their first occurrence in the input
+// and take that input point's coordinates (bit-identical), each loop starts at its smallest id, and loops are
+// sorted by their first two ids (unique: a directed edge belongs to one face).
 
 #include "pxcd.h"
 
@@ -143,8 +142,10 @@ struct Union_find {
         a = find(a);
         b = find(b);
         if (a == b) return;
-        if (a < b) parent[b] = a;
-        else parent[a] = b;
+        if (a < b)
+            parent[b] = a;
+        else
+            parent[a] = b;
     }
 };
 
@@ -207,8 +208,7 @@ template <class Point_3> void Tri_mesh<Point_3>::link() {
     std::vector<uint32_t> src(nh), dst(nh);
     for (uint32_t h = 0; h < nh; ++h) {
         const std::size_t u = tris[h / 3][h % 3], v = tris[h / 3][(h + 1) % 3];
-        if (u >= points.size() || v >= points.size())
-            throw Hull_error("bad vertex index from convex_hull_3");
+        if (u >= points.size() || v >= points.size()) throw Hull_error("bad vertex index from convex_hull_3");
         src[h] = static_cast<uint32_t>(u);
         dst[h] = static_cast<uint32_t>(v);
     }
@@ -272,8 +272,7 @@ void merge_coplanar_triangles(const Tri_mesh<Point_3> &mesh, std::vector<uint32_
         uint32_t h = first;
         do {
             loop.push_back(mesh.source(h));
-            if (loop.size() > boundary_count[g])
-                throw Hull_error("hull facet boundary is not a simple loop");
+            if (loop.size() > boundary_count[g]) throw Hull_error("hull facet boundary is not a simple loop");
             uint32_t n = Mesh::next(h);
             size_t guard = 0;
             while (!is_boundary(n)) {
@@ -282,8 +281,7 @@ void merge_coplanar_triangles(const Tri_mesh<Point_3> &mesh, std::vector<uint32_
             }
             h = n;
         } while (h != first);
-        if (loop.size() != boundary_count[g])
-            throw Hull_error("hull facet boundary is not a simple loop");
+        if (loop.size() != boundary_count[g]) throw Hull_error("hull facet boundary is not a simple loop");
 
         // A 3-vertex loop bounds a non-degenerate triangle: nothing to drop.
         const size_t m = loop.size();
@@ -376,8 +374,7 @@ struct Facets {
 };
 
 // Affine dimension, and when it is 3 the facets, computed with kernel K.
-template <class K, class Traits>
-int compute_facets(const double *xyz, size_t count, Facets &out) {
+template <class K, class Traits> int compute_facets(const double *xyz, size_t count, Facets &out) {
     using Point_3 = typename K::Point_3;
     std::vector<Point_3> pts;
     pts.reserve(count);
@@ -411,8 +408,7 @@ int compute_facets(const double *xyz, size_t count, Facets &out) {
 bool directed_rounding_works() {
     using CGAL::IA_up; // the CGAL_IA_* macros expect to be used inside namespace CGAL
     CGAL::Protect_FPU_rounding<true> protect(CGAL_FE_UPWARD);
-    return -CGAL_IA_MUL(-1.1, 10.1) != CGAL_IA_MUL(1.1, 10.1) &&
-           -CGAL_IA_DIV(-1., 10) != CGAL_IA_DIV(1., 10);
+    return -CGAL_IA_MUL(-1.1, 10.1) != CGAL_IA_MUL(1.1, 10.1) && -CGAL_IA_DIV(-1., 10) != CGAL_IA_DIV(1., 10);
 }
 
 bool use_exact_kernel() {
@@ -425,9 +421,8 @@ bool use_exact_kernel() {
 
 pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
     Facets facets;
-    const int dim = use_exact_kernel()
-                        ? compute_facets<Exact_kernel, Exact_traits>(xyz, count, facets)
-                        : compute_facets<Fast_kernel, Fast_traits>(xyz, count, facets);
+    const int dim = use_exact_kernel() ? compute_facets<Exact_kernel, Exact_traits>(xyz, count, facets)
+                                       : compute_facets<Fast_kernel, Fast_traits>(xyz, count, facets);
     if (dimension != nullptr) *dimension = dim;
     if (dim < 3) return nullptr;
     const std::vector<uint32_t> &loops = facets.loops;
@@ -484,8 +479,7 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
     out_indices.reserve(indices.size());
     for (const auto &key_face : face_order) {
         const uint32_t f = key_face.second;
-        out_indices.insert(out_indices.end(), indices.begin() + offsets[f],
-                           indices.begin() + offsets[f + 1]);
+        out_indices.insert(out_indices.end(), indices.begin() + offsets[f], indices.begin() + offsets[f + 1]);
         out_offsets.push_back(out_indices.size());
     }
     check_topology(used.size(), out_offsets, out_indices);
@@ -503,8 +497,7 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
         throw std::bad_alloc();
     }
     for (size_t i = 0; i < used.size(); ++i)
-        std::copy(&xyz[3 * first_input[used[i]]], &xyz[3 * first_input[used[i]] + 3],
-                  &hull->vertices[3 * i]);
+        std::copy(&xyz[3 * first_input[used[i]]], &xyz[3 * first_input[used[i]] + 3], &hull->vertices[3 * i]);
     std::copy(out_offsets.begin(), out_offsets.end(), hull->face_offsets);
     std::copy(out_indices.begin(), out_indices.end(), hull->face_indices);
     return hull;
@@ -512,8 +505,8 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
 
 } // namespace
 
-extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out,
-                                         int *dimension, char *msg, size_t msg_len) {
+extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out, int *dimension,
+                                         char *msg, size_t msg_len) {
     if (out == nullptr) {
         set_msg(msg, msg_len, "pxcd_hull_compute: out is NULL");
         return PXCD_ERROR;

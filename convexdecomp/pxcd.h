@@ -40,10 +40,10 @@ typedef enum pxcd_status {
  * Memory is owned by the pxcd_hull; free it with pxcd_hull_free. */
 typedef struct pxcd_hull {
     size_t vertex_count;
-    double *vertices;          /* 3 * vertex_count, copied from the input */
+    double *vertices; /* 3 * vertex_count, copied from the input */
     size_t face_count;
-    size_t *face_offsets;      /* face_count + 1; face f = face_indices[offsets[f] .. offsets[f+1]) */
-    uint32_t *face_indices;    /* vertex ids, CCW from outside */
+    size_t *face_offsets;   /* face_count + 1; face f = face_indices[offsets[f] .. offsets[f+1]) */
+    uint32_t *face_indices; /* vertex ids, CCW from outside */
 } pxcd_hull;
 
 /* Computes the hull of `count` points (xyz: 3*count doubles, all finite:
@@ -57,8 +57,8 @@ typedef struct pxcd_hull {
  * rounding does not work (valgrind), an exact rational kernel is used
  * instead of CGAL's filtered one: same result, much slower. Setting the
  * environment variable PXCD_HULL_EXACT_KERNEL=1 forces it (for tests). */
-pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out,
-                              int *dimension, char *msg, size_t msg_len);
+pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out, int *dimension, char *msg,
+                              size_t msg_len);
 
 void pxcd_hull_free(pxcd_hull *hull);
 
@@ -75,10 +75,9 @@ void pxcd_hull_free(pxcd_hull *hull);
  * each) returns the realizing points, each coordinate correctly rounded.
  * Any output pointer may be NULL. Outputs are written only on PXCD_OK.
  * Time: ~0.1 s for two 5k-vertex hulls, a few seconds for 200k points each. */
-pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_xyz,
-                                size_t nq, double *distance, double *squared_distance,
-                                int *is_zero, double *realizing_p, double *realizing_q,
-                                char *msg, size_t msg_len);
+pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_xyz, size_t nq,
+                                double *distance, double *squared_distance, int *is_zero, double *realizing_p,
+                                double *realizing_q, char *msg, size_t msg_len);
 
 #ifdef __cplusplus
 }

@@ -29,16 +29,16 @@
 
 static int g_passed = 0, g_failed = 0;
 
-#define CHECK(cond, ...)                                                        \
-    do {                                                                        \
-        if (cond) {                                                             \
-            ++g_passed;                                                         \
-        } else {                                                                \
-            ++g_failed;                                                         \
-            printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);              \
-            printf(__VA_ARGS__);                                                \
-            printf("\n");                                                       \
-        }                                                                       \
+#define CHECK(cond, ...)                                                                                     \
+    do {                                                                                                     \
+        if (cond) {                                                                                          \
+            ++g_passed;                                                                                      \
+        } else {                                                                                             \
+            ++g_failed;                                                                                      \
+            printf("FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                           \
+            printf(__VA_ARGS__);                                                                             \
+            printf("\n");                                                                                    \
+        }                                                                                                    \
     } while (0)
 
 /* ---------- small helpers ---------- */
@@ -100,11 +100,23 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom)
     for (size_t v = 0; v < V; ++v) stamp[v] = (size_t)-1;
     for (size_t f = 0; f < F && ok; ++f) {
         size_t b = h->face_offsets[f], e = h->face_offsets[f + 1];
-        if (e < b + 3) { printf("  face %zu has %zu vertices\n", f, e - b); ok = 0; break; }
+        if (e < b + 3) {
+            printf("  face %zu has %zu vertices\n", f, e - b);
+            ok = 0;
+            break;
+        }
         for (size_t i = b; i < e; ++i) {
             uint64_t u = h->face_indices[i], w = h->face_indices[i + 1 < e ? i + 1 : b];
-            if (u >= V) { printf("  id out of range\n"); ok = 0; break; }
-            if (stamp[u] == f) { printf("  face %zu repeats vertex %u\n", f, (unsigned)u); ok = 0; break; }
+            if (u >= V) {
+                printf("  id out of range\n");
+                ok = 0;
+                break;
+            }
+            if (stamp[u] == f) {
+                printf("  face %zu repeats vertex %u\n", f, (unsigned)u);
+                ok = 0;
+                break;
+            }
             stamp[u] = f;
             used[u] = 1;
             uint64_t lo = u < w ? u : w, hi = u < w ? w : u;
@@ -121,8 +133,14 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom)
                 break;
             }
         for (size_t v = 0; v < V && ok; ++v)
-            if (!used[v]) { printf("  vertex %zu unused\n", v); ok = 0; }
-        if (ok && V + F != NI / 2 + 2) { printf("  Euler fails: V=%zu E=%zu F=%zu\n", V, NI / 2, F); ok = 0; }
+            if (!used[v]) {
+                printf("  vertex %zu unused\n", v);
+                ok = 0;
+            }
+        if (ok && V + F != NI / 2 + 2) {
+            printf("  Euler fails: V=%zu E=%zu F=%zu\n", V, NI / 2, F);
+            ok = 0;
+        }
     }
     free(keys);
     free(stamp);
@@ -134,7 +152,10 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom)
         int found = 0;
         for (size_t i = 0; i < n && !found; ++i)
             found = memcmp(&h->vertices[3 * v], &xyz[3 * i], 3 * sizeof(double)) == 0;
-        if (!found) { printf("  vertex %zu is not an input point\n", v); ok = 0; }
+        if (!found) {
+            printf("  vertex %zu is not an input point\n", v);
+            ok = 0;
+        }
     }
 
     if (!ok || geom == GEOM_NONE) return ok;
@@ -159,7 +180,11 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom)
         }
         double len = sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
         double out = nrm[0] * (p0[0] - c[0]) + nrm[1] * (p0[1] - c[1]) + nrm[2] * (p0[2] - c[2]);
-        if (!(len > 0 && out > 0)) { printf("  face %zu not outward\n", f); ok = 0; break; }
+        if (!(len > 0 && out > 0)) {
+            printf("  face %zu not outward\n", f);
+            ok = 0;
+            break;
+        }
         if (exact_ints) {
             /* With small integers all products below are exact doubles. */
             for (size_t i = 0; i < m && ok; ++i) {
@@ -172,15 +197,23 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom)
                                u[0] * w[1] - u[1] * w[0]};
                 double turn = x[0] * nrm[0] + x[1] * nrm[1] + x[2] * nrm[2];
                 double off = nrm[0] * (q[0] - p0[0]) + nrm[1] * (q[1] - p0[1]) + nrm[2] * (q[2] - p0[2]);
-                if (off != 0) { printf("  face %zu not planar\n", f); ok = 0; }
-                else if (!(turn > 0)) { printf("  face %zu not strictly convex at corner %zu\n", f, i); ok = 0; }
+                if (off != 0) {
+                    printf("  face %zu not planar\n", f);
+                    ok = 0;
+                } else if (!(turn > 0)) {
+                    printf("  face %zu not strictly convex at corner %zu\n", f, i);
+                    ok = 0;
+                }
             }
         }
         double tol = exact_ints ? 0.0 : 1e-12 * len * scale;
         for (size_t i = 0; i < n && ok; ++i) {
             const double *p = &xyz[3 * i];
             double s = nrm[0] * (p[0] - p0[0]) + nrm[1] * (p[1] - p0[1]) + nrm[2] * (p[2] - p0[2]);
-            if (s > tol) { printf("  input point %zu outside face %zu (%g)\n", i, f, s); ok = 0; }
+            if (s > tol) {
+                printf("  input point %zu outside face %zu (%g)\n", i, f, s);
+                ok = 0;
+            }
         }
     }
     return ok;
@@ -215,15 +248,13 @@ static void test_cube_with_extras(void) {
         pxcd_hull *h = hull_of(xyz, n, &st, &dim);
         CHECK(st == PXCD_OK && h, "status %d", (int)st);
         if (!h) continue;
-        CHECK(h->vertex_count == 8 && h->face_count == 6 && edge_count(h) == 12,
-              "V=%zu F=%zu E=%zu", h->vertex_count, h->face_count, edge_count(h));
+        CHECK(h->vertex_count == 8 && h->face_count == 6 && edge_count(h) == 12, "V=%zu F=%zu E=%zu",
+              h->vertex_count, h->face_count, edge_count(h));
         int quads = 1;
-        for (size_t f = 0; f < h->face_count; ++f)
-            quads &= h->face_offsets[f + 1] - h->face_offsets[f] == 4;
+        for (size_t f = 0; f < h->face_count; ++f) quads &= h->face_offsets[f + 1] - h->face_offsets[f] == 4;
         CHECK(quads, "not all faces are quads");
         int corners = 1;
-        for (size_t i = 0; i < 3 * h->vertex_count; ++i)
-            corners &= fabs(h->vertices[i]) == 1.0;
+        for (size_t i = 0; i < 3 * h->vertex_count; ++i) corners &= fabs(h->vertices[i]) == 1.0;
         CHECK(corners, "a hull vertex is not a cube corner");
         CHECK(dim == 3, "dim=%d", dim);
         CHECK(check_hull(h, xyz, n, GEOM_EXACT), "cube hull checks");
@@ -238,8 +269,8 @@ static void test_tetrahedron(void) {
     pxcd_hull *h = hull_of(xyz, 5, &st, &dim);
     CHECK(st == PXCD_OK && h, "status %d", (int)st);
     if (!h) return;
-    CHECK(h->vertex_count == 4 && h->face_count == 4 && edge_count(h) == 6,
-          "V=%zu F=%zu E=%zu", h->vertex_count, h->face_count, edge_count(h));
+    CHECK(h->vertex_count == 4 && h->face_count == 4 && edge_count(h) == 6, "V=%zu F=%zu E=%zu",
+          h->vertex_count, h->face_count, edge_count(h));
     CHECK(check_hull(h, xyz, 5, GEOM_FLOAT), "tetrahedron hull checks");
     pxcd_hull_free(h);
 }
@@ -353,8 +384,8 @@ static void test_random_lattice(void) {
     pxcd_status st;
     int dim;
     pxcd_hull *h = hull_of(oct, n, &st, &dim);
-    CHECK(st == PXCD_OK && h && h->vertex_count == 6 && h->face_count == 8,
-          "octahedron: V=%zu F=%zu", h ? h->vertex_count : 0, h ? h->face_count : 0);
+    CHECK(st == PXCD_OK && h && h->vertex_count == 6 && h->face_count == 8, "octahedron: V=%zu F=%zu",
+          h ? h->vertex_count : 0, h ? h->face_count : 0);
     if (h) CHECK(check_hull(h, oct, n, GEOM_EXACT), "octahedron hull checks");
     pxcd_hull_free(h);
 }
@@ -379,16 +410,16 @@ static void test_hull_scales(void) {
         pxcd_status st;
         int dim;
         pxcd_hull *h = hull_of(xyz, n, &st, &dim);
-        CHECK(st == PXCD_OK && h && h->vertex_count == 8 && h->face_count == 6,
-              "scale %g: st=%d V=%zu F=%zu", s, (int)st, h ? h->vertex_count : 0, h ? h->face_count : 0);
+        CHECK(st == PXCD_OK && h && h->vertex_count == 8 && h->face_count == 6, "scale %g: st=%d V=%zu F=%zu",
+              s, (int)st, h ? h->vertex_count : 0, h ? h->face_count : 0);
         if (h) CHECK(check_hull(h, xyz, n, GEOM_NONE), "scale %g hull checks", s);
         pxcd_hull_free(h);
     }
 
     /* Unit cube corners; the origin comes first as (-0, 0, -0), later as
      * (0, 0, 0) and (0, -0, 0). */
-    double cube[11 * 3] = {-0.0, 0, -0.0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1,
-                           0, 0, 0, 0.5, 0.5, 0.5, 0, -0.0, 0};
+    double cube[11 * 3] = {-0.0, 0, -0.0, 1, 0, 0, 0, 1, 0, 1, 1,   0,   0,   0, 1,    1, 0,
+                           1,    0, 1,    1, 1, 1, 1, 0, 0, 0, 0.5, 0.5, 0.5, 0, -0.0, 0};
     pxcd_status st;
     int dim;
     pxcd_hull *h = hull_of(cube, 11, &st, &dim);
@@ -471,8 +502,8 @@ static void test_distance_scales(void) {
     const double scales[] = {1e-23, 1e-150, 1e150, 1e-170, 1.0, 3.0e-7, 7.0e100};
     for (size_t i = 0; i < sizeof scales / sizeof scales[0]; ++i) {
         double s = scales[i], P[12], Q[12];
-        tetra(s, 0, 0, P);     /* below z = 0 */
-        tetra(s, s, 1, Q);     /* above z = s: exact gap s */
+        tetra(s, 0, 0, P); /* below z = 0 */
+        tetra(s, s, 1, Q); /* above z = s: exact gap s */
         double d = -1, d2 = -1, rp[3], rq[3];
         int zero = -1;
         char msg[256] = "";
@@ -558,7 +589,8 @@ static void test_distance_random(void) {
         double scale = pow(10.0, -100 + 200 * rnd01()), gap = 3 * rnd01();
         size_t np = 1 + (size_t)(rnd01() * N), nq = 1 + (size_t)(rnd01() * N);
         for (size_t i = 0; i < 3 * np; ++i) P[i] = scale * (2 * rnd01() - 1);
-        for (size_t i = 0; i < 3 * nq; ++i) Q[i] = scale * (2 * rnd01() - 1 + (i % 3 == (size_t)round % 3 ? gap : 0));
+        for (size_t i = 0; i < 3 * nq; ++i)
+            Q[i] = scale * (2 * rnd01() - 1 + (i % 3 == (size_t)round % 3 ? gap : 0));
         double d = -1, d2 = -1, rp[3], rq[3];
         int zero = -1;
         char msg[256] = "";
@@ -586,7 +618,8 @@ static void test_distance_random(void) {
             double s = -(n[0] * (q[0] - rq[0]) + n[1] * (q[1] - rq[1]) + n[2] * (q[2] - rq[2])) / len;
             if (s > worst) worst = s;
         }
-        CHECK(worst <= 1e-12 * scale, "random round %d: a point is %g beyond its support plane", round, worst);
+        CHECK(worst <= 1e-12 * scale, "random round %d: a point is %g beyond its support plane", round,
+              worst);
     }
     CHECK(separated > 10 && overlapping > 5, "random cases: %d separated, %d overlapping", separated,
           overlapping);
@@ -611,8 +644,8 @@ static void bench(void) {
     double t0 = now_seconds(), c0 = cpu_seconds();
     pxcd_hull *h = hull_of(xyz, n, &st, &dim);
     double t1 = now_seconds(), c1 = cpu_seconds();
-    printf("bench: hull of %zu ellipsoid points: %.3f s wall, %.3f s cpu, V=%zu F=%zu\n", n, t1 - t0,
-           c1 - c0, h ? h->vertex_count : 0, h ? h->face_count : 0);
+    printf("bench: hull of %zu ellipsoid points: %.3f s wall, %.3f s cpu, V=%zu F=%zu\n", n, t1 - t0, c1 - c0,
+           h ? h->vertex_count : 0, h ? h->face_count : 0);
     pxcd_hull_free(h);
     free(xyz);
 
@@ -625,8 +658,8 @@ static void bench(void) {
         int zero = 0;
         char msg[256] = "";
         t0 = now_seconds(), c0 = cpu_seconds();
-        st = pxcd_exact_distance(hp->vertices, hp->vertex_count, hq->vertices, hq->vertex_count, &d,
-                                 NULL, &zero, rp, rq, msg, sizeof msg);
+        st = pxcd_exact_distance(hp->vertices, hp->vertex_count, hq->vertices, hq->vertex_count, &d, NULL,
+                                 &zero, rp, rq, msg, sizeof msg);
         t1 = now_seconds(), c1 = cpu_seconds();
         printf("bench: exact distance %zu x %zu vertices: %.3f s wall, %.3f s cpu, d=%.17g st=%d %s\n",
                hp->vertex_count, hq->vertex_count, t1 - t0, c1 - c0, d, (int)st, msg);

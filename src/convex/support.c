@@ -59,7 +59,8 @@ static uint32_t cell_of(uint32_t res, px_vec3 d) {
         b = d.y;
     }
     if (!(m > 0)) return 0; /* zero or NaN direction: any cell will do */
-    double fa = (a / m + 1.0) * 0.5 * res, fb = (b / m + 1.0) * 0.5 * res;
+    double h = 0.5 * res, k = h / m;
+    double fa = a * k + h, fb = b * k + h;
     uint32_t ia = fa <= 0 ? 0 : fa >= res ? res - 1 : (uint32_t)fa;
     uint32_t ib = fb <= 0 ? 0 : fb >= res ? res - 1 : (uint32_t)fb;
     return (face * res + ia) * res + ib;

@@ -183,6 +183,8 @@ static px_vec3 simplex_point(const simplex *s) {
  * problem to unit scale: the simplex solver forms fourth powers of lengths,
  * which would overflow for bodies of 1e80 or underflow for bodies of 1e-80. */
 static sx_point support(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 v, double k) {
+    /* Always from the direction table: climbing from the previous support
+     * vertex is slower on large hulls, where early GJK directions jump. */
     sx_point p;
     p.ia = pxi_support(a, pxi_rot_t(t_ab->r, pxi_neg(v)), UINT32_MAX);
     p.ib = pxi_support(b, v, UINT32_MAX);

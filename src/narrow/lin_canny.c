@@ -742,7 +742,10 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
          * closest points in O(log n)-ish support calls (direction table plus
          * hill climbing), so the walk starts close to its goal. */
         pxi_gjk_result g;
-        pxi_gjk(a, b, &x.T[0], 1e-3, 64, &g);
+        /* A few iterations suffice: the walk finishes the job, and each GJK
+         * iteration (two support queries) costs about three walk steps. */
+        uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv) / 2;
+        pxi_gjk(a, b, &x.T[0], 1e-3, gjk_cap, &g);
         x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
         x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
         double span =
@@ -780,7 +783,10 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         /* Safeguard: restart once from GJK's answer at full precision. */
         ++fallbacks;
         pxi_gjk_result g;
-        pxi_gjk(a, b, &x.T[0], 1e-12, 256, &g);
+        /* A few iterations suffice: the walk finishes the job, and each GJK
+         * iteration (two support queries) costs about three walk steps. */
+        uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv) / 2;
+        pxi_gjk(a, b, &x.T[0], 1e-3, gjk_cap, &g);
         x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
         x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
         r = lc_walk(&x, cap, &iterations);

@@ -6,6 +6,7 @@ SHELL := /bin/bash
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build
 BUILD_ASAN ?= build-asan
+ABS_BUILD = $(abspath $(BUILD))
 
 # Debian packages the build needs: compiler and CMake, CGAL (hulls, exact
 # ground truth), GMP/MPFR, Assimp (files), FCL/libccd/Bullet (peers in
@@ -13,7 +14,7 @@ BUILD_ASAN ?= build-asan
 DEB_PACKAGES := build-essential cmake pkg-config clang-format libcgal-dev libgmp-dev libmpfr-dev \
   libboost-dev libassimp-dev libfcl-dev libccd-dev libbullet-dev gnuplot-nox
 
-.PHONY: all deps configure build demo test test-release test-asan format format-check bench clean
+.PHONY: all deps configure build demo test test-release test-asan test-install format format-check bench clean
 
 all: build
 
@@ -47,6 +48,18 @@ test-asan: deps
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS)
 
+# Install into a scratch prefix, then build an outside project against it,
+# once with find_package(proxima) and once with pkg-config.
+test-install: build
+	rm -rf $(ABS_BUILD)/stage $(ABS_BUILD)/consumer
+	cmake --install $(BUILD) --prefix $(ABS_BUILD)/stage > /dev/null
+	cmake -S tests/consumer -B $(ABS_BUILD)/consumer -DCMAKE_PREFIX_PATH=$(ABS_BUILD)/stage > /dev/null
+	cmake --build $(ABS_BUILD)/consumer > /dev/null
+	$(ABS_BUILD)/consumer/consumer
+	cc -std=c11 tests/consumer/main.c -o $(ABS_BUILD)/consumer/consumer-pc \
+	  $$(PKG_CONFIG_PATH=$(ABS_BUILD)/stage/lib/pkgconfig pkg-config --cflags --libs --static proxima)
+	$(ABS_BUILD)/consumer/consumer-pc
+
 format-check: deps
 	@files=$$(git ls-files '*.c' '*.h' '*.cpp' 2>/dev/null); \
 	if [ -n "$$files" ]; then clang-format --dry-run --Werror $$files; fi
@@ -54,8 +67,8 @@ format-check: deps
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp')
 
-test: format-check test-release test-asan
-	@echo "make test: all suites passed (release and ASan+UBSan)"
+test: format-check test-release test-install test-asan
+	@echo "make test: all suites passed (release, install, ASan+UBSan)"
 
 bench: build
 	./$(BUILD)/bench/bench_convex --out docs/bench

@@ -744,7 +744,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         pxi_gjk_result g;
         /* A few iterations suffice: the walk finishes the job, and each GJK
          * iteration (two support queries) costs about three walk steps. */
-        uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv) / 2;
+        uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv);
         pxi_gjk(a, b, &x.T[0], 1e-3, gjk_cap, &g);
         x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
         x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
@@ -783,10 +783,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         /* Safeguard: restart once from GJK's answer at full precision. */
         ++fallbacks;
         pxi_gjk_result g;
-        /* A few iterations suffice: the walk finishes the job, and each GJK
-         * iteration (two support queries) costs about three walk steps. */
-        uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv) / 2;
-        pxi_gjk(a, b, &x.T[0], 1e-3, gjk_cap, &g);
+        pxi_gjk(a, b, &x.T[0], 1e-12, 256, &g);
         x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
         x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
         r = lc_walk(&x, cap, &iterations);

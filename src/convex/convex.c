@@ -222,14 +222,14 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
 }
 
 static uint32_t default_lut_resolution(uint32_t nv) {
-    /* About one cell per 4 vertices, between 2 and 128 cells per cube side:
-     * at most 6*128*128*4 = 384 KiB, under 2 bytes per vertex at 200k. A
+    /* About four cells per vertex, between 2 and 256 cells per cube side:
+     * at most 6*256*256*4 = 1.5 MiB, 8 bytes per vertex at 200k. A
      * support query then climbs one or two steps from its cell's vertex. Tiny
      * hulls climb from a fixed vertex instead (support.c). */
     if (nv < 24) return 0;
-    uint32_t r = (uint32_t)sqrt(nv / 4.0);
+    uint32_t r = (uint32_t)sqrt(nv / 1.5);
     if (r < 2) r = 2;
-    if (r > 128) r = 128;
+    if (r > 256) r = 256;
     return r;
 }
 

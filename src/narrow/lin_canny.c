@@ -25,7 +25,10 @@
  * state: as in V-Clip a face pair is demoted to an edge or vertex of one face,
  * and edge_face clips the edge against the face prism, which decides
  * "the edge cuts the prism", "its end lies above" and parallel edges in one
- * pass.
+ * pass. Edge-edge and the cone test of vertex-edge use the same clipping
+ * (clip_against_edge, clip_against_vertex): better conditioned than testing
+ * one closest point when edges are nearly parallel or a region is a wedge
+ * thinner than rounding (docs/lin-canny.md, "Point tests and clipping").
  *
  * Frames: body i's feature geometry is in its own frame; T[i] maps body i's
  * frame into the other body's. Only the points under test are transformed.

@@ -218,6 +218,25 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     }
     c->radius = r2;
     c->scale = scale;
+    /* Widths along the 3 axes, 6 face diagonals and 4 body diagonals of a
+     * cube: their ratio tells round bodies (where the line of centres is a
+     * good cold-start guess) from thin ones (lin_canny.c). */
+    static const double dirs[13][3] = {{1, 0, 0},  {0, 1, 0},  {0, 0, 1}, {1, 1, 0},  {1, -1, 0},
+                                       {1, 0, 1},  {1, 0, -1}, {0, 1, 1}, {0, 1, -1}, {1, 1, 1},
+                                       {1, 1, -1}, {1, -1, 1}, {-1, 1, 1}};
+    double wmin = INFINITY, wmax = 0.0;
+    for (int k = 0; k < 13; ++k) {
+        px_vec3 d = unit(pxi_v(dirs[k][0], dirs[k][1], dirs[k][2]));
+        double lo = INFINITY, hi = -INFINITY;
+        for (uint32_t i = 0; i < c->nv; ++i) {
+            double t = pxi_dot(d, pxi_sub(c->v[i], s));
+            if (t < lo) lo = t;
+            if (t > hi) hi = t;
+        }
+        if (hi - lo < wmin) wmin = hi - lo;
+        if (hi - lo > wmax) wmax = hi - lo;
+    }
+    c->roundness = wmax > 0.0 ? wmin / wmax : 1.0;
     return PX_OK;
 }
 

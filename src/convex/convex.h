@@ -55,6 +55,7 @@ struct px_convex {
     px_vec3 center;    /* mean of the vertices (an interior point) */
     double radius;     /* max |v - center| */
     double scale;      /* max |coordinate| over all vertices (>= radius scale), for relative tolerances */
+    double roundness;  /* least / greatest width over 13 directions, in (0, 1]: 1 for a ball-like body */
     pxi_lut lut;
     size_t bytes; /* everything allocated for this polytope */
 };

@@ -48,6 +48,16 @@
 #define NONE UINT32_MAX
 
 enum { LC_CONTINUE, LC_DONE, LC_PENETRATION };
+/* lc_walk's other outcomes, and px_distance's internal "already answered". */
+enum { LC_REPEAT = -1, LC_OUT_OF_STEPS = -2, LC_ANSWERED = -3 };
+
+/* Steps a cold walk from the line-of-centres guess may take before the
+ * query switches to the GJK seed (see px_distance). */
+#define COLD_BUDGET 12
+/* Bodies with px_convex.roundness below this (a width ratio over 13
+ * directions) go straight to the GJK seed: on a 1:8:40 ellipsoid the line of
+ * centres is a poor guess and the walk from it takes tens of steps. */
+#define COLD_ROUND 0.5
 
 typedef struct lc_ctx {
     const px_convex *c[2];
@@ -657,8 +667,8 @@ static int feature_valid(const px_convex *c, px_feature f) {
     }
 }
 
-/* Runs the walk from x->f. Returns the final state, or -1 when it revisited
- * a recent pair (a floating-point cycle) or ran out of steps. */
+/* Runs the walk from x->f. Returns the final state, LC_REPEAT when it
+ * revisited a recent pair (a floating-point cycle), or LC_OUT_OF_STEPS. */
 static int lc_walk(lc_ctx *x, uint32_t max_steps, uint32_t *iterations) {
     px_feature ring[2][8];
     memset(ring, 0xff, sizeof ring);
@@ -675,11 +685,11 @@ static int lc_walk(lc_ctx *x, uint32_t max_steps, uint32_t *iterations) {
         for (int k = 0; k < 8; ++k)
             if (ring[0][k].type == x->f[0].type && ring[0][k].index == x->f[0].index &&
                 ring[1][k].type == x->f[1].type && ring[1][k].index == x->f[1].index)
-                return -1;
+                return LC_REPEAT;
         ring[0][step & 7] = x->f[0];
         ring[1][step & 7] = x->f[1];
     }
-    return -1;
+    return LC_OUT_OF_STEPS;
 }
 
 /* A terminal pair proves separation only if its tests were decided beyond
@@ -713,6 +723,45 @@ static int contact_within_rounding(const lc_ctx *x) {
     return gap < -64.0 * DBL_EPSILON * span;
 }
 
+/* Cold start, second try (thin or far-from-round bodies, where the line of
+ * centres is a poor guess): GJK to a loose tolerance finds vertices near the
+ * closest points in a few support queries (direction table plus hill
+ * climbing), and the walk starts from there. Returns the walk's result, or
+ * LC_ANSWERED when GJK already proved an overlap and filled `result`. */
+static int cold_start_gjk(lc_ctx *x, const px_pose *pose_a, const px_pose *pose_b, px_distance_cache *cache,
+                          px_distance_result *result, uint32_t cap, uint32_t *iterations) {
+    const px_convex *a = x->c[0], *b = x->c[1];
+    pxi_gjk_result g;
+    /* A few iterations suffice: the walk finishes the job, and each GJK
+     * iteration (two support queries) costs about three walk steps. */
+    uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv);
+    pxi_gjk(a, b, &x->T[0], 1e-3, gjk_cap, &g);
+    x->f[0] = feat(PX_FEATURE_VERTEX, g.va);
+    x->f[1] = feat(PX_FEATURE_VERTEX, g.vb);
+    double span =
+        a->radius + b->radius + pxi_len(x->T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
+    if (g.intersecting && g.inside_margin > 64.0 * DBL_EPSILON * span) {
+        /* The origin lies in a simplex of A - B: the solids overlap, and the
+         * barycentric combination is a common point. Walking to a penetration
+         * witness from here would cost O(n) for nothing. Only trusted when
+         * the origin is inside by more than rounding noise; near contact the
+         * walk decides. */
+        result->intersecting = 1;
+        result->point_a = pxi_xform(pose_a, g.pa);
+        result->point_b = result->point_a;
+        result->feature_a = x->f[0];
+        result->feature_b = x->f[1];
+        result->iterations = *iterations;
+        if (cache) {
+            cache->feature_a = x->f[0];
+            cache->feature_b = x->f[1];
+        }
+        (void)pose_b;
+        return LC_ANSWERED;
+    }
+    return lc_walk(x, cap, iterations);
+}
+
 static void zero_result(px_distance_result *r) {
     if (r) memset(r, 0, sizeof *r);
 }
@@ -737,45 +786,29 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     x.p[0] = x.p[1] = pxi_v(0, 0, 0);
 
     int warm = cache && feature_valid(a, cache->feature_a) && feature_valid(b, cache->feature_b);
-    if (warm) {
-        x.f[0] = cache->feature_a;
-        x.f[1] = cache->feature_b;
-    } else {
-        /* Cold start: GJK to a loose tolerance finds vertices near the
-         * closest points in O(log n)-ish support calls (direction table plus
-         * hill climbing), so the walk starts close to its goal. */
-        pxi_gjk_result g;
-        /* A few iterations suffice: the walk finishes the job, and each GJK
-         * iteration (two support queries) costs about three walk steps. */
-        uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv);
-        pxi_gjk(a, b, &x.T[0], 1e-3, gjk_cap, &g);
-        x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
-        x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
-        double span =
-            a->radius + b->radius + pxi_len(x.T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
-        if (g.intersecting && g.inside_margin > 64.0 * DBL_EPSILON * span) {
-            /* The origin lies in a simplex of A - B: the solids overlap, and
-             * the barycentric combination is a common point. Walking to a
-             * penetration witness from here would cost O(n) for nothing. Only
-             * trusted when the origin is inside by more than rounding noise;
-             * near contact the walk decides. */
-            result->intersecting = 1;
-            result->point_a = pxi_xform(pose_a, g.pa);
-            result->point_b = result->point_a;
-            result->feature_a = x.f[0];
-            result->feature_b = x.f[1];
-            if (cache) {
-                cache->feature_a = x.f[0];
-                cache->feature_b = x.f[1];
-            }
-            return PX_OK;
-        }
-    }
     uint64_t total = (uint64_t)a->nv + a->ne + a->nf + b->nv + b->ne + b->nf;
     uint32_t cap = total > 100000000u ? 400000000u : (uint32_t)(4 * total + 64);
     uint32_t iterations = 0, fallbacks = 0;
     x.tie = 0.0;
-    int r = lc_walk(&x, cap, &iterations);
+    int r;
+    if (warm) {
+        x.f[0] = cache->feature_a;
+        x.f[1] = cache->feature_b;
+        r = lc_walk(&x, cap, &iterations);
+    } else if (a->roundness < COLD_ROUND || b->roundness < COLD_ROUND) {
+        r = cold_start_gjk(&x, pose_a, pose_b, cache, result, cap, &iterations);
+        if (r == LC_ANSWERED) return PX_OK;
+    } else {
+        /* Cold start on round bodies: the vertices extreme along the line of
+         * centres, and a walk of at most COLD_BUDGET steps; nearly always
+         * enough (about 4 steps). Otherwise the GJK seed. */
+        px_vec3 ab = pxi_sub(b->center, pxi_xform(&x.T[0], a->center)); /* B's frame */
+        x.f[0] = feat(PX_FEATURE_VERTEX, pxi_support(a, pxi_rot_t(x.T[0].r, ab), UINT32_MAX));
+        x.f[1] = feat(PX_FEATURE_VERTEX, pxi_support(b, pxi_neg(ab), UINT32_MAX));
+        r = lc_walk(&x, COLD_BUDGET, &iterations);
+        if (r == LC_OUT_OF_STEPS) r = cold_start_gjk(&x, pose_a, pose_b, cache, result, cap, &iterations);
+        if (r == LC_ANSWERED) return PX_OK;
+    }
     if (r < 0) {
         /* A revisited pair: round-off ties between neighbouring regions.
          * Continue from there with tie-breaking margins (see noise()). */

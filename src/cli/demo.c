@@ -657,7 +657,7 @@ static void print_machine(int steps, int reps) {
            "          single thread; per-step time = batch / %d; median and mean over %d steps.\n",
            reps, reps, steps);
     printf("          'track' = cache from the previous step (Lin-Canny coherence); 'cold' = zeroed cache\n"
-           "          (proxima's cold start: a coarse GJK seeds the walk). Times in microseconds.\n");
+           "          (proxima's cold start: a line-of-centres or GJK seed, then the walk). Times in us.\n");
 }
 
 static int file_exists(const char *path) {

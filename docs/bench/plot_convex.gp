@@ -43,7 +43,7 @@ plot \
 
 set output dir . "/convex_incremental_delta.png"
 set title "proxima Lin-Canny, incremental (warm cache): median time per query by step size δ"
-set yrange [0.03:3]
+set yrange [0.05:10]
 set format y "%g"
 plot \
   series("lin-canny", "balanced", "incremental", "0.01")    w lp lc rgb "#d62728" pt 7 t "δ = 1%  balanced", \

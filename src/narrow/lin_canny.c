@@ -48,8 +48,8 @@
 #define NONE UINT32_MAX
 
 enum { LC_CONTINUE, LC_DONE, LC_PENETRATION };
-/* lc_walk's other outcomes, and px_distance's internal "already answered". */
-enum { LC_REPEAT = -1, LC_OUT_OF_STEPS = -2, LC_ANSWERED = -3 };
+/* lc_walk's other outcomes. */
+enum { LC_REPEAT = -1, LC_OUT_OF_STEPS = -2 };
 
 /* Steps a cold walk from the line-of-centres guess may take before the
  * query switches to the GJK seed (see px_distance). */
@@ -727,9 +727,9 @@ static int contact_within_rounding(const lc_ctx *x) {
  * centres is a poor guess): GJK to a loose tolerance finds vertices near the
  * closest points in a few support queries (direction table plus hill
  * climbing), and the walk starts from there. Returns the walk's result, or
- * LC_ANSWERED when GJK already proved an overlap and filled `result`. */
-static int cold_start_gjk(lc_ctx *x, const px_pose *pose_a, const px_pose *pose_b, px_distance_cache *cache,
-                          px_distance_result *result, uint32_t cap, uint32_t *iterations) {
+ * LC_PENETRATION with a common point in x->p when GJK already proved an
+ * overlap. */
+static int cold_start_gjk(lc_ctx *x, uint32_t cap, uint32_t *iterations) {
     const px_convex *a = x->c[0], *b = x->c[1];
     pxi_gjk_result g;
     /* A few iterations suffice: the walk finishes the job, and each GJK
@@ -746,18 +746,10 @@ static int cold_start_gjk(lc_ctx *x, const px_pose *pose_a, const px_pose *pose_
          * witness from here would cost O(n) for nothing. Only trusted when
          * the origin is inside by more than rounding noise; near contact the
          * walk decides. */
-        result->intersecting = 1;
-        result->point_a = pxi_xform(pose_a, g.pa);
-        result->point_b = result->point_a;
-        result->feature_a = x->f[0];
-        result->feature_b = x->f[1];
-        result->iterations = *iterations;
-        if (cache) {
-            cache->feature_a = x->f[0];
-            cache->feature_b = x->f[1];
-        }
-        (void)pose_b;
-        return LC_ANSWERED;
+        x->p[0] = g.pa;
+        x->p[1] = g.pb;
+        x->dist = 0.0;
+        return LC_PENETRATION;
     }
     return lc_walk(x, cap, iterations);
 }
@@ -796,8 +788,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         x.f[1] = cache->feature_b;
         r = lc_walk(&x, cap, &iterations);
     } else if (a->roundness < COLD_ROUND || b->roundness < COLD_ROUND) {
-        r = cold_start_gjk(&x, pose_a, pose_b, cache, result, cap, &iterations);
-        if (r == LC_ANSWERED) return PX_OK;
+        r = cold_start_gjk(&x, cap, &iterations);
     } else {
         /* Cold start on round bodies: the vertices extreme along the line of
          * centres, and a walk of at most COLD_BUDGET steps; nearly always
@@ -806,8 +797,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         x.f[0] = feat(PX_FEATURE_VERTEX, pxi_support(a, pxi_rot_t(x.T[0].r, ab), UINT32_MAX));
         x.f[1] = feat(PX_FEATURE_VERTEX, pxi_support(b, pxi_neg(ab), UINT32_MAX));
         r = lc_walk(&x, COLD_BUDGET, &iterations);
-        if (r == LC_OUT_OF_STEPS) r = cold_start_gjk(&x, pose_a, pose_b, cache, result, cap, &iterations);
-        if (r == LC_ANSWERED) return PX_OK;
+        if (r == LC_OUT_OF_STEPS) r = cold_start_gjk(&x, cap, &iterations);
     }
     if (r < 0) {
         /* A revisited pair: round-off ties between neighbouring regions.

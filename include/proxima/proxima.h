@@ -185,31 +185,84 @@ typedef struct px_feature {
 
 /// Caller-owned coherence cache for one pair of polytopes (A, B), in that
 /// order. Zero-initialise it: zero means "cold" (no previous answer). After a
-/// query it holds the closest feature pair, from which the next query of the
-/// same pair starts its walk. Features out of range for the polytopes given
-/// (a cache reused for another pair) are ignored and the query runs cold.
+/// query it holds what the next query of the same pair starts from: the
+/// closest feature pair (Lin-Canny), the final simplex as vertex pairs
+/// (GJK, translation), or the two cached vertex sets (hybrid). Entries out of
+/// range for the polytopes given (a cache reused for another pair) are
+/// ignored and the query runs cold. One cache may serve every method, but a
+/// cache shared between distance and translation queries of the same pair
+/// warm-starts each from the other's answer, which is slower than keeping
+/// one cache per query kind.
 typedef struct px_distance_cache {
     px_feature feature_a;
     px_feature feature_b;
+    /// GJK / translation: simplex vertex pairs (vertex_a[k], vertex_b[k]),
+    /// k < simplex_count. Hybrid: vertex_a[0 .. count_a) and
+    /// vertex_b[0 .. count_b) are the cached vertex sets of A and B.
+    uint32_t vertex_a[4], vertex_b[4];
+    uint8_t simplex_count;
+    uint8_t count_a, count_b;
+    uint8_t reserved_u8;
+    /// Last separating or contact direction (B's frame), a warm-start hint.
+    double direction[3];
 } px_distance_cache;
 
-/// Result of `px_distance`.
+/// The distance algorithms. All answer the same query with the same result
+/// struct; they differ in speed profile (see docs/methods.md).
+typedef enum px_method {
+    /// Lin-Canny closest features in the V-Clip formulation (default).
+    PX_METHOD_LIN_CANNY = 0,
+    /// Enhanced GJK (Cameron 1997): hill-climbing supports, warm simplex.
+    PX_METHOD_GJK = 1,
+    /// The Lin-Canny/GJK hybrid of seed 001: cached vertex sets on each
+    /// body, closed-form local distances, one-body support updates.
+    PX_METHOD_HYBRID = 2
+} px_method;
+
+/// Query flags.
+enum {
+    /// Also compute the penetration depth of intersecting pairs (EPA), so
+    /// that `signed_distance` is negative for them.
+    PX_QUERY_SIGNED = 1u
+};
+
+/// Options of `px_distance_ex`; zero-initialise, zero means default
+/// (Lin-Canny, unsigned).
+typedef struct px_query_options {
+    uint32_t method; ///< a px_method
+    uint32_t flags;  ///< PX_QUERY_* bits
+    uint32_t reserved[6];
+} px_query_options;
+
+/// Result of `px_distance` and `px_distance_ex`.
 typedef struct px_distance_result {
     /// Euclidean distance between the two solids; 0 when they intersect.
     double distance;
+    /// `distance` for separated pairs; for intersecting pairs minus the
+    /// penetration depth when PX_QUERY_SIGNED was asked, else 0.
+    double signed_distance;
     /// Closest points, world frame: |point_a - point_b| == distance. When the
-    /// solids intersect both are one common point of A and B.
+    /// solids intersect both are one common point of A and B, except with
+    /// PX_QUERY_SIGNED, where they are the deepest points: point_a on A's
+    /// boundary, point_b on B's. In every case
+    /// point_b - point_a == signed_distance * normal (up to rounding).
     px_vec3 point_a, point_b;
+    /// Unit direction, world frame, in which B moves away from A: for
+    /// separated pairs (point_b - point_a) / distance; with PX_QUERY_SIGNED
+    /// and intersecting pairs, translating B by depth * normal (depth =
+    /// -signed_distance) makes the pair touch. Zero when unknown (touching,
+    /// or intersecting without PX_QUERY_SIGNED).
+    px_vec3 normal;
     /// The closest feature pair (on intersection: a witness pair).
     px_feature feature_a, feature_b;
     /// 1 when the solids share at least one point (touching or overlapping):
     /// solids, so one body inside the other counts.
     int intersecting;
-    /// Number of feature-pair changes the walk made (0: the cached pair was
-    /// still closest).
+    /// Method steps: feature-pair changes (Lin-Canny), support calls (GJK,
+    /// hybrid), plus EPA expansions when signed.
     uint32_t iterations;
     /// Number of times a safeguard (cycle detector or step cap) had to
-    /// restart the walk from an exhaustive search. Expected 0.
+    /// restart from a slower exhaustive method. Expected 0.
     uint32_t fallbacks;
 } px_distance_result;
 
@@ -222,6 +275,59 @@ typedef struct px_distance_result {
 /// PX_ERR_NON_FINITE / PX_ERR_INVALID_POSE for a bad pose).
 px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
                       px_distance_cache *cache, px_distance_result *result);
+
+/// Distance by the method and flags in `options` (NULL: Lin-Canny,
+/// unsigned; same as `px_distance`). PX_ERR_INVALID_ARGUMENT for an unknown
+/// method or flag; otherwise as `px_distance`.
+px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                         const px_query_options *options, px_distance_cache *cache,
+                         px_distance_result *result);
+
+/// Boolean intersection test by GJK with early exit on the first separating
+/// axis found (touching counts as intersecting, within rounding). `cache`
+/// may be NULL; a warm cache usually answers in one or two supports.
+px_status px_intersect(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                       px_distance_cache *cache, int *intersecting);
+
+/* ------------------------------------------------------------------------- */
+/* Collision translation                                                     */
+/* ------------------------------------------------------------------------- */
+
+/// Result of `px_translation`.
+typedef struct px_translation_result {
+    /// 1 when some translation of A along the direction makes it touch B.
+    int hit;
+    /// hit: the least tau (negative allowed) such that A translated by
+    /// tau * direction touches B. 0 when no hit.
+    double tau;
+    /// hit: the contact points at tau, world frame, point_a on A translated
+    /// by tau * direction (so point_a == point_b up to rounding).
+    /// No hit: the closest points of A and B measured perpendicular to the
+    /// direction; they witness separation for every tau (see `normal`).
+    px_vec3 point_a, point_b;
+    /// hit: the unit contact normal at tau, pointing from A to B
+    /// (normal . direction > 0 unless the contact is grazing).
+    /// No hit: a unit normal perpendicular to the direction with
+    /// normal . x <= normal . point_a for all x in A and
+    /// normal . y >= normal . point_b for all y in B, and
+    /// normal . (point_b - point_a) = gap > 0: no translation along the
+    /// direction closes that gap.
+    px_vec3 normal;
+    double gap;
+    /// hit: the contact feature pair (vertex, edge or face of each body).
+    px_feature feature_a, feature_b;
+    uint32_t iterations;
+} px_translation_result;
+
+/// Collision translation (seed 002): A at `pose_a` moves along the world
+/// direction `direction` (any non-zero length; tau is in units of it), B
+/// stays at `pose_b`. Computed by a GJK ray cast against the Minkowski
+/// difference (van den Bergen 2004) with exact refinement on the final
+/// facet; `cache` (may be NULL) warm-starts it from the previous answer of
+/// the same pair. PX_ERR_INVALID_ARGUMENT for a zero or NULL direction,
+/// PX_ERR_NON_FINITE for a non-finite one; bad poses as `px_distance`.
+px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                         px_vec3 direction, px_distance_cache *cache, px_translation_result *result);
 
 #ifdef __cplusplus
 }

@@ -264,3 +264,28 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
     out->inside_margin = inside && s.n == 4 ? s.margin / k : 0.0;
     out->iterations = it;
 }
+
+/* PLACEHOLDER until the enhanced GJK lands. */
+void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+                      pxi_answer *out, pxi_simplex_pairs *simplex_out) {
+    (void)cache;
+    pxi_gjk_result g;
+    pxi_gjk(a, b, t_ab, 1e-12, 256, &g);
+    memset(out, 0, sizeof *out);
+    out->distance = g.distance;
+    out->pa = g.pa;
+    out->pb = g.pb;
+    out->intersecting = g.intersecting;
+    out->fa.type = out->fb.type = PX_FEATURE_VERTEX;
+    out->fa.index = g.va;
+    out->fb.index = g.vb;
+    if (simplex_out) simplex_out->n = 0;
+}
+
+int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+                      uint32_t *iterations) {
+    pxi_answer ans;
+    pxi_gjk_distance(a, b, t_ab, cache, &ans, NULL);
+    *iterations = 0;
+    return ans.intersecting;
+}

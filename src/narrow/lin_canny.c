@@ -754,22 +754,12 @@ static int cold_start_gjk(lc_ctx *x, uint32_t cap, uint32_t *iterations) {
     return lc_walk(x, cap, iterations);
 }
 
-static void zero_result(px_distance_result *r) {
-    if (r) memset(r, 0, sizeof *r);
-}
-
-px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
-                      px_distance_cache *cache, px_distance_result *result) {
-    zero_result(result);
-    if (!a || !b || !pose_a || !pose_b || !result) return PX_ERR_INVALID_ARGUMENT;
-    px_status st = px_pose_check(pose_a, NULL);
-    if (st == PX_OK) st = px_pose_check(pose_b, NULL);
-    if (st != PX_OK) return st;
-
+void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+                   pxi_answer *out) {
     lc_ctx x;
     x.c[0] = a;
     x.c[1] = b;
-    x.T[0] = pxi_relative(pose_a, pose_b);
+    x.T[0] = *t_ab;
     /* T_BA = T_AB^-1 = (R^T, -R^T t), cheaper than a second product. */
     for (int r = 0; r < 3; ++r)
         for (int k = 0; k < 3; ++k) x.T[1].r[3 * r + k] = x.T[0].r[3 * k + r];
@@ -823,19 +813,16 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
         }
     }
     if (r == LC_DONE && contact_within_rounding(&x)) r = LC_PENETRATION;
-    result->distance = r == LC_PENETRATION ? 0.0 : x.dist;
-    result->intersecting = r == LC_PENETRATION;
-    result->point_a = pxi_xform(pose_a, x.p[0]);
-    /* Intersecting: one common point, reported once (the two frames' copies
-     * differ by rounding, or by the noise band of contact_within_rounding). */
-    result->point_b = r == LC_PENETRATION ? result->point_a : pxi_xform(pose_b, x.p[1]);
-    result->feature_a = x.f[0];
-    result->feature_b = x.f[1];
-    result->iterations = iterations;
-    result->fallbacks = fallbacks;
+    out->distance = r == LC_PENETRATION ? 0.0 : x.dist;
+    out->intersecting = r == LC_PENETRATION;
+    out->pa = x.p[0];
+    out->pb = x.p[1];
+    out->fa = x.f[0];
+    out->fb = x.f[1];
+    out->iterations = iterations;
+    out->fallbacks = fallbacks;
     if (cache) {
         cache->feature_a = x.f[0];
         cache->feature_b = x.f[1];
     }
-    return PX_OK;
 }

@@ -1,0 +1,160 @@
+/* The public query entry points: argument checks, the relative transform,
+ * dispatch to a method, and the conversion of body-frame answers to world
+ * results. Every method answers through the same pxi_answer, so the result
+ * conventions (docs/methods.md) are written once, here. */
+#include <math.h>
+#include <string.h>
+
+#include "convex/convex.h"
+#include "math/vec3.h"
+#include "narrow/narrow.h"
+
+static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_convex *b,
+                            const px_pose *pose_b) {
+    if (!a || !b || !pose_a || !pose_b) return PX_ERR_INVALID_ARGUMENT;
+    px_status st = px_pose_check(pose_a, NULL);
+    if (st == PX_OK) st = px_pose_check(pose_b, NULL);
+    return st;
+}
+
+px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n) {
+    px_feature f = {PX_FEATURE_VERTEX, ids[0]};
+    uint32_t u[4];
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+        int seen = 0;
+        for (int j = 0; j < m; ++j) seen |= u[j] == ids[k];
+        if (!seen) u[m++] = ids[k];
+    }
+    if (m == 1) return f;
+    uint32_t v = u[0];
+    for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
+        const pxi_edge *e = &c->e[c->v_edges[k]];
+        if (m == 2 && c->v_adj[k] == u[1]) {
+            f.type = PX_FEATURE_EDGE;
+            f.index = c->v_edges[k];
+            return f;
+        }
+        /* A face holding all of them is a face of an edge incident to v. */
+        uint32_t faces[2] = {e->left, e->right};
+        for (int s = 0; s < 2; ++s) {
+            const pxi_face *F = &c->f[faces[s]];
+            int all = 1;
+            for (int j = 1; j < m && all; ++j) {
+                int in = 0;
+                for (uint32_t q = 0; q < F->count && !in; ++q) in = c->f_verts[F->first + q] == u[j];
+                all = in;
+            }
+            if (all) {
+                f.type = PX_FEATURE_FACE;
+                f.index = faces[s];
+                return f;
+            }
+        }
+    }
+    return f;
+}
+
+static px_vec3 unit_or_zero(px_vec3 v) {
+    double l = pxi_len(v);
+    return l > 0.0 && isfinite(l) ? pxi_scale(v, 1.0 / l) : pxi_v(0, 0, 0);
+}
+
+px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                         const px_query_options *options, px_distance_cache *cache,
+                         px_distance_result *result) {
+    if (result) memset(result, 0, sizeof *result);
+    if (!result) return PX_ERR_INVALID_ARGUMENT;
+    uint32_t method = options ? options->method : PX_METHOD_LIN_CANNY;
+    uint32_t flags = options ? options->flags : 0u;
+    if (method > PX_METHOD_HYBRID || (flags & ~PX_QUERY_SIGNED)) return PX_ERR_INVALID_ARGUMENT;
+    px_status st = check_pair(a, pose_a, b, pose_b);
+    if (st != PX_OK) return st;
+
+    px_pose t_ab = pxi_relative(pose_a, pose_b);
+    pxi_answer ans;
+    memset(&ans, 0, sizeof ans);
+    pxi_simplex_pairs simplex;
+    simplex.n = 0;
+    switch (method) {
+    case PX_METHOD_GJK: pxi_gjk_distance(a, b, &t_ab, cache, &ans, &simplex); break;
+    case PX_METHOD_HYBRID: pxi_hybrid(a, b, &t_ab, cache, &ans); break;
+    default: pxi_lin_canny(a, b, &t_ab, cache, &ans); break;
+    }
+    result->distance = ans.distance;
+    result->signed_distance = ans.distance;
+    result->intersecting = ans.intersecting;
+    result->feature_a = ans.fa;
+    result->feature_b = ans.fb;
+    result->iterations = ans.iterations;
+    result->fallbacks = ans.fallbacks;
+    result->point_a = pxi_xform(pose_a, ans.pa);
+    if (!ans.intersecting) {
+        result->point_b = pxi_xform(pose_b, ans.pb);
+        result->normal = unit_or_zero(pxi_sub(result->point_b, result->point_a));
+        return PX_OK;
+    }
+    /* Intersecting: one common point, reported once (the two frames' copies
+     * differ by rounding, or by the noise band of contact detection). */
+    result->point_b = result->point_a;
+    result->distance = 0.0;
+    result->signed_distance = 0.0;
+    if (!(flags & PX_QUERY_SIGNED)) return PX_OK;
+    pxi_penetration pen;
+    pxi_epa(a, b, &t_ab, method == PX_METHOD_GJK ? &simplex : NULL, &pen);
+    result->signed_distance = -pen.depth;
+    result->point_a = pxi_xform(pose_a, pen.pa);
+    result->point_b = pxi_xform(pose_b, pen.pb);
+    result->normal = pen.depth > 0.0 ? pxi_rot(pose_b->r, pen.normal) : pxi_v(0, 0, 0);
+    result->feature_a = pen.fa;
+    result->feature_b = pen.fb;
+    result->iterations += pen.iterations;
+    result->fallbacks += (uint32_t)pen.fallback;
+    return PX_OK;
+}
+
+px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                      px_distance_cache *cache, px_distance_result *result) {
+    return px_distance_ex(a, pose_a, b, pose_b, NULL, cache, result);
+}
+
+px_status px_intersect(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                       px_distance_cache *cache, int *intersecting) {
+    if (intersecting) *intersecting = 0;
+    if (!intersecting) return PX_ERR_INVALID_ARGUMENT;
+    px_status st = check_pair(a, pose_a, b, pose_b);
+    if (st != PX_OK) return st;
+    px_pose t_ab = pxi_relative(pose_a, pose_b);
+    uint32_t it = 0;
+    *intersecting = pxi_gjk_intersect(a, b, &t_ab, cache, &it);
+    return PX_OK;
+}
+
+px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                         px_vec3 direction, px_distance_cache *cache, px_translation_result *result) {
+    if (result) memset(result, 0, sizeof *result);
+    if (!result) return PX_ERR_INVALID_ARGUMENT;
+    if (!pxi_is_finite3(direction)) return PX_ERR_NON_FINITE;
+    if (!(pxi_max_abs(direction) > 0.0)) return PX_ERR_INVALID_ARGUMENT;
+    px_status st = check_pair(a, pose_a, b, pose_b);
+    if (st != PX_OK) return st;
+    px_pose t_ab = pxi_relative(pose_a, pose_b);
+    /* Scale the direction to unit max-norm first, so that its squared
+     * length can neither overflow nor underflow; tau is rescaled at the end. */
+    double k = ldexp(1.0, -ilogb(pxi_max_abs(direction)));
+    px_vec3 dir_b = pxi_rot_t(pose_b->r, pxi_scale(direction, k));
+    pxi_translation tr;
+    pxi_translation_query(a, b, &t_ab, dir_b, cache, &tr);
+    result->hit = tr.hit;
+    result->tau = tr.tau * k;
+    result->iterations = tr.iterations;
+    result->feature_a = tr.fa;
+    result->feature_b = tr.fb;
+    result->normal = pxi_rot(pose_b->r, tr.normal);
+    result->gap = tr.gap;
+    px_vec3 pa = pxi_xform(pose_a, tr.pa);
+    if (tr.hit) pa = pxi_madd(pa, direction, result->tau);
+    result->point_a = pa;
+    result->point_b = pxi_xform(pose_b, tr.pb);
+    return PX_OK;
+}

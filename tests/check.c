@@ -12,6 +12,16 @@
 #include "pxcd.h"
 
 double tc_rel_tol = 1e-12;
+px_query_options tc_options;
+
+const char *tc_method_from_env(void) {
+    static const char *names[] = {"lin-canny", "gjk", "hybrid"};
+    const char *m = getenv("PROXIMA_TEST_METHOD");
+    memset(&tc_options, 0, sizeof tc_options);
+    for (uint32_t k = 0; m && k < 3; ++k)
+        if (strcmp(m, names[k]) == 0) tc_options.method = k;
+    return names[tc_options.method];
+}
 
 static void add_msg(tc_report *rep, int bit, const char *fmt, ...) {
     if (!rep->fail) {
@@ -84,7 +94,7 @@ static int finite3(px_vec3 p) { return isfinite(p.x) && isfinite(p.y) && isfinit
 int tc_query_and_check(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
                        px_distance_cache *cache, tc_report *rep) {
     memset(rep, 0, sizeof *rep);
-    rep->status = px_distance(a, pa, b, pb, cache, &rep->res);
+    rep->status = px_distance_ex(a, pa, b, pb, &tc_options, cache, &rep->res);
     const px_distance_result *r = &rep->res;
     if (rep->status != PX_OK) {
         add_msg(rep, TC_STATUS, "px_distance returned %s", px_status_string(rep->status));

@@ -34,7 +34,13 @@ typedef struct tc_report {
 /* Tolerance factor (default 1e-12). */
 extern double tc_rel_tol;
 
-/* Runs px_distance(a, pa, b, pb, cache, ...) and checks it against the
+/* The method every checked query runs (px_distance_ex options), chosen by
+ * PROXIMA_TEST_METHOD = lin-canny (default) | gjk | hybrid; read by
+ * tc_method_from_env(), which returns its name. */
+extern px_query_options tc_options;
+const char *tc_method_from_env(void);
+
+/* Runs px_distance_ex(a, pa, b, pb, &tc_options, cache, ...) and checks it against the
  * oracle. Returns rep->fail (0 = all properties hold). */
 int tc_query_and_check(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
                        px_distance_cache *cache, tc_report *rep);

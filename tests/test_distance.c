@@ -157,7 +157,7 @@ static void test_motion(int sequences, int steps) {
                         tg_kind_name(A->kind), A->n, tg_kind_name(B->kind), B->n);
             /* Cold query on the same poses: same distance. */
             px_distance_result cold;
-            px_status st = px_distance(A->c, &pa, B->c, &pb, NULL, &cold);
+            px_status st = px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, NULL, &cold);
             CHECK(st == PX_OK && fabs(cold.distance - rep.res.distance) <= rep.tol &&
                       (rep.band || cold.intersecting == rep.res.intersecting),
                   "motion #%ld: warm d=%.17g (int %d), cold d=%.17g (int %d)", idx, rep.res.distance,
@@ -189,8 +189,8 @@ static void test_frame_invariance_and_foreign_cache(int count) {
         pa2.t = pxi_xform(&g, pa.t);
         pb2.t = pxi_xform(&g, pb.t);
         px_distance_result r1, r2, r3;
-        px_distance(A->c, &pa, B->c, &pb, NULL, &r1);
-        px_distance(A->c, &pa2, B->c, &pb2, NULL, &r2);
+        px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, NULL, &r1);
+        px_distance_ex(A->c, &pa2, B->c, &pb2, &tc_options, NULL, &r2);
         double tol = 1e-12 * (tc_scale(A->c, &pa, B->c, &pb) + 100.0);
         CHECK(fabs(r1.distance - r2.distance) <= tol, "frame invariance #%d: %.17g vs %.17g", i, r1.distance,
               r2.distance);
@@ -200,7 +200,7 @@ static void test_frame_invariance_and_foreign_cache(int count) {
         foreign.feature_a.index = 100000u + (uint32_t)i;
         foreign.feature_b.type = (i % 5 == 0) ? 9u : PX_FEATURE_VERTEX;
         foreign.feature_b.index = (uint32_t)i;
-        px_status st = px_distance(A->c, &pa, B->c, &pb, &foreign, &r3);
+        px_status st = px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, &foreign, &r3);
         CHECK(st == PX_OK && fabs(r3.distance - r1.distance) <= tol && r3.intersecting == r1.intersecting,
               "foreign cache #%d: st %d d %.17g vs %.17g", i, st, r3.distance, r1.distance);
     }
@@ -208,6 +208,7 @@ static void test_frame_invariance_and_foreign_cache(int count) {
 
 int main(void) {
     tu_init("test_distance");
+    printf("  method %s\n", tc_method_from_env());
     double t0 = tu_now();
     build_pool();
     double t1 = tu_now();

@@ -402,7 +402,7 @@ static void test_identical_and_inside(int velocities) {
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int w = 0; w < 2; ++w) {
-            px_status st = px_distance(c, &p, c, &p, &cache, &r);
+            px_status st = px_distance_ex(c, &p, c, &p, &tc_options, &cache, &r);
             CHECK(st == PX_OK && r.intersecting && r.distance == 0,
                   "identical %s bodies, same pose: st %d int %d d %.3g", tg_kind_name(kind), st,
                   r.intersecting, r.distance);
@@ -753,6 +753,7 @@ static void regression_near_coplanar(void) {
 
 int main(void) {
     tu_init("test_hard");
+    printf("  method %s\n", tc_method_from_env());
     regression_nearly_parallel_edges();
     regression_near_coplanar();
     regression_touching_faces_fallback_features();

@@ -13,6 +13,7 @@
  * mapped by T_AB. The Minkowski difference is K = A - B, and the distance is
  * |v| for v the point of K closest to the origin.
  */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -20,163 +21,7 @@
 #include "math/vec3.h"
 #include "narrow/narrow.h"
 
-typedef struct sx_point {
-    px_vec3 w;       /* a - b in B's frame */
-    uint32_t ia, ib; /* vertex ids on A and B */
-} sx_point;
-
-typedef struct simplex {
-    sx_point p[4];
-    double lam[4];
-    int n;
-    double margin; /* origin inside: its least distance to a face plane */
-} simplex;
-
-/* Keep the points whose flag is set, with their weights. */
-static void keep(simplex *s, const int *use, const double *lam) {
-    simplex out;
-    out.n = 0;
-    for (int k = 0; k < s->n; ++k)
-        if (use[k]) {
-            out.p[out.n] = s->p[k];
-            out.lam[out.n++] = lam[k];
-        }
-    *s = out;
-}
-
-static void closest_segment(simplex *s) {
-    px_vec3 a = s->p[0].w, b = s->p[1].w, ab = pxi_sub(b, a);
-    double den = pxi_dot(ab, ab), t = den > 0.0 ? -pxi_dot(a, ab) / den : 0.0;
-    int use[2] = {1, 1};
-    double lam[2];
-    if (!(t > 0.0)) {
-        use[1] = 0, lam[0] = 1.0;
-    } else if (t >= 1.0) {
-        use[0] = 0, lam[1] = 1.0;
-    } else {
-        lam[0] = 1.0 - t, lam[1] = t;
-    }
-    keep(s, use, lam);
-}
-
-static void closest_triangle(simplex *s) {
-    px_vec3 a = s->p[0].w, b = s->p[1].w, c = s->p[2].w;
-    px_vec3 ab = pxi_sub(b, a), ac = pxi_sub(c, a);
-    double d1 = -pxi_dot(ab, a), d2 = -pxi_dot(ac, a);
-    int use[3] = {0, 0, 0};
-    double lam[3] = {0, 0, 0};
-    if (d1 <= 0.0 && d2 <= 0.0) {
-        use[0] = 1, lam[0] = 1;
-        keep(s, use, lam);
-        return;
-    }
-    double d3 = -pxi_dot(ab, b), d4 = -pxi_dot(ac, b);
-    if (d3 >= 0.0 && d4 <= d3) {
-        use[1] = 1, lam[1] = 1;
-        keep(s, use, lam);
-        return;
-    }
-    double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
-        double v = d1 - d3 > 0.0 ? d1 / (d1 - d3) : 0.0; /* 0/0 on degenerate input */
-        use[0] = use[1] = 1, lam[0] = 1 - v, lam[1] = v;
-        keep(s, use, lam);
-        return;
-    }
-    double d5 = -pxi_dot(ab, c), d6 = -pxi_dot(ac, c);
-    if (d6 >= 0.0 && d5 <= d6) {
-        use[2] = 1, lam[2] = 1;
-        keep(s, use, lam);
-        return;
-    }
-    double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
-        double w = d2 - d6 > 0.0 ? d2 / (d2 - d6) : 0.0;
-        use[0] = use[2] = 1, lam[0] = 1 - w, lam[2] = w;
-        keep(s, use, lam);
-        return;
-    }
-    double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
-        double den = (d4 - d3) + (d5 - d6), w = den > 0.0 ? (d4 - d3) / den : 0.0;
-        use[1] = use[2] = 1, lam[1] = 1 - w, lam[2] = w;
-        keep(s, use, lam);
-        return;
-    }
-    double sum = va + vb + vc;
-    if (!(sum > 0.0)) { /* degenerate (collinear) triangle: keep its longest side */
-        simplex e = *s;
-        e.n = 2;
-        closest_segment(&e);
-        *s = e;
-        return;
-    }
-    use[0] = use[1] = use[2] = 1;
-    lam[1] = vb / sum, lam[2] = vc / sum, lam[0] = 1.0 - lam[1] - lam[2];
-    keep(s, use, lam);
-}
-
-/* Returns 1 when the origin is inside (or on) the tetrahedron. */
-static int closest_tetra(simplex *s) {
-    static const int faces[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
-    double best = INFINITY;
-    simplex best_s = *s;
-    int any = 0;
-    for (int k = 0; k < 4; ++k) {
-        px_vec3 a = s->p[faces[k][0]].w, b = s->p[faces[k][1]].w, c = s->p[faces[k][2]].w;
-        px_vec3 d = s->p[faces[k][3]].w;
-        px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
-        double so = -pxi_dot(a, n), sd = pxi_dot(pxi_sub(d, a), n);
-        if (!(so * sd < 0.0) && sd != 0.0) continue; /* origin on d's side of this face */
-        simplex t;
-        t.n = 3;
-        t.p[0] = s->p[faces[k][0]], t.p[1] = s->p[faces[k][1]], t.p[2] = s->p[faces[k][2]];
-        closest_triangle(&t);
-        px_vec3 v = {0, 0, 0};
-        for (int m = 0; m < t.n; ++m) v = pxi_madd(v, t.p[m].w, t.lam[m]);
-        double d2 = pxi_len2(v);
-        any = 1;
-        if (d2 < best) best = d2, best_s = t;
-    }
-    if (!any) {
-        /* Origin inside: its barycentric coordinates are ratios of signed
-         * volumes (the origin replacing vertex k), so that sum lam_k w_k = 0
-         * and the same weights give a common point of A and B. */
-        px_vec3 w0 = s->p[0].w, w1 = s->p[1].w, w2 = s->p[2].w, w3 = s->p[3].w;
-        double v0 = pxi_dot(w1, pxi_cross(w2, w3)), v1 = -pxi_dot(w0, pxi_cross(w2, w3));
-        double v2 = pxi_dot(w0, pxi_cross(w1, w3)), v3 = -pxi_dot(w0, pxi_cross(w1, w2));
-        double tot = v0 + v1 + v2 + v3;
-        /* Trust the containment only for a tetrahedron of real volume: a
-         * flat one (support points that coincide within rounding, as for a
-         * 1e-6 body at 1e12) decides its side tests on noise. */
-        double m = 0.0;
-        for (int f = 0; f < 4; ++f)
-            if (pxi_max_abs(s->p[f].w) > m) m = pxi_max_abs(s->p[f].w);
-        int fat =
-            fabs(tot) > 1e-9 * m * m * m && v0 / tot >= 0 && v1 / tot >= 0 && v2 / tot >= 0 && v3 / tot >= 0;
-        s->margin = fat ? INFINITY : 0.0;
-        for (int f = 0; f < 4; ++f) {
-            px_vec3 a = s->p[faces[f][0]].w, b = s->p[faces[f][1]].w, c = s->p[faces[f][2]].w;
-            px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
-            double len = pxi_len(n), dist = len > 0.0 ? fabs(pxi_dot(a, n)) / len : 0.0;
-            if (fat && dist < s->margin) s->margin = dist;
-        }
-        if (tot != 0.0 && isfinite(tot)) {
-            s->lam[0] = v0 / tot, s->lam[1] = v1 / tot, s->lam[2] = v2 / tot, s->lam[3] = v3 / tot;
-        } else {
-            s->lam[0] = s->lam[1] = s->lam[2] = s->lam[3] = 0.25;
-        }
-        return 1;
-    }
-    *s = best_s;
-    return 0;
-}
-
-static px_vec3 simplex_point(const simplex *s) {
-    px_vec3 v = {0, 0, 0};
-    for (int k = 0; k < s->n; ++k) v = pxi_madd(v, s->p[k].w, s->lam[k]);
-    return v;
-}
+#include "narrow/simplex.h"
 
 /* Support of K = A - B in direction -v: A extreme along -v, B along +v.
  * Points of K are stored multiplied by `k`, a power of two that brings the
@@ -195,7 +40,7 @@ static sx_point support(const px_convex *a, const px_convex *b, const px_pose *t
 void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
              uint32_t max_iterations, pxi_gjk_result *out) {
     memset(out, 0, sizeof *out);
-    simplex s;
+    sx_simplex s;
     double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
     double k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
     /* First direction: centre to centre; a fixed non-axis direction when the
@@ -225,18 +70,18 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
         for (int m = 0; m < s.n; ++m)
             if (s.p[m].ia == w.ia && s.p[m].ib == w.ib) dup = 1;
         if (dup) break;
-        simplex prev = s;
+        sx_simplex prev = s;
         s.lam[s.n] = 0.0;
         s.p[s.n++] = w;
         if (s.n == 2)
-            closest_segment(&s);
+            sx_closest_segment(&s);
         else if (s.n == 3)
-            closest_triangle(&s);
-        else if (closest_tetra(&s)) {
+            sx_closest_triangle(&s);
+        else if (sx_closest_tetra(&s)) {
             inside = 1;
             break;
         }
-        px_vec3 nv = simplex_point(&s);
+        px_vec3 nv = sx_point_of(&s);
         double nvv = pxi_len2(nv);
         if (!(nvv < vv)) { /* no progress: round-off floor reached */
             s = prev;
@@ -265,27 +110,341 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
     out->iterations = it;
 }
 
-/* PLACEHOLDER until the enhanced GJK lands. */
-void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
-                      pxi_answer *out, pxi_simplex_pairs *simplex_out) {
-    (void)cache;
-    pxi_gjk_result g;
-    pxi_gjk(a, b, t_ab, 1e-12, 256, &g);
-    memset(out, 0, sizeof *out);
-    out->distance = g.distance;
-    out->pa = g.pa;
-    out->pb = g.pb;
-    out->intersecting = g.intersecting;
-    out->fa.type = out->fb.type = PX_FEATURE_VERTEX;
-    out->fa.index = g.va;
-    out->fb.index = g.vb;
-    if (simplex_out) simplex_out->n = 0;
+/* ------------------------------------------------------------------------- */
+/* Enhanced GJK: the distance method PX_METHOD_GJK and the boolean test      */
+/* ------------------------------------------------------------------------- */
+
+/* One run on a pair: the power-of-two scale and where support climbs start.
+ * Sources as above; the warm start from the previous simplex is Cameron's
+ * (ICRA 1997, "Enhancing GJK") and van den Bergen's (JGT 1999, §5). */
+typedef struct egjk {
+    const px_convex *a, *b;
+    const px_pose *t;
+    double k;
+    uint32_t start_a, start_b; /* UINT32_MAX: look up the direction table */
+} egjk;
+
+static void egjk_init(egjk *g, const px_convex *a, const px_convex *b, const px_pose *t_ab) {
+    g->a = a;
+    g->b = b;
+    g->t = t_ab;
+    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
+    g->k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
+    g->start_a = g->start_b = UINT32_MAX;
 }
 
+static sx_point egjk_point(const egjk *g, uint32_t ia, uint32_t ib) {
+    sx_point p;
+    p.ia = ia;
+    p.ib = ib;
+    p.w = pxi_scale(pxi_sub(pxi_xform(g->t, g->a->v[ia]), g->b->v[ib]), g->k);
+    return p;
+}
+
+/* Support of K = A - B along -v. Warm runs climb from the previous support
+ * vertices (a few steps when the pose changed little); cold runs look up the
+ * direction table each time, because early GJK directions jump across the
+ * body and a climb from far away costs O(sqrt n) steps. */
+static sx_point egjk_support(egjk *g, px_vec3 v) {
+    uint32_t ia = pxi_support(g->a, pxi_rot_t(g->t->r, pxi_neg(v)), g->start_a);
+    uint32_t ib = pxi_support(g->b, v, g->start_b);
+    if (g->start_a != UINT32_MAX) g->start_a = ia, g->start_b = ib;
+    return egjk_point(g, ia, ib);
+}
+
+/* Closest point of the simplex to the origin; 1 when the origin is inside a
+ * tetrahedron. */
+static int egjk_solve(sx_simplex *s) {
+    switch (s->n) {
+    case 1: s->lam[0] = 1.0; return 0;
+    case 2: sx_closest_segment(s); return 0;
+    case 3: sx_closest_triangle(s); return 0;
+    default: {
+        /* Inside only when the tetrahedron is fat enough for its side tests.
+         * Otherwise the closest point over all four faces: the side tests
+         * that would skip faces decide on noise when the new point is within
+         * rounding of the old triangle's plane (a 1e-12 dihedral angle), and
+         * skipping the right face would stall GJK on the wrong facet. */
+        sx_simplex t = *s;
+        if (sx_closest_tetra(&t) && t.margin > 0.0) {
+            *s = t;
+            return 1;
+        }
+        sx_closest_flat_tetra(s);
+        return 0;
+    }
+    }
+}
+
+/* The cached simplex, if every id is in range for this pair. */
+static int egjk_warm_simplex(const egjk *g, const px_distance_cache *cache, sx_simplex *s) {
+    s->n = 0;
+    s->margin = 0.0;
+    if (!cache || cache->simplex_count == 0 || cache->simplex_count > 4) return 0;
+    for (int m = 0; m < cache->simplex_count; ++m) {
+        if (cache->vertex_a[m] >= g->a->nv || cache->vertex_b[m] >= g->b->nv) return 0;
+        s->p[m] = egjk_point(g, cache->vertex_a[m], cache->vertex_b[m]);
+        s->lam[m] = 0.0;
+    }
+    s->n = cache->simplex_count;
+    return 1;
+}
+
+static void egjk_store(const sx_simplex *s, px_vec3 dir, px_distance_cache *cache) {
+    if (!cache) return;
+    cache->simplex_count = (uint8_t)s->n;
+    for (int m = 0; m < s->n; ++m) {
+        cache->vertex_a[m] = s->p[m].ia;
+        cache->vertex_b[m] = s->p[m].ib;
+    }
+    cache->direction[0] = dir.x;
+    cache->direction[1] = dir.y;
+    cache->direction[2] = dir.z;
+}
+
+/* Contact tolerance in scaled units (the pair spans about 1): |v| below it
+ * is touching within rounding, as in Lin-Canny's contact test. */
+#define EGJK_ABS (32.0 * DBL_EPSILON)
+/* Relative duality-gap tolerance: |v|^2 - v.w <= REL^2 |v|^2 bounds the
+ * relative error of |v| by REL^2. On polytopes the loop nearly always ends
+ * earlier, when the support repeats a simplex point. */
+#define EGJK_REL 1e-8
+
+/* Final polish of a separated answer: the distance between the convex hulls
+ * of the final simplex's A vertices and B vertices (at most three each),
+ * measured directly between those features (point-point, point-segment,
+ * point-triangle, segment-segment) rather than from their Minkowski
+ * differences. Both are the same number in exact arithmetic, but a simplex
+ * of A - B spanned by two nearly parallel edges is a sliver whose normal, and
+ * so |v|, carry an error of eps / sin(angle); the direct segment-segment
+ * closest points do not (the local methods of seed 001). Also picks the
+ * smallest vertex subsets that realise the distance, as the features. */
+typedef struct polish_best {
+    double d2;
+    px_vec3 pa, pb; /* B's frame, relative to the origin point */
+    uint32_t ia[3], ib[3];
+    int na, nb;
+} polish_best;
+
+static void polish_consider(polish_best *best, px_vec3 pa, px_vec3 pb, const uint32_t *ia, int na,
+                            const uint32_t *ib, int nb) {
+    double d2 = pxi_len2(pxi_sub(pa, pb));
+    if (!(d2 < best->d2)) return;
+    best->d2 = d2;
+    best->pa = pa;
+    best->pb = pb;
+    best->na = na;
+    best->nb = nb;
+    for (int k = 0; k < na; ++k) best->ia[k] = ia[k];
+    for (int k = 0; k < nb; ++k) best->ib[k] = ib[k];
+}
+
+/* Point p against the hull of 1-3 points q (ids iq): the closest point and
+ * the ids with non-zero weight. */
+static void polish_point_set(polish_best *best, px_vec3 p, uint32_t ip, const px_vec3 *q, const uint32_t *iq,
+                             int nq, int p_is_a) {
+    sx_simplex t;
+    t.n = nq;
+    t.margin = 0.0;
+    for (int k = 0; k < nq; ++k) {
+        t.p[k].w = pxi_sub(q[k], p);
+        t.p[k].ia = iq[k];
+        t.p[k].ib = 0;
+        t.lam[k] = 1.0;
+    }
+    if (nq == 2) sx_closest_segment(&t);
+    if (nq == 3) sx_closest_triangle(&t);
+    px_vec3 c = p;
+    uint32_t ids[3];
+    for (int k = 0; k < t.n; ++k) {
+        c = pxi_madd(c, t.p[k].w, t.lam[k]);
+        ids[k] = t.p[k].ia;
+    }
+    if (p_is_a)
+        polish_consider(best, p, c, &ip, 1, ids, t.n);
+    else
+        polish_consider(best, c, p, ids, t.n, &ip, 1);
+}
+
+static int distinct_ids(const uint32_t *in, int n, uint32_t *out) {
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+        int seen = 0;
+        for (int j = 0; j < m; ++j) seen |= out[j] == in[k];
+        if (!seen) out[m++] = in[k];
+    }
+    return m;
+}
+
+static void egjk_polish(const egjk *g, const sx_simplex *s, pxi_answer *out) {
+    uint32_t all_a[4], all_b[4], ia[4], ib[4];
+    for (int m = 0; m < s->n; ++m) all_a[m] = s->p[m].ia, all_b[m] = s->p[m].ib;
+    int na = distinct_ids(all_a, s->n, ia), nb = distinct_ids(all_b, s->n, ib);
+    if (na > 3 || nb > 3) return;
+    /* Relative to one B vertex: the numbers stay as small as the features. */
+    px_vec3 o = g->b->v[ib[0]], pa[3], pb[3];
+    for (int k = 0; k < na; ++k) pa[k] = pxi_sub(pxi_xform(g->t, g->a->v[ia[k]]), o);
+    for (int k = 0; k < nb; ++k) pb[k] = pxi_sub(g->b->v[ib[k]], o);
+    polish_best best;
+    best.d2 = INFINITY;
+    for (int k = 0; k < na; ++k) polish_point_set(&best, pa[k], ia[k], pb, ib, nb, 1);
+    for (int k = 0; k < nb; ++k) polish_point_set(&best, pb[k], ib[k], pa, ia, na, 0);
+    for (int i = 0; i < na; ++i)
+        for (int j = i + 1; j < na; ++j)
+            for (int k = 0; k < nb; ++k)
+                for (int l = k + 1; l < nb; ++l) {
+                    double u, w;
+                    pxi_segment_closest(pa[i], pa[j], pb[k], pb[l], &u, &w);
+                    px_vec3 x = pxi_madd(pa[i], pxi_sub(pa[j], pa[i]), u);
+                    px_vec3 y = pxi_madd(pb[k], pxi_sub(pb[l], pb[k]), w);
+                    uint32_t sa[2] = {ia[i], ia[j]}, sb[2] = {ib[k], ib[l]};
+                    int ma = u > 0.0 && u < 1.0 ? 2 : 1, mb = w > 0.0 && w < 1.0 ? 2 : 1;
+                    if (ma == 1 && u >= 1.0) sa[0] = ia[j];
+                    if (mb == 1 && w >= 1.0) sb[0] = ib[l];
+                    polish_consider(&best, x, y, sa, ma, sb, mb);
+                }
+    if (!(best.d2 < INFINITY)) return;
+    /* In exact arithmetic d <= |v|: accept it unless it is worse by more
+     * than rounding (then the simplex was not what we think: keep |v|). */
+    double d = sqrt(best.d2),
+           noise = 64.0 * DBL_EPSILON * (pxi_max_abs(o) + pxi_max_abs(g->t->t) + g->a->scale);
+    if (!(d <= out->distance + noise)) return;
+    out->distance = d;
+    out->pa = pxi_xform_inv(g->t, pxi_add(best.pa, o));
+    out->pb = pxi_add(best.pb, o);
+    out->fa = pxi_feature_of_vertices(g->a, best.ia, best.na, &out->pa);
+    out->fb = pxi_feature_of_vertices(g->b, best.ib, best.nb, &out->pb);
+}
+
+void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+                      pxi_answer *out, pxi_simplex_pairs *simplex_out) {
+    memset(out, 0, sizeof *out);
+    egjk g;
+    egjk_init(&g, a, b, t_ab);
+    sx_simplex s;
+    int inside = 0;
+    uint32_t it = 0;
+    if (egjk_warm_simplex(&g, cache, &s)) {
+        g.start_a = s.p[0].ia;
+        g.start_b = s.p[0].ib;
+        inside = egjk_solve(&s);
+    } else {
+        px_vec3 c = pxi_sub(pxi_xform(t_ab, a->center), b->center);
+        if (!(pxi_len2(c) > 0.0)) c = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+        s.n = 1;
+        s.margin = 0.0;
+        s.p[0] = egjk_support(&g, c);
+        s.lam[0] = 1.0;
+        ++it;
+    }
+    px_vec3 v = sx_point_of(&s);
+    double vv = pxi_len2(v);
+    uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
+    while (!inside && it < cap) {
+        if (!(vv > EGJK_ABS * EGJK_ABS)) { /* touching within rounding (or NaN: stop) */
+            inside = 1;
+            break;
+        }
+        ++it;
+        sx_point w = egjk_support(&g, v);
+        double gap = vv - pxi_dot(v, w.w);
+        if (!(gap > EGJK_REL * EGJK_REL * vv)) break;
+        int dup = 0;
+        for (int m = 0; m < s.n; ++m) dup |= s.p[m].ia == w.ia && s.p[m].ib == w.ib;
+        if (dup) break;
+        sx_simplex prev = s;
+        s.lam[s.n] = 0.0;
+        s.p[s.n++] = w;
+        if (egjk_solve(&s)) {
+            inside = 1;
+            break;
+        }
+        px_vec3 nv = sx_point_of(&s);
+        double nvv = pxi_len2(nv);
+        if (!(nvv < vv)) { /* no progress: round-off floor reached */
+            s = prev;
+            break;
+        }
+        v = nv;
+        vv = nvv;
+    }
+    uint32_t ia[4], ib[4];
+    px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
+    for (int m = 0; m < s.n; ++m) {
+        pa = pxi_madd(pa, a->v[s.p[m].ia], s.lam[m]);
+        pb = pxi_madd(pb, b->v[s.p[m].ib], s.lam[m]);
+        ia[m] = s.p[m].ia;
+        ib[m] = s.p[m].ib;
+    }
+    out->pa = pa;
+    out->pb = pb;
+    out->intersecting = inside;
+    out->distance = inside ? 0.0 : sqrt(vv) / g.k;
+    out->fa = pxi_feature_of_vertices(a, ia, s.n, &out->pa);
+    out->fb = pxi_feature_of_vertices(b, ib, s.n, &out->pb);
+    out->iterations = it;
+    if (!inside) egjk_polish(&g, &s, out);
+    egjk_store(&s, v, cache);
+    if (cache) {
+        cache->feature_a = out->fa;
+        cache->feature_b = out->fb;
+    }
+    if (simplex_out) {
+        simplex_out->n = s.n;
+        for (int m = 0; m < s.n; ++m) simplex_out->ia[m] = ia[m], simplex_out->ib[m] = ib[m];
+    }
+}
+
+/* Boolean GJK: stops at the first direction v whose support plane leaves
+ * the origin outside K (a separating axis: v.w > 0 for the support w of K
+ * along -v), or when the simplex encloses the origin. A warm cache first
+ * tries the previous separating direction: one support pair when the pair
+ * is still separated along it. */
 int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
                       uint32_t *iterations) {
-    pxi_answer ans;
-    pxi_gjk_distance(a, b, t_ab, cache, &ans, NULL);
-    *iterations = 0;
-    return ans.intersecting;
+    egjk g;
+    egjk_init(&g, a, b, t_ab);
+    sx_simplex s;
+    s.n = 0;
+    s.margin = 0.0;
+    px_vec3 v = pxi_sub(pxi_xform(t_ab, a->center), b->center);
+    if (cache && egjk_warm_simplex(&g, cache, &s)) {
+        px_vec3 d = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
+        if (pxi_is_finite3(d) && pxi_len2(d) > 0.0) v = d;
+        g.start_a = s.p[0].ia;
+        g.start_b = s.p[0].ib;
+        s.n = 0; /* the cached points only seed the climbs */
+    }
+    if (!(pxi_len2(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+    uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0), it = 0;
+    int hit = 0;
+    double vv = pxi_len2(v);
+    while (it < cap) {
+        ++it;
+        sx_point w = egjk_support(&g, v);
+        if (pxi_dot(v, w.w) > 0.0) break; /* separating axis */
+        int dup = 0;
+        for (int m = 0; m < s.n; ++m) dup |= s.p[m].ia == w.ia && s.p[m].ib == w.ib;
+        if (dup) { /* converged without a separating axis: touching */
+            hit = 1;
+            break;
+        }
+        s.lam[s.n] = 0.0;
+        s.p[s.n++] = w;
+        if (egjk_solve(&s)) {
+            hit = 1;
+            break;
+        }
+        px_vec3 nv = sx_point_of(&s);
+        double nvv = pxi_len2(nv);
+        if (!(nvv > EGJK_ABS * EGJK_ABS) || (s.n > 1 && !(nvv < vv))) {
+            hit = 1;
+            break;
+        }
+        v = nv;
+        vv = nvv;
+    }
+    egjk_store(&s, v, cache);
+    if (iterations) *iterations = it;
+    return hit;
 }

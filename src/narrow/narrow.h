@@ -96,8 +96,10 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
                            px_distance_cache *cache, pxi_translation *out);
 
 /* The smallest feature of `c` holding the given vertices (1-4 ids, repeats
- * allowed): the vertex, the edge joining two, or a face holding all;
- * otherwise the vertex ids[0]. */
-px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n);
+ * allowed): the vertex, the edge joining two, or a face holding all.
+ * Vertices on no common face (possible only within rounding of coplanar
+ * faces): the face around them whose polygon holds the witness point `p`
+ * (body frame; NULL: the vertex ids[0]). */
+px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p);
 
 #endif

@@ -17,7 +17,22 @@ static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_
     return st;
 }
 
-px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n) {
+/* How far p is from face f: its distance to the face plane, or more when
+ * it lies outside the polygon (the largest violation of the face's edge
+ * side planes). */
+static double outside_face(const px_convex *c, uint32_t f, px_vec3 p) {
+    const pxi_face *F = &c->f[f];
+    double worst = fabs(pxi_dot(F->n, p) - F->d);
+    for (uint32_t q = 0; q < F->count; ++q) {
+        const pxi_edge *e = &c->e[c->f_edges[F->first + q]];
+        px_vec3 side = e->left == f ? e->wl : e->wr;
+        double out = -pxi_dot(pxi_sub(p, c->v[e->tail]), side);
+        if (out > worst) worst = out;
+    }
+    return worst;
+}
+
+px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p) {
     px_feature f = {PX_FEATURE_VERTEX, ids[0]};
     uint32_t u[4];
     int m = 0;
@@ -52,6 +67,24 @@ px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int 
             }
         }
     }
+    if (!p) return f;
+    /* On no common face: the vertices lie on faces within rounding of
+     * coplanar. The witness p then lies on one of the faces around them:
+     * the one whose polygon it is least outside of. */
+    double best = INFINITY;
+    for (int j = 0; j < m; ++j)
+        for (uint32_t k = c->v_first[u[j]]; k < c->v_first[u[j] + 1]; ++k) {
+            const pxi_edge *e = &c->e[c->v_edges[k]];
+            uint32_t faces[2] = {e->left, e->right};
+            for (int s = 0; s < 2; ++s) {
+                double out = outside_face(c, faces[s], *p);
+                if (out < best) {
+                    best = out;
+                    f.type = PX_FEATURE_FACE;
+                    f.index = faces[s];
+                }
+            }
+        }
     return f;
 }
 

@@ -69,10 +69,13 @@ static sx_point epa_point(const epa *e, uint32_t ia, uint32_t ib) {
     return p;
 }
 
-/* Support of K along n (scaled frame): A extreme along n, B along -n. */
-static sx_point epa_support(const epa *e, px_vec3 n) {
-    uint32_t ia = pxi_support(e->a, pxi_rot_t(e->t->r, n), UINT32_MAX);
-    uint32_t ib = pxi_support(e->b, pxi_neg(n), UINT32_MAX);
+/* Support of K along n (scaled frame): A extreme along n, B along -n.
+ * `hint` (may be NULL) is a point of K near the answer, whose vertices start
+ * the climbs: the closest face's vertex, a few steps from the support along
+ * its normal. */
+static sx_point epa_support(const epa *e, px_vec3 n, const sx_point *hint) {
+    uint32_t ia = pxi_support(e->a, pxi_rot_t(e->t->r, n), hint ? hint->ia : UINT32_MAX);
+    uint32_t ib = pxi_support(e->b, pxi_neg(n), hint ? hint->ib : UINT32_MAX);
     return epa_point(e, ia, ib);
 }
 
@@ -102,7 +105,7 @@ static int epa_add_face(epa *e, int i, int j, int l) {
 /* Width of K in direction u: the larger of its two supports, with which
  * point. Used to grow a flat start simplex into a tetrahedron. */
 static sx_point epa_far_side(const epa *e, px_vec3 u, px_vec3 base) {
-    sx_point p = epa_support(e, u), q = epa_support(e, pxi_neg(u));
+    sx_point p = epa_support(e, u, NULL), q = epa_support(e, pxi_neg(u), NULL);
     double hp = pxi_dot(u, pxi_sub(p.w, base)), hq = -pxi_dot(u, pxi_sub(q.w, base));
     return hp >= hq ? p : q;
 }
@@ -127,7 +130,7 @@ static int epa_start(epa *e, const pxi_simplex_pairs *start) {
             if (start->ia[m] >= e->a->nv || start->ib[m] >= e->b->nv) continue;
             e->v[e->nv++] = epa_point(e, start->ia[m], start->ib[m]);
         }
-    if (e->nv == 0) e->v[e->nv++] = epa_support(e, pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794));
+    if (e->nv == 0) e->v[e->nv++] = epa_support(e, pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794), NULL);
     double tiny = 1e-13; /* scaled units: the pair spans about 1 */
     /* A tetrahedron given by GJK is kept only if it has real volume. */
     if (e->nv == 4) {
@@ -290,7 +293,7 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
         best = epa_closest_face(&e);
         if (best < 0) break;
         epa_face *F = &e.f[best];
-        sx_point w = epa_support(&e, F->n);
+        sx_point w = epa_support(&e, F->n, &e.v[F->v[0]]);
         ++it;
         if (!(pxi_dot(F->n, w.w) - F->d > tol)) break; /* F is on K's boundary */
         int dup = 0;

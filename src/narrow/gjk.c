@@ -380,8 +380,15 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
     out->pb = pb;
     out->intersecting = inside;
     out->distance = inside ? 0.0 : sqrt(vv) / g.k;
-    out->fa = pxi_feature_of_vertices(a, ia, s.n, &out->pa);
-    out->fb = pxi_feature_of_vertices(b, ib, s.n, &out->pb);
+    /* Intersecting: the simplex spans the overlap, not a feature; name the
+     * vertices of largest weight (a witness pair, as the API says). */
+    int big = 0;
+    for (int m = 1; m < s.n; ++m)
+        if (s.lam[m] > s.lam[big]) big = m;
+    out->fa = inside ? pxi_feature_of_vertices(a, &ia[big], 1, NULL)
+                     : pxi_feature_of_vertices(a, ia, s.n, &out->pa);
+    out->fb = inside ? pxi_feature_of_vertices(b, &ib[big], 1, NULL)
+                     : pxi_feature_of_vertices(b, ib, s.n, &out->pb);
     out->iterations = it;
     if (!inside) egjk_polish(&g, &s, out);
     egjk_store(&s, v, cache);

@@ -30,6 +30,13 @@
  * complete (the minimum of a convex function on a product of simplices is
  * attained in the relative interior of some pair of faces).
  *
+ * Two departures from the paper, both for rounding. A degenerate set is
+ * not refused but solved through its lower-dimensional pieces (a sliver
+ * triangle as its edges, a flat tetrahedron as its faces), so a vertex that
+ * extends a segment still helps. And near contact the direction v is only
+ * known to about eps span / |v|, so the neighbours of the support that are
+ * extreme within that noise are offered too (see explore).
+ *
  * Frames and scale. Everything runs in B's frame, relative to one point `o`
  * of B (a vertex of the first set) and multiplied by a power of two k that
  * brings the pair's span to [1, 2): exact, so a problem scaled by a power of

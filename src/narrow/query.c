@@ -34,7 +34,7 @@ static double outside_face(const px_convex *c, uint32_t f, px_vec3 p) {
 
 px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p) {
     px_feature f = {PX_FEATURE_VERTEX, ids[0]};
-    uint32_t u[4];
+    uint32_t u[4] = {ids[0], ids[0], ids[0], ids[0]};
     int m = 0;
     for (int k = 0; k < n; ++k) {
         int seen = 0;
@@ -43,13 +43,15 @@ px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int 
     }
     if (m == 1) return f;
     uint32_t v = u[0];
+    if (m == 2) /* the edge joining them, before any face holding both */
+        for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k)
+            if (c->v_adj[k] == u[1]) {
+                f.type = PX_FEATURE_EDGE;
+                f.index = c->v_edges[k];
+                return f;
+            }
     for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
         const pxi_edge *e = &c->e[c->v_edges[k]];
-        if (m == 2 && c->v_adj[k] == u[1]) {
-            f.type = PX_FEATURE_EDGE;
-            f.index = c->v_edges[k];
-            return f;
-        }
         /* A face holding all of them is a face of an edge incident to v. */
         uint32_t faces[2] = {e->left, e->right};
         for (int s = 0; s < 2; ++s) {

@@ -54,7 +54,10 @@ static sx_point tr_support(tr_ctx *c, px_vec3 u) {
     sx_point p;
     p.ib = pxi_support(c->b, u, c->start_b);
     p.ia = pxi_support(c->a, pxi_rot_t(c->t->r, pxi_neg(u)), c->start_a);
-    if (c->start_a != UINT32_MAX) c->start_a = p.ia, c->start_b = p.ib;
+    /* Only the first support of a warm query climbs from the cached
+     * vertices; later directions jump, and the direction table is the
+     * cheaper start for them. */
+    c->start_a = c->start_b = UINT32_MAX;
     p.w = tr_m(c, p.ia, p.ib);
     return p;
 }
@@ -196,14 +199,15 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
         c.start_a = cache->vertex_a[0];
         c.start_b = cache->vertex_b[0];
     }
-    /* Start behind M: below every m . d. */
-    sx_point back = tr_support(&c, pxi_neg(d));
-    double tau0 = pxi_dot(back.w, d) / dd - 1.0 / dd;
+    /* Start behind M, below every m . d: M lies in the ball of radius
+     * R_A + R_B around c_B - T c_A (no support query needed). */
+    px_vec3 cm = pxi_scale(pxi_sub(b->center, pxi_xform(t_ab, a->center)), c.k);
+    double tau0 = (pxi_dot(cm, d) - (a->radius + b->radius) * c.k * sqrt(dd)) / dd - 0.5 / dd;
     double lambda = 0.0; /* x = (tau0 + lambda) d */
     px_vec3 x = pxi_scale(d, tau0);
     px_vec3 normal = pxi_neg(d);
     int hit = 0;
-    uint32_t it = 1;
+    uint32_t it = 0;
     const double eps2 = (64.0 * DBL_EPSILON) * (64.0 * DBL_EPSILON);
     uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
     int seeded = !warm;

@@ -39,6 +39,13 @@ typedef struct pxi_face {
 typedef struct pxi_lut {
     uint32_t res;
     uint32_t *cell; /* 6 * res * res vertex ids */
+    /* Cells are indexed by the direction map[] * d (row-major 3x3), not by
+     * d: map = diag(w) Q^T with Q the body's principal axes and w its
+     * relative widths along them. For an ellipsoid-like body this spreads
+     * its vertices evenly over the cells (its support along d is the
+     * sphere point along map * d); without it, a thin body's flat sides
+     * crowd thousands of vertices into a few cells and the climbs are long. */
+    double map[9];
 } pxi_lut;
 
 struct px_convex {

@@ -78,7 +78,63 @@ static px_vec3 cell_direction(uint32_t res, uint32_t face, uint32_t ia, uint32_t
 
 uint32_t pxi_lut_lookup(const px_convex *c, px_vec3 d) {
     if (!c->lut.cell) return 0;
-    return c->lut.cell[cell_of(c->lut.res, d)];
+    return c->lut.cell[cell_of(c->lut.res, pxi_rot(c->lut.map, d))];
+}
+
+/* Principal axes of the vertex cloud (Jacobi rotations on its covariance;
+ * 3x3 symmetric, converges in a few sweeps) and the widths along them:
+ * the lookup map diag(w) Q^T and its inverse Q diag(1/w) for the build. */
+static void lut_map(const px_convex *c, double map[9], double inv[9]) {
+    double a[3][3] = {{0}}, q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (uint32_t i = 0; i < c->nv; ++i) {
+        px_vec3 p = pxi_sub(c->v[i], c->center);
+        double x[3] = {p.x, p.y, p.z};
+        for (int r = 0; r < 3; ++r)
+            for (int k = 0; k < 3; ++k) a[r][k] += x[r] * x[k];
+    }
+    for (int sweep = 0; sweep < 16; ++sweep)
+        for (int r = 0; r < 2; ++r)
+            for (int k = r + 1; k < 3; ++k) {
+                if (!(fabs(a[r][k]) > 1e-300)) continue;
+                double th = 0.5 * atan2(2.0 * a[r][k], a[k][k] - a[r][r]);
+                double cs = cos(th), sn = sin(th);
+                for (int j = 0; j < 3; ++j) { /* A <- A J */
+                    double ar = a[j][r], ak = a[j][k];
+                    a[j][r] = cs * ar - sn * ak;
+                    a[j][k] = sn * ar + cs * ak;
+                }
+                for (int j = 0; j < 3; ++j) { /* A <- J^T A */
+                    double ar = a[r][j], ak = a[k][j];
+                    a[r][j] = cs * ar - sn * ak;
+                    a[k][j] = sn * ar + cs * ak;
+                }
+                for (int j = 0; j < 3; ++j) { /* Q <- Q J */
+                    double qr = q[j][r], qk = q[j][k];
+                    q[j][r] = cs * qr - sn * qk;
+                    q[j][k] = sn * qr + cs * qk;
+                }
+            }
+    double w[3], wmax = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        px_vec3 axis = pxi_v(q[0][k], q[1][k], q[2][k]);
+        double lo = INFINITY, hi = -INFINITY;
+        for (uint32_t i = 0; i < c->nv; ++i) {
+            double t = pxi_dot(axis, c->v[i]);
+            if (t < lo) lo = t;
+            if (t > hi) hi = t;
+        }
+        w[k] = hi - lo;
+        if (w[k] > wmax) wmax = w[k];
+    }
+    for (int k = 0; k < 3; ++k) {
+        w[k] = wmax > 0.0 && w[k] > 1e-3 * wmax ? w[k] / wmax : 1e-3; /* NaN-safe, bounded ratio */
+        if (!(wmax > 0.0) || !isfinite(w[k])) w[k] = 1.0;
+    }
+    for (int r = 0; r < 3; ++r)
+        for (int k = 0; k < 3; ++k) {
+            map[3 * r + k] = w[r] * q[k][r]; /* diag(w) Q^T */
+            inv[3 * r + k] = q[r][k] / w[k]; /* Q diag(1/w) */
+        }
 }
 
 uint32_t pxi_support(const px_convex *c, px_vec3 d, uint32_t start) {
@@ -96,12 +152,14 @@ px_status pxi_lut_build(px_convex *c, uint32_t res) {
     c->bytes += n * sizeof *cell;
     /* Neighbouring cells have neighbouring answers: start each climb from
      * the previous cell's vertex (boustrophedon order keeps them adjacent). */
+    double inv[9];
+    lut_map(c, c->lut.map, inv);
     uint32_t v = 0;
     for (uint32_t face = 0; face < 6; ++face)
         for (uint32_t ia = 0; ia < res; ++ia)
             for (uint32_t j = 0; j < res; ++j) {
                 uint32_t ib = (ia & 1) ? res - 1 - j : j;
-                v = climb(c, cell_direction(res, face, ia, ib), v);
+                v = climb(c, pxi_rot(inv, cell_direction(res, face, ia, ib)), v);
                 cell[(face * res + ia) * res + ib] = v;
             }
     c->lut.res = res;

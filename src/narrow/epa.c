@@ -130,7 +130,8 @@ static int epa_start(epa *e, const pxi_simplex_pairs *start) {
             if (start->ia[m] >= e->a->nv || start->ib[m] >= e->b->nv) continue;
             e->v[e->nv++] = epa_point(e, start->ia[m], start->ib[m]);
         }
-    if (e->nv == 0) e->v[e->nv++] = epa_support(e, pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794), NULL);
+    if (e->nv == 0)
+        e->v[e->nv++] = epa_support(e, pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794), NULL);
     double tiny = 1e-13; /* scaled units: the pair spans about 1 */
     /* A tetrahedron given by GJK is kept only if it has real volume. */
     if (e->nv == 4) {

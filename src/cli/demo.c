@@ -450,14 +450,16 @@ static px_feature random_feature(const body *b) {
     return f;
 }
 
-static int timed_query(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
-                       px_distance_cache *cache, int reps, double *us, px_distance_result *res) {
+/* Times one query (px_distance, or px_distance_ex when `opt` is not NULL). */
+static int timed_query_ex(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
+                          const px_query_options *opt, px_distance_cache *cache, int reps, double *us,
+                          px_distance_result *res) {
     px_distance_cache start = *cache, c = start;
     px_status st = PX_OK;
     double t0 = now_ns();
     for (int r = 0; r < reps; ++r) {
         c = start;
-        st = px_distance(a->c, pa, b->c, pb, &c, res);
+        st = opt ? px_distance_ex(a->c, pa, b->c, pb, opt, &c, res) : px_distance(a->c, pa, b->c, pb, &c, res);
     }
     double t1 = now_ns();
     *us = (t1 - t0) * 1e-3 / reps;
@@ -469,6 +471,11 @@ static int timed_query(const body *a, const px_pose *pa, const body *b, const px
         return 0;
     }
     return 1;
+}
+
+static int timed_query(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
+                       px_distance_cache *cache, int reps, double *us, px_distance_result *res) {
+    return timed_query_ex(a, pa, b, pb, NULL, cache, reps, us, res);
 }
 
 static run_stats run_pair(const body *a, const body *b, const motion *m, const run_opts *o,

@@ -58,7 +58,9 @@ typedef struct epa {
     sx_point v[EPA_MAX_V];
     int nv;
     epa_face f[EPA_MAX_F];
-    int nf;
+    int nf;               /* slots in use (alive or dead) */
+    int free_[EPA_MAX_F]; /* dead slots to reuse */
+    int nfree;
 } epa;
 
 static sx_point epa_point(const epa *e, uint32_t ia, uint32_t ib) {
@@ -79,16 +81,26 @@ static sx_point epa_support(const epa *e, px_vec3 n, const sx_point *hint) {
     return epa_point(e, ia, ib);
 }
 
-/* Adds face (i, j, l) oriented away from the interior point. Returns 0 when
- * it is degenerate (no normal) or the arrays are full. */
+/* Adds face (i, j, l) oriented away from the interior point, in a dead
+ * slot if there is one. Returns its slot, or -1 when it is degenerate (no
+ * normal) or the arrays are full. */
 static int epa_add_face(epa *e, int i, int j, int l) {
-    if (e->nf >= EPA_MAX_F) return 0;
+    int slot;
+    if (e->nfree > 0)
+        slot = e->free_[--e->nfree];
+    else if (e->nf < EPA_MAX_F)
+        slot = e->nf++;
+    else
+        return -1;
     px_vec3 a = e->v[i].w, b = e->v[j].w, c = e->v[l].w;
     px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
     double len = pxi_len(n);
-    if (!(len > 0.0) || !isfinite(len)) return 0;
+    if (!(len > 0.0) || !isfinite(len)) {
+        e->free_[e->nfree++] = slot;
+        return -1;
+    }
     n = pxi_scale(n, 1.0 / len);
-    epa_face *F = &e->f[e->nf++];
+    epa_face *F = &e->f[slot];
     if (pxi_dot(n, pxi_sub(a, e->inner)) < 0.0) {
         n = pxi_neg(n);
         F->v[0] = i, F->v[1] = l, F->v[2] = j;
@@ -99,7 +111,7 @@ static int epa_add_face(epa *e, int i, int j, int l) {
     /* Offset from the face's three points (the average is symmetric in them). */
     F->d = (pxi_dot(n, a) + pxi_dot(n, b) + pxi_dot(n, c)) / 3.0;
     F->alive = 1;
-    return 1;
+    return slot;
 }
 
 /* Width of K in direction u: the larger of its two supports, with which
@@ -171,9 +183,10 @@ static int epa_start(epa *e, const pxi_simplex_pairs *start) {
     }
     e->inner = pxi_scale(pxi_add(pxi_add(e->v[0].w, e->v[1].w), pxi_add(e->v[2].w, e->v[3].w)), 0.25);
     e->nf = 0;
+    e->nfree = 0;
     static const int tf[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
     for (int k = 0; k < 4; ++k)
-        if (!epa_add_face(e, tf[k][0], tf[k][1], tf[k][2])) return 0;
+        if (epa_add_face(e, tf[k][0], tf[k][1], tf[k][2]) < 0) return 0;
     return 1;
 }
 
@@ -185,18 +198,24 @@ static int epa_closest_face(const epa *e) {
 }
 
 /* Replaces the faces that see w by the cone from their horizon to w (the
- * new vertex e->nv - 1). The face `seed` sees w by construction, which
- * keeps the visible set non-empty. Returns 0 when the budget is exhausted
- * or a new face is degenerate. */
+ * new vertex e->nv - 1), and returns the slot of the face nearest the
+ * origin afterwards (one pass finds both: survivors are compared while
+ * visibility is tested, new faces as they are made). The face `seed` sees w
+ * by construction, which keeps the visible set non-empty. Returns -1 when
+ * the budget is exhausted or a new face is degenerate. */
 static int epa_expand(epa *e, int seed) {
-    int w = e->nv - 1;
+    int w = e->nv - 1, best = -1;
     px_vec3 pw = e->v[w].w;
     int horizon[EPA_MAX_H][2], nh = 0;
     for (int k = 0; k < e->nf; ++k) {
         epa_face *F = &e->f[k];
         if (!F->alive) continue;
-        if (k != seed && !(pxi_dot(F->n, pw) - F->d > 0.0)) continue;
+        if (k != seed && !(pxi_dot(F->n, pw) - F->d > 0.0)) {
+            if (best < 0 || F->d < e->f[best].d) best = k;
+            continue;
+        }
         F->alive = 0;
+        e->free_[e->nfree++] = k;
         /* Each edge of a removed face: drop it if its twin was already
          * listed (both neighbours removed), else list it. */
         for (int m = 0; m < 3; ++m) {
@@ -208,21 +227,19 @@ static int epa_expand(epa *e, int seed) {
                 horizon[found][1] = horizon[nh - 1][1];
                 --nh;
             } else {
-                if (nh >= EPA_MAX_H) return 0;
+                if (nh >= EPA_MAX_H) return -1;
                 horizon[nh][0] = i;
                 horizon[nh][1] = j;
                 ++nh;
             }
         }
     }
-    /* Compact the face array, then add the cone. */
-    int m = 0;
-    for (int k = 0; k < e->nf; ++k)
-        if (e->f[k].alive) e->f[m++] = e->f[k];
-    e->nf = m;
-    for (int h = 0; h < nh; ++h)
-        if (!epa_add_face(e, horizon[h][0], horizon[h][1], w)) return 0;
-    return 1;
+    for (int h = 0; h < nh; ++h) {
+        int k = epa_add_face(e, horizon[h][0], horizon[h][1], w);
+        if (k < 0) return -1;
+        if (best < 0 || e->f[k].d < e->f[best].d) best = k;
+    }
+    return best;
 }
 
 /* Witness points: the origin's foot d n on the closest face plane, in
@@ -240,7 +257,7 @@ static void epa_witness(const epa *e, int best, double tol, pxi_penetration *out
         for (int k = 0; k < e->nf; ++k) {
             const epa_face *F = &e->f[k];
             /* pass 0: the closest face itself; pass 1: its coplanar rivals */
-            if (pass == 0 ? k != best : (k == best || !(F->d - e->f[best].d <= tol))) continue;
+            if (pass == 0 ? k != best : (k == best || !F->alive || !(F->d - e->f[best].d <= tol))) continue;
             sx_simplex s;
             s.n = 3;
             s.margin = 0.0;
@@ -288,11 +305,9 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
     /* Rounding band of a support value: n.w - d within it means "on K's
      * boundary". Relative to the pair's size (1 here), like GJK's. */
     const double tol = 64.0 * DBL_EPSILON;
-    int best = -1;
+    int best = epa_closest_face(&e);
     uint32_t it = 0;
-    for (;;) {
-        best = epa_closest_face(&e);
-        if (best < 0) break;
+    while (best >= 0) {
         epa_face *F = &e.f[best];
         sx_point w = epa_support(&e, F->n, &e.v[F->v[0]]);
         ++it;
@@ -306,7 +321,8 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
         }
         e.v[e.nv++] = w;
         epa_face keep = *F;
-        if (!epa_expand(&e, best)) {
+        int next = epa_expand(&e, best);
+        if (next < 0) {
             /* Degenerate cone or full arrays: report the last good face. */
             out->fallback = 1;
             e.f[0] = keep;
@@ -314,6 +330,7 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
             best = 0;
             break;
         }
+        best = next;
     }
     out->iterations = it;
     if (best < 0) return;

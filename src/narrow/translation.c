@@ -172,9 +172,9 @@ static double tr_refine(const px_vec3 *m, int n, px_vec3 d, double tau) {
     return tau;
 }
 
-void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                           px_distance_cache *cache, pxi_translation *out) {
-    memset(out, 0, sizeof *out);
+/* The GJK ray cast (cold, or when the warm path gives up). */
+static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                       px_distance_cache *cache, pxi_translation *out) {
     tr_ctx c;
     c.a = a;
     c.b = b;
@@ -310,4 +310,145 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
         cache->feature_a = out->fa;
         cache->feature_b = out->fb;
     }
+}
+
+/* Warm path: conservative advancement with Lin-Canny (seed 002's
+ * incremental idea, with the distance walk doing the local search).
+ *
+ * 1. A lower bound: for any unit n with n.d < 0, the line enters the
+ *    half-space {x : n.x <= h_M(n)}, which contains M, at
+ *    tau = h_M(n) / (n.d) <= the answer. With n the previous contact normal
+ *    (outward from M) this lands on or next to the new contact: M's support
+ *    along n is two climbs from the cached vertices.
+ * 2. From there, the closest points of A + tau d and B give a separating
+ *    plane; moving A to it (tau += dist / (n.d), n from A to B) keeps tau a
+ *    lower bound. When the closest features are a vertex-face or edge-edge
+ *    pair (a facet of M) this step is exact, so small moves need one or two
+ *    distance queries, each a warm walk of a few steps.
+ * Returns 0 when it cannot conclude (no normal towards the motion, or slow
+ * convergence on a curved part of M); the ray cast then answers. */
+#define TR_LC_STEPS 12
+
+/* Is p (face f's frame) on face f: within tol of its plane and inside its
+ * polygon (edge side planes, with the same slack)? */
+static int tr_on_face(const px_convex *c, uint32_t f, px_vec3 p, double tol) {
+    const pxi_face *F = &c->f[f];
+    if (!(fabs(pxi_dot(F->n, p) - F->d) <= tol)) return 0;
+    for (uint32_t q = 0; q < F->count; ++q) {
+        const pxi_edge *e = &c->e[c->f_edges[F->first + q]];
+        px_vec3 side = e->left == f ? e->wl : e->wr;
+        if (pxi_dot(pxi_sub(p, c->v[e->tail]), side) < -tol) return 0;
+    }
+    return 1;
+}
+
+/* After an advancement step: do the last closest features touch at the new
+ * pose tt (A -> B)? For the pairs that make a facet of M (vertex-face,
+ * face-vertex, edge-edge) this is a closed-form check, and a touching pair
+ * proves contact; tau being a lower bound, it is the first contact. Sets
+ * the contact points (pa in A's frame, pb in B's). 0: not known, ask
+ * Lin-Canny. */
+static int tr_features_touch(const px_convex *a, const px_convex *b, const px_pose *tt, px_feature fa,
+                             px_feature fb, double tol, px_vec3 *pa, px_vec3 *pb) {
+    if (fa.type == PX_FEATURE_VERTEX && fb.type == PX_FEATURE_FACE && fa.index < a->nv && fb.index < b->nf) {
+        px_vec3 p = pxi_xform(tt, a->v[fa.index]);
+        if (!tr_on_face(b, fb.index, p, tol)) return 0;
+        *pa = a->v[fa.index];
+        *pb = p;
+        return 1;
+    }
+    if (fa.type == PX_FEATURE_FACE && fb.type == PX_FEATURE_VERTEX && fa.index < a->nf && fb.index < b->nv) {
+        px_vec3 p = pxi_xform_inv(tt, b->v[fb.index]);
+        if (!tr_on_face(a, fa.index, p, tol)) return 0;
+        *pa = p;
+        *pb = b->v[fb.index];
+        return 1;
+    }
+    if (fa.type == PX_FEATURE_EDGE && fb.type == PX_FEATURE_EDGE && fa.index < a->ne && fb.index < b->ne) {
+        const pxi_edge *ea = &a->e[fa.index], *eb = &b->e[fb.index];
+        px_vec3 p0 = pxi_xform(tt, a->v[ea->tail]), p1 = pxi_xform(tt, a->v[ea->head]);
+        px_vec3 q0 = b->v[eb->tail], q1 = b->v[eb->head];
+        double u, w;
+        pxi_segment_closest(p0, p1, q0, q1, &u, &w);
+        px_vec3 x = pxi_madd(p0, pxi_sub(p1, p0), u), y = pxi_madd(q0, pxi_sub(q1, q0), w);
+        if (!(pxi_len(pxi_sub(x, y)) <= tol)) return 0;
+        *pa = pxi_xform_inv(tt, x);
+        *pb = y;
+        return 1;
+    }
+    return 0;
+}
+static int tr_warm_lc(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d,
+                      px_distance_cache *cache, pxi_translation *out) {
+    px_vec3 nu = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
+    double nl = pxi_len(nu);
+    if (!(nl > 0.0) || !isfinite(nl)) return 0;
+    nu = pxi_scale(nu, 1.0 / nl);
+    double nud = pxi_dot(nu, d);
+    if (!(nud < -1e-3 * sqrt(pxi_dot(d, d)))) return 0; /* grazing: the bound is useless */
+    uint32_t ib = pxi_support(b, nu, cache->vertex_b[0]);
+    uint32_t ia = pxi_support(a, pxi_rot_t(t_ab->r, pxi_neg(nu)), cache->vertex_a[0]);
+    double h = pxi_dot(nu, pxi_sub(b->v[ib], pxi_xform(t_ab, a->v[ia])));
+    double tau = h / nud;
+    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
+    double tol = 64.0 * DBL_EPSILON * span;
+    px_distance_cache lc;
+    memset(&lc, 0, sizeof lc);
+    lc.feature_a = cache->feature_a;
+    lc.feature_b = cache->feature_b;
+    pxi_answer ans;
+    px_vec3 n = pxi_neg(nu);
+    uint32_t steps = 0;
+    for (;;) {
+        if (steps >= TR_LC_STEPS) return 0;
+        px_pose tt = *t_ab;
+        tt.t = pxi_madd(tt.t, d, tau);
+        pxi_lin_canny(a, b, &tt, &lc, &ans);
+        ++steps;
+        if (ans.intersecting || !(ans.distance > tol)) break;
+        px_vec3 gap = pxi_sub(ans.pb, pxi_xform(&tt, ans.pa));
+        double gl = pxi_len(gap);
+        if (!(gl > 0.0)) break;
+        n = pxi_scale(gap, 1.0 / gl);
+        double nd = pxi_dot(n, d);
+        if (!(nd > 1e-3 * sqrt(pxi_dot(d, d)))) return 0; /* may miss: the ray cast decides */
+        tau += ans.distance / nd;
+        /* The same features touching at the new tau settle it without
+         * another walk (exact for the facet pairs of M). */
+        tt.t = pxi_madd(t_ab->t, d, tau);
+        px_vec3 ca, cb;
+        if (tr_features_touch(a, b, &tt, ans.fa, ans.fb, 16.0 * tol, &ca, &cb)) {
+            ans.pa = ca;
+            ans.pb = cb;
+            break;
+        }
+    }
+    out->hit = 1;
+    out->tau = tau;
+    out->pa = ans.pa;
+    out->pb = ans.pb;
+    out->normal = n;
+    out->fa = ans.fa;
+    out->fb = ans.fb;
+    out->iterations = steps + 1;
+    cache->feature_a = ans.fa;
+    cache->feature_b = ans.fb;
+    cache->direction[0] = -n.x;
+    cache->direction[1] = -n.y;
+    cache->direction[2] = -n.z;
+    cache->vertex_a[0] = ia;
+    cache->vertex_b[0] = ib;
+    if (cache->simplex_count == 0) cache->simplex_count = 1;
+    return 1;
+}
+
+void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                           px_distance_cache *cache, pxi_translation *out) {
+    memset(out, 0, sizeof *out);
+    int warm = cache && cache->simplex_count >= 1 && cache->simplex_count <= 3 &&
+               cache->vertex_a[0] < a->nv && cache->vertex_b[0] < b->nv &&
+               cache->feature_a.type >= PX_FEATURE_VERTEX && cache->feature_b.type >= PX_FEATURE_VERTEX;
+    if (warm && tr_warm_lc(a, b, t_ab, dir, cache, out)) return;
+    memset(out, 0, sizeof *out);
+    tr_raycast(a, b, t_ab, dir, cache, out);
 }

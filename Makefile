@@ -70,11 +70,14 @@ format:
 test: format-check test-release test-install test-asan
 	@echo "make test: all suites passed (release, install, ASan+UBSan)"
 
-# The full benchmark (17-27 minutes on the 2-core machine; not part of CI):
-# writes docs/bench/convex.csv and regenerates the plots.
+# The full benchmark (about 40 minutes on the 2-core machine; not part of
+# CI): writes docs/bench/convex.csv, convex_tables.md, hybrid.csv, hybrid.md
+# and regenerates the plots.
 bench: build
 	./$(BUILD)/bench/bench_convex --out docs/bench
+	./$(BUILD)/bench/bench_hybrid --out docs/bench
 	gnuplot docs/bench/plot_convex.gp
+	gnuplot docs/bench/plot_hybrid.gp
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

@@ -459,7 +459,8 @@ static int timed_query_ex(const body *a, const px_pose *pa, const body *b, const
     double t0 = now_ns();
     for (int r = 0; r < reps; ++r) {
         c = start;
-        st = opt ? px_distance_ex(a->c, pa, b->c, pb, opt, &c, res) : px_distance(a->c, pa, b->c, pb, &c, res);
+        st =
+            opt ? px_distance_ex(a->c, pa, b->c, pb, opt, &c, res) : px_distance(a->c, pa, b->c, pb, &c, res);
     }
     double t1 = now_ns();
     *us = (t1 - t0) * 1e-3 / reps;
@@ -589,6 +590,586 @@ static int brute_budget(const body *a, const body *b) {
     if (work > 3e7) return 1;
     if (work > 3e6) return 2;
     return 4;
+}
+
+/* ------------------------------------------------------------------------- */
+/* (d)-(g): the newer queries (methods, signed distance, collision           */
+/* translation, boolean test) on the shipped models                          */
+/* ------------------------------------------------------------------------- */
+
+/* Every check of (d)-(g) goes through record(): a FAIL is printed and makes
+ * the program exit with status 1. */
+static unsigned long g_checks, g_check_failures;
+
+static int record(int ok) {
+    g_checks++;
+    if (!ok) g_check_failures++;
+    return ok;
+}
+static const char *okfail(int ok) { return ok ? "OK" : "FAIL"; }
+
+#define NEW_TOL 1e-9     /* tolerance of the (d)-(g) checks, x size (size = R_A + R_B) */
+#define TOUCH_BAND 1e-12 /* |signed distance| <= TOUCH_BAND x size: "touching" */
+#define N_METHODS 3
+
+static const char *const k_method_names[N_METHODS] = {"Lin-Canny", "GJK", "hybrid"};
+static const uint32_t k_methods[N_METHODS] = {PX_METHOD_LIN_CANNY, PX_METHOD_GJK, PX_METHOD_HYBRID};
+
+static void mat_mul(const double a[9], const double b[9], double c[9]) {
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            c[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+}
+
+static px_vec3 vunit(px_vec3 a) { return vscale(a, 1.0 / vlen(a)); }
+
+/* Pose with rotation r that puts the body's centre at world point c. */
+static px_pose pose_centred(const body *b, const double r[9], px_vec3 c) {
+    px_vec3 t = vsub(c, rot_apply(r, b->center));
+    double tt[3] = {t.x, t.y, t.z};
+    return px_pose_from_rt(r, tt);
+}
+
+static px_pose pose_shifted(const px_pose *p, px_vec3 d) {
+    px_pose q = *p;
+    q.t = vadd(q.t, d);
+    return q;
+}
+
+/* A copy of a body's hull scaled about the body origin by f. */
+static int make_scaled(const body *src, double f, const char *name, body *out) {
+    double *p = malloc(3 * (size_t)src->nv * sizeof *p);
+    if (!p) exit(2);
+    for (uint32_t v = 0; v < src->nv; ++v) {
+        px_vec3 q = vscale(px_convex_vertex(src->c, v), f);
+        p[3 * v] = q.x, p[3 * v + 1] = q.y, p[3 * v + 2] = q.z;
+    }
+    px_convex *c = from_points_or_die(name, p, src->nv);
+    free(p);
+    return body_init(out, name, c);
+}
+
+/* A pair of (d)-(g). B gets a fixed extra rotation r0 so that two copies of
+ * a hull do not meet mirror-aligned. */
+typedef struct qpair {
+    const char *name;
+    const body *a, *b;
+    double size; /* R_A + R_B: the unit of every tolerance */
+    double r0[9];
+} qpair;
+
+/* Step angle of the tracked motion: 1 to 5 degrees, varying smoothly. */
+static double track_theta(int k) { return (3.0 + 2.0 * sin(0.37 * k + 0.5)) * DEMO_PI / 180.0; }
+
+/* Tracked motion, step k of n, phi = accumulated relative rotation: A turns
+ * by +phi/2 and B by -phi/2 about (1,2,3)/sqrt(14) (so R_B^T R_A turns by the
+ * step angle), A's centre stays at the origin, B's centre is f(k) * size along
+ * x with f swinging twice from 1.15 (apart) to 0.35 (deep overlap) and back,
+ * plus a sideways wobble of 8% of size. */
+static void track_poses(const qpair *p, int k, int n, double phi, px_pose *pa, px_pose *pb) {
+    double ra[9], rb1[9], rb[9];
+    rot_axis_angle(k_axis, 0.5 * phi, ra);
+    rot_axis_angle(k_axis, -0.5 * phi, rb1);
+    mat_mul(rb1, p->r0, rb);
+    double f = 0.75 + 0.4 * cos(4.0 * DEMO_PI * k / n);
+    px_vec3 cb = v3(f * p->size, 0.08 * p->size * sin(0.05 * k), 0.08 * p->size * cos(0.031 * k));
+    *pa = pose_centred(p->a, ra, v3(0, 0, 0));
+    *pb = pose_centred(p->b, rb, cb);
+}
+
+/* World centre of a body at a pose. */
+static px_vec3 centre_at(const body *b, const px_pose *p) { return px_pose_apply(p, b->center); }
+
+static int timed_intersect(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
+                           px_distance_cache *cache, int reps, double *us, int *hit) {
+    px_distance_cache start = *cache, c = start;
+    px_status st = PX_OK;
+    double t0 = now_ns();
+    for (int r = 0; r < reps; ++r) {
+        c = start;
+        st = px_intersect(a->c, pa, b->c, pb, &c, hit);
+    }
+    *us = (now_ns() - t0) * 1e-3 / reps;
+    *cache = c;
+    if (!record(st == PX_OK))
+        fprintf(stderr, "FAIL: px_intersect(%s, %s): %s\n", a->name, b->name, px_status_string(st));
+    return st == PX_OK;
+}
+
+static int timed_translation(const body *a, const px_pose *pa, const body *b, const px_pose *pb, px_vec3 dir,
+                             px_distance_cache *cache, int reps, double *us, px_translation_result *res) {
+    px_distance_cache start = *cache, c = start;
+    px_status st = PX_OK;
+    double t0 = now_ns();
+    for (int r = 0; r < reps; ++r) {
+        c = start;
+        st = px_translation(a->c, pa, b->c, pb, dir, &c, res);
+    }
+    *us = (now_ns() - t0) * 1e-3 / reps;
+    *cache = c;
+    if (!record(st == PX_OK))
+        fprintf(stderr, "FAIL: px_translation(%s, %s): %s\n", a->name, b->name, px_status_string(st));
+    return st == PX_OK;
+}
+
+/* Unsigned or signed distance by one method, cold, untimed. */
+static px_distance_result query(const qpair *p, const px_pose *pa, const px_pose *pb, uint32_t method,
+                                uint32_t flags) {
+    px_query_options o;
+    memset(&o, 0, sizeof o);
+    o.method = method;
+    o.flags = flags;
+    px_distance_result r;
+    px_status st = px_distance_ex(p->a->c, pa, p->b->c, pb, &o, NULL, &r);
+    if (!record(st == PX_OK)) {
+        fprintf(stderr, "FAIL: px_distance_ex(%s, method %u, flags %u): %s\n", p->name, method, flags,
+                px_status_string(st));
+        memset(&r, 0, sizeof r);
+        r.signed_distance = r.distance = NAN;
+    }
+    return r;
+}
+
+/* Per-method statistics of (d). */
+typedef struct method_stats {
+    double track_med, cold_med, max_rel_diff, worst_cert;
+    unsigned long flag_out, flag_band, fallbacks, cert_fail, warm_cold_fail;
+} method_stats;
+
+/* Statistics of (g), per pair. */
+typedef struct intersect_stats {
+    double track_med, cold_med;
+    unsigned long agree, dis_out, dis_band;
+} intersect_stats;
+
+typedef struct track_stats {
+    int steps, intersecting, band, touch_snaps;
+    method_stats m[N_METHODS];
+    intersect_stats x;
+} track_stats;
+
+/* (d) and (g): the tracked motion, every method with its own warm cache plus
+ * a cold query per step, and px_intersect. */
+static track_stats run_tracked(const qpair *p, int n, int reps) {
+    track_stats s;
+    memset(&s, 0, sizeof s);
+    s.steps = n;
+    double *tw[N_METHODS + 1], *tc[N_METHODS + 1];
+    for (int m = 0; m <= N_METHODS; ++m) {
+        tw[m] = calloc(n, sizeof *tw[m]);
+        tc[m] = calloc(n, sizeof *tc[m]);
+        if (!tw[m] || !tc[m]) exit(2);
+    }
+    px_distance_cache warm[N_METHODS], xwarm, ref_cache;
+    memset(warm, 0, sizeof warm);
+    memset(&xwarm, 0, sizeof xwarm);
+    memset(&ref_cache, 0, sizeof ref_cache);
+    world w;
+    memset(&w, 0, sizeof w);
+    double phi = 0.0;
+    for (int k = 0; k < n; ++k) {
+        px_pose pa, pb;
+        track_poses(p, k, n, phi, &pa, &pb);
+        phi += track_theta(k);
+        if (k % 50 == 25) {
+            /* Touching: slide A along the line of centres until it touches B. */
+            px_vec3 u = vunit(vsub(centre_at(p->b, &pb), centre_at(p->a, &pa)));
+            px_translation_result tr;
+            px_status st = px_translation(p->a->c, &pa, p->b->c, &pb, u, NULL, &tr);
+            if (!record(st == PX_OK && tr.hit))
+                fprintf(stderr, "FAIL: %s step %d: px_translation along the line of centres: %s, hit %d\n",
+                        p->name, k, px_status_string(st), tr.hit);
+            else
+                pa = pose_shifted(&pa, vscale(u, tr.tau)), s.touch_snaps++;
+        }
+        world_fill(&w, p->a, &pa, p->b, &pb);
+        /* Reference: the signed Lin-Canny distance (with EPA depth) says which steps are in the band. */
+        px_query_options ro;
+        memset(&ro, 0, sizeof ro);
+        ro.flags = PX_QUERY_SIGNED;
+        px_distance_result ref;
+        px_status st = px_distance_ex(p->a->c, &pa, p->b->c, &pb, &ro, &ref_cache, &ref);
+        record(st == PX_OK);
+        int band = fabs(ref.signed_distance) <= TOUCH_BAND * p->size;
+        s.band += band;
+        px_distance_result rw[N_METHODS];
+        for (int m = 0; m < N_METHODS; ++m) {
+            px_query_options o;
+            memset(&o, 0, sizeof o);
+            o.method = k_methods[m];
+            px_distance_result rc;
+            px_distance_cache cold;
+            memset(&cold, 0, sizeof cold);
+            record(timed_query_ex(p->a, &pa, p->b, &pb, &o, &warm[m], reps, &tw[m][k], &rw[m]));
+            record(timed_query_ex(p->a, &pa, p->b, &pb, &o, &cold, reps, &tc[m][k], &rc));
+            method_stats *ms = &s.m[m];
+            ms->fallbacks += rw[m].fallbacks + rc.fallbacks;
+            for (int j = 0; j < 2; ++j) {
+                double v = certify(&w, p->a, &pa, p->b, &pb, j ? &rc : &rw[m], p->size);
+                if (v > ms->worst_cert) ms->worst_cert = v;
+                if (!record(v <= NEW_TOL)) {
+                    if (ms->cert_fail++ < 3)
+                        fprintf(stderr, "FAIL: %s step %d, %s (%s): certificate violated by %.3g x size\n",
+                                p->name, k, k_method_names[m], j ? "cold" : "track", v);
+                    if (ms->cert_fail <= 3) print_pose_hex("pose_a", &pa), print_pose_hex("pose_b", &pb);
+                }
+            }
+            int same = fabs(rw[m].distance - rc.distance) <= NEW_TOL * p->size &&
+                       (band || rw[m].intersecting == rc.intersecting);
+            if (!record(same)) {
+                if (ms->warm_cold_fail++ < 3)
+                    fprintf(stderr,
+                            "FAIL: %s step %d, %s: track d = %.17g (int %d), cold d = %.17g (int %d)\n",
+                            p->name, k, k_method_names[m], rw[m].distance, rw[m].intersecting, rc.distance,
+                            rc.intersecting);
+            }
+        }
+        s.intersecting += rw[0].intersecting;
+        for (int m = 1; m < N_METHODS; ++m) {
+            method_stats *ms = &s.m[m];
+            double rel = fabs(rw[m].distance - rw[0].distance) / p->size;
+            if (!(rel <= ms->max_rel_diff)) ms->max_rel_diff = rel;
+            if (rw[m].intersecting != rw[0].intersecting) {
+                if (band) {
+                    ms->flag_band++;
+                } else if (ms->flag_out++ < 3) {
+                    fprintf(stderr,
+                            "FAIL: %s step %d: %s intersecting = %d (d = %.17g), Lin-Canny %d (d = %.17g, "
+                            "signed %.17g)\n",
+                            p->name, k, k_method_names[m], rw[m].intersecting, rw[m].distance,
+                            rw[0].intersecting, rw[0].distance, ref.signed_distance);
+                    print_pose_hex("pose_a", &pa);
+                    print_pose_hex("pose_b", &pb);
+                }
+            }
+        }
+        /* (g) px_intersect against the Lin-Canny flag. */
+        int xw = -1, xc = -1;
+        px_distance_cache xcold;
+        memset(&xcold, 0, sizeof xcold);
+        timed_intersect(p->a, &pa, p->b, &pb, &xwarm, reps, &tw[N_METHODS][k], &xw);
+        timed_intersect(p->a, &pa, p->b, &pb, &xcold, reps, &tc[N_METHODS][k], &xc);
+        for (int j = 0; j < 2; ++j) {
+            int x = j ? xc : xw;
+            if (x == rw[0].intersecting) {
+                s.x.agree++;
+            } else if (band) {
+                s.x.dis_band++;
+            } else if (s.x.dis_out++ < 3) {
+                fprintf(stderr,
+                        "FAIL: %s step %d: px_intersect (%s) = %d, Lin-Canny intersecting = %d (d = %.17g)\n",
+                        p->name, k, j ? "cold" : "track", x, rw[0].intersecting, rw[0].distance);
+            }
+        }
+    }
+    for (int m = 0; m < N_METHODS; ++m) {
+        s.m[m].track_med = median(tw[m], n);
+        s.m[m].cold_med = median(tc[m], n);
+        record(s.m[m].flag_out == 0);
+    }
+    record(s.x.dis_out == 0);
+    s.x.track_med = median(tw[N_METHODS], n);
+    s.x.cold_med = median(tc[N_METHODS], n);
+    for (int m = 0; m <= N_METHODS; ++m) free(tw[m]), free(tc[m]);
+    free(w.va);
+    free(w.vb);
+    return s;
+}
+
+static void print_tracked(const qpair *p, const track_stats *s) {
+    printf("\n    %s: size %.4g, %d steps, %d intersecting, %d in the touching band (%d slid to contact)\n",
+           p->name, p->size, s->steps, s->intersecting, s->band, s->touch_snaps);
+    for (int m = 0; m < N_METHODS; ++m) {
+        const method_stats *ms = &s->m[m];
+        int ok = ms->flag_out == 0 && ms->cert_fail == 0 && ms->warm_cold_fail == 0;
+        char diff[32], flags[32];
+        if (m == 0)
+            snprintf(diff, sizeof diff, "(reference)"), snprintf(flags, sizeof flags, "-");
+        else
+            snprintf(diff, sizeof diff, "%.2g", ms->max_rel_diff),
+                snprintf(flags, sizeof flags, "%lu (%lu)", ms->flag_out, ms->flag_band);
+        printf("      %-10s %9.3f %9.3f %16s %14s %9lu %10.2g  %s\n", k_method_names[m], ms->track_med,
+               ms->cold_med, diff, flags, ms->fallbacks, ms->worst_cert, okfail(ok));
+    }
+}
+
+/* (e) one pair pushed into overlap by several depths. */
+static void run_signed(const qpair *p, int reps) {
+    /* Base configuration: the tracked motion's orientation at step 137, B apart along x. */
+    double phi = 0.0;
+    for (int k = 0; k < 137; ++k) phi += track_theta(k);
+    px_pose pa, pb;
+    track_poses(p, 0, 1000, phi, &pa, &pb);
+    px_vec3 u = vunit(vsub(centre_at(p->b, &pb), centre_at(p->a, &pa)));
+    px_translation_result tr;
+    px_status st = px_translation(p->a->c, &pa, p->b->c, &pb, u, NULL, &tr);
+    if (!record(st == PX_OK && tr.hit)) {
+        printf("      %-34s FAIL: px_translation along the line of centres: %s, hit %d\n", p->name,
+               px_status_string(st), tr.hit);
+        return;
+    }
+    const double push[] = {1e-6, 1e-3, 0.02, 0.1, 0.3};
+    for (size_t i = 0; i < sizeof push / sizeof *push; ++i) {
+        px_pose pai = pose_shifted(&pa, vscale(u, tr.tau + push[i] * p->size));
+        px_distance_result r[N_METHODS];
+        double us[N_METHODS];
+        int ok_int = 1;
+        double agree = 0, move = 0, wit = 0;
+        for (int m = 0; m < N_METHODS; ++m) {
+            px_query_options o;
+            memset(&o, 0, sizeof o);
+            o.method = k_methods[m];
+            o.flags = PX_QUERY_SIGNED;
+            px_distance_cache cold;
+            memset(&cold, 0, sizeof cold);
+            record(timed_query_ex(p->a, &pai, p->b, &pb, &o, &cold, reps, &us[m], &r[m]));
+            ok_int &= r[m].intersecting && r[m].signed_distance < 0 && r[m].distance == 0.0;
+            agree = fmax(agree, fabs(r[m].signed_distance - r[0].signed_distance) / p->size);
+            /* Witnesses: point_b - point_a == signed_distance * normal, |normal| = 1, both points on
+             * their bodies' boundaries. */
+            px_vec3 e = vsub(vsub(r[m].point_b, r[m].point_a), vscale(r[m].normal, r[m].signed_distance));
+            wit = fmax(wit, vlen(e) / p->size);
+            wit = fmax(wit, fabs(vlen(r[m].normal) - 1.0));
+            wit = fmax(wit, fabs(max_plane_excess(p->a, &pai, r[m].point_a)) / p->size);
+            wit = fmax(wit, fabs(max_plane_excess(p->b, &pb, r[m].point_b)) / p->size);
+            /* Translating B by depth * normal makes the pair touch: signed distance ~ 0 afterwards. */
+            px_pose pbm = pose_shifted(&pb, vscale(r[m].normal, -r[m].signed_distance));
+            px_distance_result after = query(p, &pai, &pbm, PX_METHOD_LIN_CANNY, PX_QUERY_SIGNED);
+            move = fmax(move, fabs(after.signed_distance) / p->size);
+        }
+        double depth = -r[0].signed_distance;
+        /* Minimality: depth = min over directions d of the translation that separates, |tau(d)|. It
+         * must be reached along the normal, and no direction (the push direction, 64 random ones)
+         * may need less. */
+        double min_tau = INFINITY, along_n = NAN;
+        for (int j = 0; j < 66; ++j) {
+            px_vec3 d;
+            if (j == 0)
+                d = r[0].normal;
+            else if (j == 1)
+                d = u;
+            else {
+                do {
+                    d = v3((double)(rng_next() >> 11) * 0x1p-52 - 1.0,
+                           (double)(rng_next() >> 11) * 0x1p-52 - 1.0,
+                           (double)(rng_next() >> 11) * 0x1p-52 - 1.0);
+                } while (vdot(d, d) > 1.0 || vdot(d, d) < 1e-4);
+                d = vunit(d);
+            }
+            px_translation_result t;
+            px_status s2 = px_translation(p->a->c, &pai, p->b->c, &pb, d, NULL, &t);
+            if (!record(s2 == PX_OK && t.hit && t.tau <= 0)) {
+                min_tau = -INFINITY;
+                continue;
+            }
+            if (j == 0) along_n = -t.tau;
+            min_tau = fmin(min_tau, -t.tau);
+        }
+        int ok_agree = agree <= TOUCH_BAND, ok_move = move <= NEW_TOL, ok_wit = wit <= NEW_TOL;
+        int ok_min = min_tau >= depth - NEW_TOL * p->size && fabs(along_n - depth) <= NEW_TOL * p->size;
+        int ok = record(ok_int) & record(ok_agree) & record(ok_move) & record(ok_wit) & record(ok_min);
+        printf("      %-30s %7.0e %12.6g %12.6g %12.6g %8.1g %8.1g %8.1g %9.6f  %5.2f %5.2f %5.2f  %s\n",
+               i == 0 ? p->name : "", push[i], depth, -r[1].signed_distance, -r[2].signed_distance, agree,
+               move, wit, min_tau / depth, us[0], us[1], us[2], okfail(ok));
+        if (!ok)
+            fprintf(stderr,
+                    "FAIL: (e) %s push %g: intersecting %d, agreement %.3g, move %.3g, witnesses %.3g, "
+                    "min |tau| %.17g vs depth %.17g (along the normal %.17g)\n",
+                    p->name, push[i], ok_int, agree, move, wit, min_tau, depth, along_n);
+    }
+}
+
+/* (f) A slides along a direction toward B. */
+static void run_translation_row(const qpair *p, const char *label, px_vec3 dir, double centre_dist,
+                                int expect, int reps) {
+    double ra[9], rb1[9], rb[9];
+    rot_axis_angle(k_axis, 0.4, ra);
+    rot_axis_angle(k_axis, -0.4, rb1);
+    mat_mul(rb1, p->r0, rb);
+    px_pose pa = pose_centred(p->a, ra, v3(0, 0, 0));
+    px_pose pb = pose_centred(p->b, rb, v3(centre_dist * p->size, 0, 0));
+    dir = vunit(dir);
+    px_translation_result t;
+    px_status st = px_translation(p->a->c, &pa, p->b->c, &pb, dir, NULL, &t);
+    if (!record(st == PX_OK)) {
+        printf("      %-26s FAIL: %s\n", label, px_status_string(st));
+        return;
+    }
+    int ok = 1;
+    char what[96], check[96];
+    if (expect >= 0) ok &= t.hit == expect;
+    if (t.hit) {
+        /* Touching at tau, disjoint a little before, not overlapping at tau. */
+        px_pose at = pose_shifted(&pa, vscale(dir, t.tau));
+        px_pose before = pose_shifted(&pa, vscale(dir, t.tau - 1e-6 * p->size));
+        px_distance_result r0 = query(p, &at, &pb, PX_METHOD_LIN_CANNY, PX_QUERY_SIGNED);
+        px_distance_result r1 = query(p, &before, &pb, PX_METHOD_LIN_CANNY, 0);
+        double gap_pts = vlen(vsub(t.point_b, t.point_a)) / p->size;
+        ok &= fabs(r0.signed_distance) <= NEW_TOL * p->size && r1.distance > 0 && !r1.intersecting &&
+              gap_pts <= NEW_TOL && fabs(vlen(t.normal) - 1.0) <= 1e-12;
+        snprintf(what, sizeof what, "tau %+.6f  n (%+.3f %+.3f %+.3f)", t.tau / p->size, t.normal.x,
+                 t.normal.y, t.normal.z);
+        snprintf(check, sizeof check, "d(tau) %8.1e  d(tau-1e-6) %8.2e", r0.signed_distance / p->size,
+                 r1.distance / p->size);
+    } else {
+        /* A separating slab of width gap, parallel to the direction: holds for every tau. */
+        world w;
+        memset(&w, 0, sizeof w);
+        world_fill(&w, p->a, &pa, p->b, &pb);
+        double ha = vdot(t.normal, t.point_a), hb = vdot(t.normal, t.point_b), viol = 0;
+        for (uint32_t i = 0; i < p->a->nv; ++i) viol = fmax(viol, vdot(t.normal, w.va[i]) - ha);
+        for (uint32_t i = 0; i < p->b->nv; ++i) viol = fmax(viol, hb - vdot(t.normal, w.vb[i]));
+        free(w.va);
+        free(w.vb);
+        double dmin = INFINITY;
+        for (int j = -4; j <= 4; ++j) {
+            px_pose q = pose_shifted(&pa, vscale(dir, 0.5 * j * p->size));
+            dmin = fmin(dmin, query(p, &q, &pb, PX_METHOD_LIN_CANNY, 0).distance);
+        }
+        ok &= t.gap > 0 && fabs(vdot(t.normal, dir)) <= 1e-12 && fabs(vlen(t.normal) - 1.0) <= 1e-12 &&
+              viol <= NEW_TOL * p->size && fabs(hb - ha - t.gap) <= NEW_TOL * p->size &&
+              dmin >= t.gap - NEW_TOL * p->size;
+        snprintf(what, sizeof what, "gap %.6f  n (%+.3f %+.3f %+.3f)", t.gap / p->size, t.normal.x,
+                 t.normal.y, t.normal.z);
+        snprintf(check, sizeof check, "slab %8.1e  min d(tau) %.4f", viol / p->size, dmin / p->size);
+    }
+    /* Timing: 100 small moves of A (0.5 degree and 0.2% of size per step), with a warm cache and cold;
+     * the two answers must agree. */
+    double tw[100], tc[100];
+    px_distance_cache warm;
+    memset(&warm, 0, sizeof warm);
+    unsigned long dis = 0;
+    for (int j = 0; j < 100; ++j) {
+        double rj[9], raj[9];
+        rot_axis_angle(v3(0.6, 0, 0.8), j * 0.5 * DEMO_PI / 180.0, rj);
+        mat_mul(rj, ra, raj);
+        px_pose pj = pose_centred(p->a, raj, v3(0, 0.002 * j * p->size, -0.001 * j * p->size));
+        px_translation_result a1, a2;
+        px_distance_cache cold;
+        memset(&cold, 0, sizeof cold);
+        timed_translation(p->a, &pj, p->b, &pb, dir, &warm, reps, &tw[j], &a1);
+        timed_translation(p->a, &pj, p->b, &pb, dir, &cold, reps, &tc[j], &a2);
+        if (a1.hit != a2.hit || (a1.hit && fabs(a1.tau - a2.tau) > NEW_TOL * p->size) ||
+            (!a1.hit && fabs(a1.gap - a2.gap) > NEW_TOL * p->size)) {
+            if (dis++ < 3)
+                fprintf(stderr,
+                        "FAIL: (f) %s move %d: warm hit %d tau %.17g gap %.17g, cold hit %d tau %.17g gap "
+                        "%.17g\n",
+                        label, j, a1.hit, a1.tau, a1.gap, a2.hit, a2.tau, a2.gap);
+        }
+    }
+    ok &= dis == 0;
+    record(ok);
+    printf("      %-24s %-5s %-43s %-36s %6.3f %6.3f  %s\n", label, t.hit ? "hit" : "miss", what, check,
+           median(tc, 100), median(tw, 100), okfail(ok));
+    if (!ok)
+        fprintf(stderr,
+                "FAIL: (f) %s: hit %d (expected %d), tau %.17g, gap %.17g, warm/cold disagreements %lu\n",
+                label, t.hit, expect, t.tau, t.gap, dis);
+}
+
+/* Runs (d)-(g); returns the number of failed checks. */
+static unsigned long run_new_sections(const char *models, body *tea, body *puma, const run_opts *o) {
+    body sc_tea, sc_puma, sphere, rod;
+    if (!make_scaled(&tea[1], tea[0].radius / tea[1].radius, "teapot.stl hull, scaled", &sc_tea)) return 1;
+    if (!make_scaled(&puma[1], puma[0].radius / puma[1].radius, "Puma link3.dae, scaled", &sc_puma)) return 1;
+    if (!body_init(&sphere, "sphere 16x30", make_sphere(16, 30, 1.0))) return 1;
+    if (!body_init(&rod, "thin cylinder 48", make_frustum(48, 0.04, 0.04, 2.0))) return 1;
+    (void)models;
+    qpair pairs[4] = {
+        {"teapot.obj / teapot.obj", &tea[0], &tea[0], 0, {0}},
+        {"teapot.obj / teapot.stl scaled", &tea[0], &sc_tea, 0, {0}},
+        {"Puma link2 / link3 scaled", &puma[0], &sc_puma, 0, {0}},
+        {"sphere 16x30 / thin cylinder", &sphere, &rod, 0, {0}},
+    };
+    for (int i = 0; i < 4; ++i) {
+        pairs[i].size = pairs[i].a->radius + pairs[i].b->radius;
+        rot_axis_angle(v3(0, 0.6, 0.8), 1.1 + 0.5 * i, pairs[i].r0);
+    }
+    unsigned long before = g_check_failures;
+
+    /* ---------------------------------------------------------------- (d) */
+    printf(
+        "\n(d) Methods side by side (px_distance_ex): Lin-Canny, GJK and the hybrid on one tracked motion\n"
+        "    %d steps of 1-5 degrees of relative rotation (about (1,2,3)/sqrt(14)); B's centre swings\n"
+        "    twice from 1.15 x size to 0.35 x size from A's and back (size = R_A + R_B), with a sideways\n"
+        "    wobble: approach, contact, overlap, separation; at every 50th step A is slid along the line\n"
+        "    of centres until it touches B (px_translation). Each method keeps its own cache ('track');\n"
+        "    'cold' is a zeroed cache. 'max |d-d_LC|' = largest distance difference from Lin-Canny, x size;\n"
+        "    'flags' = steps where the intersecting flag differs from Lin-Canny outside the touching band\n"
+        "    |signed distance| <= %.0e x size (inside it in parentheses); 'cert' = worst certificate\n"
+        "    violation (as in (a)-(c), x size) over track and cold answers. Times in us.\n",
+        o->steps, TOUCH_BAND);
+    printf("\n      %-10s %9s %9s %16s %14s %9s %10s  %s\n", "method", "track med", "cold med",
+           "max |d-d_LC|", "flags (band)", "fallbacks", "cert", "check");
+    track_stats ts[4];
+    for (int i = 0; i < 4; ++i) {
+        ts[i] = run_tracked(&pairs[i], o->steps, o->reps);
+        print_tracked(&pairs[i], &ts[i]);
+    }
+
+    /* ---------------------------------------------------------------- (e) */
+    printf(
+        "\n(e) Signed distance (PX_QUERY_SIGNED): each pair slid into contact along its line of centres\n"
+        "    (px_translation), then pushed a further 'push' x size. Depth = -signed_distance per method;\n"
+        "    'agree' = largest depth difference between methods, x size (check: <= %.0e); 'move' = |signed\n"
+        "    distance| after translating B by depth x normal, worst method, x size (check: <= %.0e, i.e. "
+        "the\n"
+        "    pair touches); 'wit' = witness consistency (point_b - point_a = signed_distance x normal, both\n"
+        "    points on their boundaries), x size; 'min|tau|/depth' = the least translation that separates\n"
+        "    the pair over 66 directions (the normal, the push direction, 64 random; px_translation) "
+        "divided\n"
+        "    by the depth: >= 1 and exactly 1 along the normal. Times: one cold signed query, us.\n",
+        TOUCH_BAND, NEW_TOL);
+    printf("\n      %-30s %7s %12s %12s %12s %8s %8s %8s %9s  %5s %5s %5s  %s\n", "pair", "push", "depth LC",
+           "depth GJK", "depth hyb", "agree", "move", "wit", "min|tau|/d", "LC", "GJK", "hyb", "check");
+    for (int i = 0; i < 4; ++i) run_signed(&pairs[i], o->reps);
+
+    /* ---------------------------------------------------------------- (f) */
+    const qpair *tp = &pairs[1];
+    printf(
+        "\n(f) Collision translation (px_translation): %s; A slides along a direction, B stays.\n"
+        "    Centres 1.1 x size apart along x unless 'overlap' (0.5 x size: starts intersecting, tau < 0).\n"
+        "    hit: tau (x size, A moved by tau x direction touches B) and the contact normal; checked: the\n"
+        "    signed distance at tau is ~0 (x size), the pair is disjoint 1e-6 x size before, the contact\n"
+        "    points coincide. miss: the gap and separating normal (perpendicular to the direction); "
+        "checked:\n"
+        "    the slab separates all vertices ('slab' = worst violation, x size) and the distance at 9 "
+        "points\n"
+        "    of the line is >= gap. Head-on must hit, sideways must miss (bounding spheres). Timing: 100\n"
+        "    small moves of A (0.5 degree, 0.2%% of size each), a zeroed cache ('cold') vs the previous\n"
+        "    answer ('warm'); warm and cold answers must agree. Times in us.\n",
+        tp->name);
+    printf("\n      %-24s %-5s %-43s %-36s %6s %6s  %s\n", "direction", "", "result", "check", "cold", "warm",
+           "check");
+    run_translation_row(tp, "head-on +x", v3(1, 0, 0), 1.1, 1, o->reps);
+    run_translation_row(tp, "oblique (1, .3, .2)", v3(1, 0.3, 0.2), 1.1, -1, o->reps);
+    run_translation_row(tp, "oblique (1, .8, -.3)", v3(1, 0.8, -0.3), 1.1, -1, o->reps);
+    run_translation_row(tp, "away -x (tau < 0)", v3(-1, 0, 0), 1.1, 1, o->reps);
+    run_translation_row(tp, "sideways +y", v3(0, 1, 0), 1.1, 0, o->reps);
+    run_translation_row(tp, "sideways (.1, .6, .8)", v3(0.1, 0.6, 0.8), 1.1, -1, o->reps);
+    run_translation_row(tp, "overlap, +x", v3(1, 0, 0), 0.5, 1, o->reps);
+    run_translation_row(tp, "overlap, (0, .3, 1)", v3(0, 0.3, 1), 0.5, 1, o->reps);
+
+    /* ---------------------------------------------------------------- (g) */
+    printf("\n(g) px_intersect (boolean, GJK with early exit) over the motion of (d), warm cache and cold, "
+           "against\n"
+           "    Lin-Canny's intersecting flag; disagreements outside the touching band fail. Times in us.\n");
+    printf("\n      %-34s %9s %9s %9s %13s %12s  %s\n", "pair", "track med", "cold med", "agree",
+           "disagree out", "in band", "check");
+    for (int i = 0; i < 4; ++i) {
+        const intersect_stats *x = &ts[i].x;
+        printf("      %-34s %9.3f %9.3f %9lu %13lu %12lu  %s\n", pairs[i].name, x->track_med, x->cold_med,
+               x->agree, x->dis_out, x->dis_band, okfail(x->dis_out == 0));
+    }
+
+    px_convex_destroy(sc_tea.c);
+    px_convex_destroy(sc_puma.c);
+    px_convex_destroy(sphere.c);
+    px_convex_destroy(rod.c);
+    unsigned long f = g_check_failures - before;
+    printf("\nchecks of (d)-(g): %lu, %s: %lu failure(s).\n", g_checks, f ? "FAILED" : "passed", f);
+    return f;
 }
 
 /* ------------------------------------------------------------------------- */
@@ -915,7 +1496,9 @@ int main(int argc, char **argv) {
     printf("        safeguard fallbacks in all queries: %lu (answers still certified; expected 0).\n",
            g_fallbacks_total);
 
+    unsigned long new_failures = run_new_sections(models, tea, puma, &opts);
+
     for (int t = 0; t < 2; ++t) px_convex_destroy(tea[t].c);
     for (int t = 0; t < 2; ++t) px_convex_destroy(puma[t].c);
-    return failures ? 1 : 0;
+    return failures || new_failures ? 1 : 0;
 }

@@ -270,16 +270,8 @@ static void epa_witness(const epa *e, int best, double tol, pxi_penetration *out
             double off = pxi_len2(sx_point_of(&s));
             if (pass == 0 || off < win_off) win_off = off, win = s;
         }
-    px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
-    uint32_t ia[3], ib[3];
-    for (int m = 0; m < win.n; ++m) {
-        pa = pxi_madd(pa, e->a->v[win.p[m].ia], win.lam[m]);
-        pb = pxi_madd(pb, e->b->v[win.p[m].ib], win.lam[m]);
-        ia[m] = win.p[m].ia;
-        ib[m] = win.p[m].ib;
-    }
-    out->pa = pa;
-    out->pb = pb;
+    uint32_t ia[4], ib[4];
+    sx_witness(&win, e->a, e->b, &out->pa, &out->pb, ia, ib);
     out->fa = pxi_feature_of_vertices(e->a, ia, win.n, &out->pa);
     out->fb = pxi_feature_of_vertices(e->b, ib, win.n, &out->pb);
 }

@@ -1,4 +1,5 @@
-/* GJK distance, used to seed cold Lin-Canny walks and as their fallback.
+/* GJK: the distance method PX_METHOD_GJK, the boolean test, and the seed
+ * and fallback of cold Lin-Canny walks. One loop (egjk_run) serves all three.
  *
  * Sources: E. Gilbert, D. Johnson, S. Keerthi, "A fast procedure for
  * computing the distance between complex objects in three-dimensional
@@ -20,101 +21,12 @@
 #include "convex/convex.h"
 #include "math/vec3.h"
 #include "narrow/narrow.h"
-
 #include "narrow/simplex.h"
 
-/* Support of K = A - B in direction -v: A extreme along -v, B along +v.
- * Points of K are stored multiplied by `k`, a power of two that brings the
- * problem to unit scale: the simplex solver forms fourth powers of lengths,
- * which would overflow for bodies of 1e80 or underflow for bodies of 1e-80. */
-static sx_point support(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 v, double k) {
-    /* Always from the direction table: climbing from the previous support
-     * vertex is slower on large hulls, where early GJK directions jump. */
-    sx_point p;
-    p.ia = pxi_support(a, pxi_rot_t(t_ab->r, pxi_neg(v)), UINT32_MAX);
-    p.ib = pxi_support(b, v, UINT32_MAX);
-    p.w = pxi_scale(pxi_sub(pxi_xform(t_ab, a->v[p.ia]), b->v[p.ib]), k);
-    return p;
-}
-
-void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
-             uint32_t max_iterations, pxi_gjk_result *out) {
-    memset(out, 0, sizeof *out);
-    sx_simplex s;
-    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
-    double k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
-    /* First direction: centre to centre; a fixed non-axis direction when the
-     * centres coincide (fcl #346, libccd #25). */
-    px_vec3 v = pxi_sub(pxi_xform(t_ab, a->center), b->center);
-    if (!(pxi_len2(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
-    s.n = 1;
-    s.margin = 0.0;
-    s.p[0] = support(a, b, t_ab, v, k);
-    s.lam[0] = 1.0;
-    v = s.p[0].w;
-    double vv = pxi_len2(v), rel2 = rel_tol * rel_tol;
-    int inside = 0;
-    uint32_t it = 0;
-    while (it < max_iterations) {
-        if (!(vv > 0.0)) { /* origin on K: touching (or NaN: stop) */
-            inside = 1;
-            break;
-        }
-        ++it;
-        sx_point w = support(a, b, t_ab, v, k);
-        /* van den Bergen: stop when the duality gap |v|^2 - v.w is small
-         * relative to |v|^2. Written so that NaN stops the loop. */
-        double gap = vv - pxi_dot(v, w.w);
-        if (!(gap > rel2 * vv)) break;
-        int dup = 0;
-        for (int m = 0; m < s.n; ++m)
-            if (s.p[m].ia == w.ia && s.p[m].ib == w.ib) dup = 1;
-        if (dup) break;
-        sx_simplex prev = s;
-        s.lam[s.n] = 0.0;
-        s.p[s.n++] = w;
-        if (s.n == 2)
-            sx_closest_segment(&s);
-        else if (s.n == 3)
-            sx_closest_triangle(&s);
-        else if (sx_closest_tetra(&s)) {
-            inside = 1;
-            break;
-        }
-        px_vec3 nv = sx_point_of(&s);
-        double nvv = pxi_len2(nv);
-        if (!(nvv < vv)) { /* no progress: round-off floor reached */
-            s = prev;
-            break;
-        }
-        v = nv;
-        vv = nvv;
-    }
-    /* Witnesses from the barycentric weights of the final simplex. */
-    px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
-    double big = -1.0;
-    for (int m = 0; m < s.n; ++m) {
-        pa = pxi_madd(pa, a->v[s.p[m].ia], s.lam[m]);
-        pb = pxi_madd(pb, b->v[s.p[m].ib], s.lam[m]);
-        if (s.lam[m] > big) {
-            big = s.lam[m];
-            out->va = s.p[m].ia;
-            out->vb = s.p[m].ib;
-        }
-    }
-    out->pa = pa;
-    out->pb = pb;
-    out->intersecting = inside;
-    out->distance = inside ? 0.0 : sqrt(vv) / k;
-    out->inside_margin = inside && s.n == 4 ? s.margin / k : 0.0;
-    out->iterations = it;
-}
-
-/* ------------------------------------------------------------------------- */
-/* Enhanced GJK: the distance method PX_METHOD_GJK and the boolean test      */
-/* ------------------------------------------------------------------------- */
-
-/* One run on a pair: the power-of-two scale and where support climbs start.
+/* One run on a pair: the power-of-two scale (points of K are stored times
+ * k, a power of two that brings the problem to unit size: the simplex
+ * solver forms fourth powers of lengths, which would overflow for bodies of
+ * 1e80 or underflow for bodies of 1e-80) and where support climbs start.
  * Sources as above; the warm start from the previous simplex is Cameron's
  * (ICRA 1997, "Enhancing GJK") and van den Bergen's (JGT 1999, §5). */
 typedef struct egjk {
@@ -153,13 +65,15 @@ static sx_point egjk_support(egjk *g, px_vec3 v) {
 }
 
 /* Closest point of the simplex to the origin; 1 when the origin is inside a
- * tetrahedron. */
-static int egjk_solve(sx_simplex *s) {
+ * tetrahedron. `robust` = 0 trusts the tetrahedron's side tests as they are
+ * (the Lin-Canny seed, which checks the margin itself). */
+static int egjk_solve(sx_simplex *s, int robust) {
     switch (s->n) {
     case 1: s->lam[0] = 1.0; return 0;
     case 2: sx_closest_segment(s); return 0;
     case 3: sx_closest_triangle(s); return 0;
     default: {
+        if (!robust) return sx_closest_tetra(s);
         /* Inside only when the tetrahedron is fat enough for its side tests.
          * Otherwise the closest point over all four faces: the side tests
          * that would skip faces decide on noise when the new point is within
@@ -174,6 +88,80 @@ static int egjk_solve(sx_simplex *s) {
         return 0;
     }
     }
+}
+
+/* What ends a run. */
+typedef struct egjk_rules {
+    double abs2;  /* |v|^2 at or below this (scaled units): contact; 0 = only exactly */
+    double rel2;  /* van den Bergen's relative gap: stop when |v|^2 - v.w <= rel2 |v|^2 */
+    uint32_t cap; /* support calls in the loop */
+    int robust;   /* egjk_solve's mode */
+} egjk_rules;
+
+/* The GJK loop from a solved simplex s with closest point *v (|v|^2 in
+ * *vv): add K's support along -v, re-solve, until the duality gap closes, a
+ * support repeats, |v| stops shrinking (the round-off floor) or the origin
+ * is enclosed. NaN fails every comparison and stops the loop. Returns 1
+ * when the origin is inside K (or within the contact band). */
+static int egjk_run(egjk *g, sx_simplex *s, px_vec3 *v, double *vv, uint32_t *it, const egjk_rules *r) {
+    for (uint32_t k = 0; k < r->cap; ++k) {
+        if (!(*vv > r->abs2)) return 1; /* touching within the band (or NaN: stop) */
+        ++*it;
+        sx_point w = egjk_support(g, *v);
+        double gap = *vv - pxi_dot(*v, w.w);
+        if (!(gap > r->rel2 * *vv)) return 0;
+        if (sx_has(s, w.ia, w.ib)) return 0;
+        sx_simplex prev = *s;
+        s->lam[s->n] = 0.0;
+        s->p[s->n++] = w;
+        if (egjk_solve(s, r->robust)) return 1;
+        px_vec3 nv = sx_point_of(s);
+        double nvv = pxi_len2(nv);
+        if (!(nvv < *vv)) { /* no progress: round-off floor reached */
+            *s = prev;
+            return 0;
+        }
+        *v = nv;
+        *vv = nvv;
+    }
+    return 0;
+}
+
+/* Cold start: centre to centre; a fixed non-axis direction when the
+ * centres coincide (fcl #346, libccd #25). */
+static void egjk_cold(egjk *g, sx_simplex *s) {
+    px_vec3 c = pxi_sub(pxi_xform(g->t, g->a->center), g->b->center);
+    if (!(pxi_len2(c) > 0.0)) c = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+    s->n = 1;
+    s->margin = 0.0;
+    s->p[0] = egjk_support(g, c);
+    s->lam[0] = 1.0;
+}
+
+/* The Lin-Canny seed and fallback: cold, always from the direction table,
+ * contact only at exactly |v| = 0, the tetrahedron trusted as found (the
+ * caller checks inside_margin). */
+void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
+             uint32_t max_iterations, pxi_gjk_result *out) {
+    memset(out, 0, sizeof *out);
+    egjk g;
+    egjk_init(&g, a, b, t_ab);
+    sx_simplex s;
+    egjk_cold(&g, &s);
+    px_vec3 v = s.p[0].w;
+    double vv = pxi_len2(v);
+    uint32_t it = 0;
+    egjk_rules r = {0.0, rel_tol * rel_tol, max_iterations, 0};
+    int inside = egjk_run(&g, &s, &v, &vv, &it, &r);
+    uint32_t ia[4], ib[4];
+    sx_witness(&s, a, b, &out->pa, &out->pb, ia, ib);
+    int big = sx_heaviest(&s);
+    out->va = ia[big];
+    out->vb = ib[big];
+    out->intersecting = inside;
+    out->distance = inside ? 0.0 : sqrt(vv) / g.k;
+    out->inside_margin = inside && s.n == 4 ? s.margin / g.k : 0.0;
+    out->iterations = it;
 }
 
 /* The cached simplex, if every id is in range for this pair. */
@@ -323,68 +311,27 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
     egjk_init(&g, a, b, t_ab);
     sx_simplex s;
     int inside = 0;
-    uint32_t it = 0;
+    uint32_t it = 0, cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
     if (egjk_warm_simplex(&g, cache, &s)) {
         g.start_a = s.p[0].ia;
         g.start_b = s.p[0].ib;
-        inside = egjk_solve(&s);
+        inside = egjk_solve(&s, 1);
     } else {
-        px_vec3 c = pxi_sub(pxi_xform(t_ab, a->center), b->center);
-        if (!(pxi_len2(c) > 0.0)) c = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
-        s.n = 1;
-        s.margin = 0.0;
-        s.p[0] = egjk_support(&g, c);
-        s.lam[0] = 1.0;
+        egjk_cold(&g, &s);
         ++it;
+        --cap;
     }
     px_vec3 v = sx_point_of(&s);
     double vv = pxi_len2(v);
-    uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
-    while (!inside && it < cap) {
-        if (!(vv > EGJK_ABS * EGJK_ABS)) { /* touching within rounding (or NaN: stop) */
-            inside = 1;
-            break;
-        }
-        ++it;
-        sx_point w = egjk_support(&g, v);
-        double gap = vv - pxi_dot(v, w.w);
-        if (!(gap > EGJK_REL * EGJK_REL * vv)) break;
-        int dup = 0;
-        for (int m = 0; m < s.n; ++m) dup |= s.p[m].ia == w.ia && s.p[m].ib == w.ib;
-        if (dup) break;
-        sx_simplex prev = s;
-        s.lam[s.n] = 0.0;
-        s.p[s.n++] = w;
-        if (egjk_solve(&s)) {
-            inside = 1;
-            break;
-        }
-        px_vec3 nv = sx_point_of(&s);
-        double nvv = pxi_len2(nv);
-        if (!(nvv < vv)) { /* no progress: round-off floor reached */
-            s = prev;
-            break;
-        }
-        v = nv;
-        vv = nvv;
-    }
+    egjk_rules r = {EGJK_ABS * EGJK_ABS, EGJK_REL * EGJK_REL, cap, 1};
+    if (!inside) inside = egjk_run(&g, &s, &v, &vv, &it, &r);
     uint32_t ia[4], ib[4];
-    px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
-    for (int m = 0; m < s.n; ++m) {
-        pa = pxi_madd(pa, a->v[s.p[m].ia], s.lam[m]);
-        pb = pxi_madd(pb, b->v[s.p[m].ib], s.lam[m]);
-        ia[m] = s.p[m].ia;
-        ib[m] = s.p[m].ib;
-    }
-    out->pa = pa;
-    out->pb = pb;
+    sx_witness(&s, a, b, &out->pa, &out->pb, ia, ib);
     out->intersecting = inside;
     out->distance = inside ? 0.0 : sqrt(vv) / g.k;
     /* Intersecting: the simplex spans the overlap, not a feature; name the
      * vertices of largest weight (a witness pair, as the API says). */
-    int big = 0;
-    for (int m = 1; m < s.n; ++m)
-        if (s.lam[m] > s.lam[big]) big = m;
+    int big = sx_heaviest(&s);
     out->fa = inside ? pxi_feature_of_vertices(a, &ia[big], 1, NULL)
                      : pxi_feature_of_vertices(a, ia, s.n, &out->pa);
     out->fb = inside ? pxi_feature_of_vertices(b, &ib[big], 1, NULL)
@@ -430,15 +377,13 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
         ++it;
         sx_point w = egjk_support(&g, v);
         if (pxi_dot(v, w.w) > 0.0) break; /* separating axis */
-        int dup = 0;
-        for (int m = 0; m < s.n; ++m) dup |= s.p[m].ia == w.ia && s.p[m].ib == w.ib;
-        if (dup) { /* converged without a separating axis: touching */
+        if (sx_has(&s, w.ia, w.ib)) {     /* converged without a separating axis: touching */
             hit = 1;
             break;
         }
         s.lam[s.n] = 0.0;
         s.p[s.n++] = w;
-        if (egjk_solve(&s)) {
+        if (egjk_solve(&s, 1)) {
             hit = 1;
             break;
         }

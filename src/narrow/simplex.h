@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "convex/convex.h"
 #include "math/vec3.h"
 
 typedef struct sx_point {
@@ -190,6 +191,36 @@ static inline px_vec3 sx_point_of(const sx_simplex *s) {
     px_vec3 v = {0, 0, 0};
     for (int k = 0; k < s->n; ++k) v = pxi_madd(v, s->p[k].w, s->lam[k]);
     return v;
+}
+
+/* Is the vertex pair (ia, ib) already a point of the simplex? */
+static inline int sx_has(const sx_simplex *s, uint32_t ia, uint32_t ib) {
+    int dup = 0;
+    for (int m = 0; m < s->n; ++m) dup |= s->p[m].ia == ia && s->p[m].ib == ib;
+    return dup;
+}
+
+/* Index of the point of largest weight. */
+static inline int sx_heaviest(const sx_simplex *s) {
+    int big = 0;
+    for (int m = 1; m < s->n; ++m)
+        if (s->lam[m] > s->lam[big]) big = m;
+    return big;
+}
+
+/* Witness points of a simplex of vertex pairs: its weights applied to A's
+ * and B's vertices (each in its own body frame); the ids when not NULL. */
+static inline void sx_witness(const sx_simplex *s, const px_convex *a, const px_convex *b, px_vec3 *pa,
+                              px_vec3 *pb, uint32_t *ia, uint32_t *ib) {
+    px_vec3 x = {0, 0, 0}, y = {0, 0, 0};
+    for (int m = 0; m < s->n; ++m) {
+        x = pxi_madd(x, a->v[s->p[m].ia], s->lam[m]);
+        y = pxi_madd(y, b->v[s->p[m].ib], s->lam[m]);
+        if (ia) ia[m] = s->p[m].ia;
+        if (ib) ib[m] = s->p[m].ib;
+    }
+    *pa = x;
+    *pb = y;
 }
 
 #endif

@@ -117,9 +117,7 @@ static void tr_miss(tr_ctx *c, px_vec3 d, pxi_translation *out) {
         if (s.n > 0) {
             double gap = vv - pxi_dot(v, w.w);
             if (!(gap > 1e-24 * vv)) break;
-            int dup = 0;
-            for (int m = 0; m < s.n; ++m) dup |= s.p[m].ia == w.ia && s.p[m].ib == w.ib;
-            if (dup) break;
+            if (sx_has(&s, w.ia, w.ib)) break;
         }
         sx_simplex prev = s;
         s.lam[s.n] = 0.0;
@@ -140,18 +138,10 @@ static void tr_miss(tr_ctx *c, px_vec3 d, pxi_translation *out) {
     }
     out->iterations += it + 1;
     double len = sqrt(vv);
-    px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
     uint32_t ia[4], ib[4];
-    for (int m = 0; m < s.n; ++m) {
-        pa = pxi_madd(pa, c->a->v[s.p[m].ia], s.lam[m]);
-        pb = pxi_madd(pb, c->b->v[s.p[m].ib], s.lam[m]);
-        ia[m] = s.p[m].ia;
-        ib[m] = s.p[m].ib;
-    }
+    sx_witness(&s, c->a, c->b, &out->pa, &out->pb, ia, ib);
     out->hit = 0;
     out->tau = 0.0;
-    out->pa = pa;
-    out->pb = pb;
     out->gap = len > 0.0 && isfinite(len) ? len / c->k : 0.0;
     out->normal = len > 0.0 && isfinite(len) ? pxi_scale(v, 1.0 / len) : pxi_v(0, 0, 0);
     out->fa = pxi_feature_of_vertices(c->a, ia, s.n, &out->pa);
@@ -234,8 +224,7 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
                 s.lam[s.n++] = 0.0;
             }
         }
-        int dup = 0;
-        for (int m = 0; m < s.n; ++m) dup |= s.p[m].ia == p.ia && s.p[m].ib == p.ib;
+        int dup = sx_has(&s, p.ia, p.ib);
         if (!dup && s.n < 4) {
             s.p[s.n].ia = p.ia;
             s.p[s.n].ib = p.ib;
@@ -280,14 +269,9 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
     x = pxi_scale(d, tau);
     px_vec3 nv;
     tr_solve(&s, x, mpts, &nv);
-    px_vec3 pa = {0, 0, 0}, pb = {0, 0, 0};
+    px_vec3 pa, pb;
     uint32_t ia[4], ib[4];
-    for (int m = 0; m < s.n; ++m) {
-        pa = pxi_madd(pa, a->v[s.p[m].ia], s.lam[m]);
-        pb = pxi_madd(pb, b->v[s.p[m].ib], s.lam[m]);
-        ia[m] = s.p[m].ia;
-        ib[m] = s.p[m].ib;
-    }
+    sx_witness(&s, a, b, &pa, &pb, ia, ib);
     double nl = pxi_len(normal);
     out->hit = 1;
     out->tau = tau / c.k; /* M was scaled by k */

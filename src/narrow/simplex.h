@@ -6,6 +6,7 @@
 #ifndef PXI_SIMPLEX_H
 #define PXI_SIMPLEX_H
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -164,6 +165,26 @@ static inline int sx_closest_tetra(sx_simplex *s) {
     }
     *s = best_s;
     return 0;
+}
+
+/* Does the tetrahedron contain the origin with every side test certain?
+ * The four signed volumes with the origin replacing one vertex are triple
+ * products of coordinates up to m, each with an error below about
+ * 16 eps m^3; when all exceed 64 eps m^3 and share the total's sign, the
+ * origin is inside however flat the tetrahedron is. (sx_closest_tetra's own
+ * test asks for a volume of 1e-9 m^3, which misses overlaps of 1e-10 between
+ * nearly coplanar faces.) */
+static inline int sx_tetra_surely_contains(const sx_simplex *s) {
+    px_vec3 w0 = s->p[0].w, w1 = s->p[1].w, w2 = s->p[2].w, w3 = s->p[3].w;
+    double vol[4] = {pxi_dot(w1, pxi_cross(w2, w3)), -pxi_dot(w0, pxi_cross(w2, w3)),
+                     pxi_dot(w0, pxi_cross(w1, w3)), -pxi_dot(w0, pxi_cross(w1, w2))};
+    double m = 0.0;
+    for (int f = 0; f < 4; ++f)
+        if (pxi_max_abs(s->p[f].w) > m) m = pxi_max_abs(s->p[f].w);
+    double noise = 64.0 * DBL_EPSILON * m * m * m, tot = vol[0] + vol[1] + vol[2] + vol[3];
+    for (int f = 0; f < 4; ++f)
+        if (!(fabs(vol[f]) > noise) || !(vol[f] * tot > 0.0)) return 0;
+    return 1;
 }
 
 /* A tetrahedron too flat for its side tests (sx_closest_tetra found the

@@ -162,6 +162,9 @@ static double tr_refine(const px_vec3 *m, int n, px_vec3 d, double tau) {
     return tau;
 }
 
+static int tr_advance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d, double tau,
+                      px_vec3 n, px_feature fa, px_feature fb, pxi_translation *out);
+
 /* The GJK ray cast (cold, or when the warm path gives up). */
 static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
                        px_distance_cache *cache, pxi_translation *out) {
@@ -200,13 +203,19 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
     uint32_t it = 0;
     const double eps2 = (64.0 * DBL_EPSILON) * (64.0 * DBL_EPSILON);
     uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
-    int seeded = !warm;
+    int seeded = !warm, certain = 0;
+    double y2 = 1.0;
     while (it < cap) {
         ++it;
         sx_point p = tr_support(&c, v);
         px_vec3 w = pxi_sub(x, p.w);
         double vw = pxi_dot(v, w);
-        if (vw > 0.0) {
+        /* A plane separates only if v.w clears v's rounding (an absolute
+         * error of about eps max|x - m|): near contact between nearly
+         * coplanar facets, |v| is 1e-10 and a noisy plane would push the
+         * ray past the entry point. */
+        int advanced = vw > 16.0 * DBL_EPSILON * sqrt(y2) * pxi_len(w);
+        if (advanced) {
             double vr = pxi_dot(v, d);
             if (!(vr < 0.0)) break; /* the line misses M */
             lambda -= vw / vr;
@@ -233,22 +242,24 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
         tr_points(&c, &s, mpts);
         px_vec3 nv;
         int inside = tr_solve(&s, x, mpts, &nv);
-        double vv = pxi_len2(nv), y2 = 1.0;
+        double vv = pxi_len2(nv);
+        y2 = 1.0;
         for (int m = 0; m < s.n; ++m)
             if (pxi_len2(s.p[m].w) > y2) y2 = pxi_len2(s.p[m].w);
         /* van den Bergen's test: x within a relative 64 eps of the simplex
          * (the |x - m| are at least the pair's size, 1 here). */
         if (inside || !(vv > eps2 * y2)) {
             hit = 1;
+            certain = 1;
             break;
         }
-        if (!(vw > 0.0) && !(vv < pxi_len2(v))) {
+        if (!advanced && !(vv < pxi_len2(v))) {
             /* x did not move and the simplex got no closer: the rounding
              * floor, with x on M's boundary. */
             hit = 1;
             break;
         }
-        if (dup && !(vw > 0.0)) {
+        if (dup && !advanced) {
             /* A support point already kept, and no separating plane: v.w >=
              * |v|^2 would hold for it in exact arithmetic, so |v| is
              * rounding. x is on M's boundary. */
@@ -264,6 +275,35 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
         return;
     }
     tr_points(&c, &s, mpts);
+    if (!certain) {
+        /* Stopped at the rounding floor, x within |v| of M but not in the
+         * simplex: x is a proved lower bound, and conservative advancement
+         * with Lin-Canny (exact there) finishes from it. */
+        uint32_t ia[4], ib[4];
+        px_vec3 pa, pb;
+        sx_witness(&s, a, b, &pa, &pb, ia, ib);
+        px_feature fa = pxi_feature_of_vertices(a, ia, s.n, &pa),
+                   fb = pxi_feature_of_vertices(b, ib, s.n, &pb);
+        double nl = pxi_len(normal);
+        px_vec3 n = nl > 0.0 ? pxi_scale(normal, -1.0 / nl) : pxi_v(0, 0, 0);
+        if (tr_advance(a, b, t_ab, d, (tau0 + lambda) / c.k, n, fa, fb, out)) {
+            out->iterations += it;
+            if (cache) {
+                cache->simplex_count = (uint8_t)(s.n < 4 ? s.n : 3);
+                for (int m = 0; m < cache->simplex_count; ++m) {
+                    cache->vertex_a[m] = s.p[m].ia;
+                    cache->vertex_b[m] = s.p[m].ib;
+                }
+                cache->direction[0] = -out->normal.x;
+                cache->direction[1] = -out->normal.y;
+                cache->direction[2] = -out->normal.z;
+                cache->feature_a = out->fa;
+                cache->feature_b = out->fb;
+            }
+            return;
+        }
+        out->iterations = it;
+    }
     double tau = tr_refine(mpts, s.n, d, tau0 + lambda);
     /* Contact points from the final simplex's weights at x = tau d. */
     x = pxi_scale(d, tau);
@@ -374,14 +414,34 @@ static int tr_warm_lc(const px_convex *a, const px_convex *b, const px_pose *t_a
     uint32_t ia = pxi_support(a, pxi_rot_t(t_ab->r, pxi_neg(nu)), cache->vertex_a[0]);
     double h = pxi_dot(nu, pxi_sub(b->v[ib], pxi_xform(t_ab, a->v[ia])));
     double tau = h / nud;
+    if (!tr_advance(a, b, t_ab, d, tau, pxi_neg(nu), cache->feature_a, cache->feature_b, out)) return 0;
+    out->iterations += 1;
+    cache->feature_a = out->fa;
+    cache->feature_b = out->fb;
+    cache->direction[0] = -out->normal.x;
+    cache->direction[1] = -out->normal.y;
+    cache->direction[2] = -out->normal.z;
+    cache->vertex_a[0] = ia;
+    cache->vertex_b[0] = ib;
+    if (cache->simplex_count == 0) cache->simplex_count = 1;
+    return 1;
+}
+
+/* Conservative advancement from tau, a proved lower bound (A + tau d does
+ * not overlap B): the closest points give a separating plane, and moving A
+ * to it keeps tau a lower bound; n is the normal to report if the first
+ * query already touches, (fa, fb) the features Lin-Canny starts from.
+ * Returns 0 when it cannot conclude (a normal turning away from the motion,
+ * or slow convergence on a curved part of M). */
+static int tr_advance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d, double tau,
+                      px_vec3 n, px_feature fa, px_feature fb, pxi_translation *out) {
     double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
     double tol = 64.0 * DBL_EPSILON * span;
     px_distance_cache lc;
     memset(&lc, 0, sizeof lc);
-    lc.feature_a = cache->feature_a;
-    lc.feature_b = cache->feature_b;
+    lc.feature_a = fa;
+    lc.feature_b = fb;
     pxi_answer ans;
-    px_vec3 n = pxi_neg(nu);
     uint32_t steps = 0;
     for (;;) {
         if (steps >= TR_LC_STEPS) return 0;
@@ -389,7 +449,7 @@ static int tr_warm_lc(const px_convex *a, const px_convex *b, const px_pose *t_a
         tt.t = pxi_madd(tt.t, d, tau);
         pxi_lin_canny(a, b, &tt, &lc, &ans);
         ++steps;
-        if (ans.intersecting || !(ans.distance > tol)) break;
+        if (ans.intersecting) break;
         px_vec3 gap = pxi_sub(ans.pb, pxi_xform(&tt, ans.pa));
         double gl = pxi_len(gap);
         if (!(gl > 0.0)) break;
@@ -397,6 +457,7 @@ static int tr_warm_lc(const px_convex *a, const px_convex *b, const px_pose *t_a
         double nd = pxi_dot(n, d);
         if (!(nd > 1e-3 * sqrt(pxi_dot(d, d)))) return 0; /* may miss: the ray cast decides */
         tau += ans.distance / nd;
+        if (!(ans.distance > tol)) break; /* within rounding: that last step closes it */
         /* The same features touching at the new tau settle it without
          * another walk (exact for the facet pairs of M). */
         tt.t = pxi_madd(t_ab->t, d, tau);
@@ -414,15 +475,7 @@ static int tr_warm_lc(const px_convex *a, const px_convex *b, const px_pose *t_a
     out->normal = n;
     out->fa = ans.fa;
     out->fb = ans.fb;
-    out->iterations = steps + 1;
-    cache->feature_a = ans.fa;
-    cache->feature_b = ans.fb;
-    cache->direction[0] = -n.x;
-    cache->direction[1] = -n.y;
-    cache->direction[2] = -n.z;
-    cache->vertex_a[0] = ia;
-    cache->vertex_b[0] = ib;
-    if (cache->simplex_count == 0) cache->simplex_count = 1;
+    out->iterations = steps;
     return 1;
 }
 

@@ -106,10 +106,10 @@ set output dir . "/convex_translation_vs_n.png"
 set title "Collision translation: proxima px_translation (scratch, incremental δ = 1%) vs FCL continuousCollide (conservative advancement)"
 tseries(m, s, mode, delta) = qseries("translation", m, s, mode, delta)
 plot \
-  tseries("gjk", "balanced", "scratch", "")           w lp lc rgb c_g dt 1 pt 7 lw 2 t "px_translation  scratch  balanced", \
-  tseries("gjk", "thin", "scratch", "")               w lp lc rgb c_g dt 1 pt 5 lw 2 t "px_translation  scratch  thin", \
-  tseries("gjk", "balanced", "incremental", "0.01")   w lp lc rgb c_g dt 2 pt 6 lw 2 t "px_translation  incr. 1%  balanced", \
-  tseries("gjk", "thin", "incremental", "0.01")       w lp lc rgb c_g dt 2 pt 4 lw 2 t "px_translation  incr. 1%  thin", \
+  tseries("raycast-advance", "balanced", "scratch", "")           w lp lc rgb c_g dt 1 pt 7 lw 2 t "px_translation  scratch  balanced", \
+  tseries("raycast-advance", "thin", "scratch", "")               w lp lc rgb c_g dt 1 pt 5 lw 2 t "px_translation  scratch  thin", \
+  tseries("raycast-advance", "balanced", "incremental", "0.01")   w lp lc rgb c_g dt 2 pt 6 lw 2 t "px_translation  incr. 1%  balanced", \
+  tseries("raycast-advance", "thin", "incremental", "0.01")       w lp lc rgb c_g dt 2 pt 4 lw 2 t "px_translation  incr. 1%  thin", \
   tseries("fcl-ccd", "balanced", "scratch", "")       w lp lc rgb c_t dt 1 pt 7 t "FCL CA  scratch  balanced", \
   tseries("fcl-ccd", "thin", "scratch", "")           w lp lc rgb c_t dt 1 pt 5 t "FCL CA  scratch  thin", \
   tseries("fcl-ccd", "balanced", "incremental", "0.01") w lp lc rgb c_t dt 2 pt 6 t "FCL CA  incr. 1%  balanced", \

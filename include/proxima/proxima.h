@@ -272,7 +272,9 @@ typedef struct px_distance_result {
 /// used. `cache` may be NULL (always cold). On error the result is zeroed,
 /// the cache is left unchanged, and the status is returned
 /// (PX_ERR_INVALID_ARGUMENT for NULL polytopes, poses or result;
-/// PX_ERR_NON_FINITE / PX_ERR_INVALID_POSE for a bad pose).
+/// PX_ERR_NON_FINITE / PX_ERR_INVALID_POSE for a bad pose, and
+/// PX_ERR_NON_FINITE when the two poses are so far apart that T_AB
+/// overflows).
 px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
                       px_distance_cache *cache, px_distance_result *result);
 
@@ -325,7 +327,9 @@ typedef struct px_translation_result {
 /// difference (van den Bergen 2004) with exact refinement on the final
 /// facet; `cache` (may be NULL) warm-starts it from the previous answer of
 /// the same pair. PX_ERR_INVALID_ARGUMENT for a zero or NULL direction,
-/// PX_ERR_NON_FINITE for a non-finite one; bad poses as `px_distance`.
+/// PX_ERR_NON_FINITE for a non-finite one, or when tau itself overflows (a
+/// direction so short that the answer exceeds the double range); bad poses
+/// as `px_distance`.
 px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
                          px_vec3 direction, px_distance_cache *cache, px_translation_result *result);
 

@@ -293,23 +293,41 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
         pxi_gjk_distance(a, b, t_ab, NULL, &g, &own);
         start = &own;
     }
-    if (!epa_start(&e, start)) return; /* flat within rounding: depth 0 */
+    if (!epa_start(&e, start)) { /* flat within rounding: touching, no depth */
+        out->flat = 1;
+        return;
+    }
     /* Rounding band of a support value: n.w - d within it means "on K's
      * boundary". Relative to the pair's size (1 here), like GJK's. */
     const double tol = 64.0 * DBL_EPSILON;
     int best = epa_closest_face(&e);
     uint32_t it = 0;
+    /* The least support value seen, h_K(n) along a face normal n: an upper
+     * bound on the depth along a direction that really separates, kept for
+     * the case the budget runs out. */
+    double best_h = INFINITY;
+    px_vec3 best_n = {0, 0, 0};
+    uint32_t best_ia = 0, best_ib = 0;
     while (best >= 0) {
         epa_face *F = &e.f[best];
         sx_point w = epa_support(&e, F->n, &e.v[F->v[0]]);
         ++it;
+        if (pxi_dot(F->n, w.w) < best_h)
+            best_h = pxi_dot(F->n, w.w), best_n = F->n, best_ia = w.ia, best_ib = w.ib;
         if (!(pxi_dot(F->n, w.w) - F->d > tol)) break; /* F is on K's boundary */
         int dup = 0;
         for (int m = 0; m < e.nv && !dup; ++m) dup = e.v[m].ia == w.ia && e.v[m].ib == w.ib;
         if (dup) break;
-        if (e.nv >= EPA_MAX_V) {
+        if (e.nv >= EPA_MAX_V) { /* deep overlap of finely tessellated round bodies */
             out->fallback = 1;
-            break;
+            out->iterations = it;
+            out->depth = best_h > 0.0 ? best_h / e.k : 0.0;
+            out->normal = best_n;
+            out->pa = a->v[best_ia];
+            out->pb = pxi_madd(pxi_xform(t_ab, out->pa), best_n, -out->depth);
+            out->fa = pxi_feature_of_vertices(a, &best_ia, 1, NULL);
+            out->fb = pxi_feature_of_vertices(b, &best_ib, 1, NULL);
+            return;
         }
         e.v[e.nv++] = w;
         epa_face keep = *F;

@@ -381,28 +381,31 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
     egjk g;
     egjk_init(&g, a, b, t_ab);
     sx_simplex s;
+    px_vec3 v = pxi_sub(pxi_xform(t_ab, a->center), b->center);
+    if (cache) {
+        px_vec3 d = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
+        if (pxi_is_finite3(d) && pxi_len2(d) > 0.0) v = d; /* the last separating direction */
+        if (egjk_warm_simplex(&g, cache, &s)) {            /* its vertices only seed the climbs */
+            g.start_a = s.p[0].ia;
+            g.start_b = s.p[0].ib;
+        }
+    }
     s.n = 0;
     s.margin = 0.0;
-    px_vec3 v = pxi_sub(pxi_xform(t_ab, a->center), b->center);
-    if (cache && egjk_warm_simplex(&g, cache, &s)) {
-        px_vec3 d = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
-        if (pxi_is_finite3(d) && pxi_len2(d) > 0.0) v = d;
-        g.start_a = s.p[0].ia;
-        g.start_b = s.p[0].ib;
-        s.n = 0; /* the cached points only seed the climbs */
-    }
     if (!(pxi_len2(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
     uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0), it = 0;
-    int hit = 0;
+    int hit = -1; /* -1: not proved either way yet */
     double vv = pxi_len2(v);
     while (it < cap) {
         ++it;
         sx_point w = egjk_support(&g, v);
-        if (pxi_dot(v, w.w) > 0.0) break; /* separating axis */
-        if (sx_has(&s, w.ia, w.ib)) {     /* converged without a separating axis: touching */
-            hit = 1;
+        /* A separating axis only if the gap it proves clears the contact
+         * band (touching within rounding counts as intersecting). */
+        if (pxi_dot(v, w.w) > EGJK_ABS * sqrt(vv)) {
+            hit = 0;
             break;
         }
+        if (sx_has(&s, w.ia, w.ib)) break; /* repeat without a separating axis: not proved */
         s.lam[s.n] = 0.0;
         s.p[s.n++] = w;
         if (egjk_solve(&s, 1)) {
@@ -411,14 +414,21 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
         }
         px_vec3 nv = sx_point_of(&s);
         double nvv = pxi_len2(nv);
-        if (!(nvv > EGJK_ABS * EGJK_ABS) || (s.n > 1 && !(nvv < vv))) {
+        if (!(nvv > EGJK_ABS * EGJK_ABS)) { /* within the contact band of K */
             hit = 1;
             break;
         }
+        if (s.n > 1 && !(nvv < vv)) break; /* round-off floor: not proved */
         v = nv;
         vv = nvv;
     }
     egjk_store(&s, v, cache);
     if (iterations) *iterations = it;
-    return hit;
+    if (hit >= 0) return hit;
+    /* Stopped without a proof (a repeat, the round-off floor or the cap,
+     * near contact between nearly coplanar facets): the distance query
+     * decides, with its Lin-Canny finish where GJK's gap stays open. */
+    pxi_answer ans;
+    pxi_gjk_distance(a, b, t_ab, NULL, &ans, NULL);
+    return ans.intersecting;
 }

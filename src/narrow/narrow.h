@@ -76,7 +76,10 @@ typedef struct pxi_penetration {
     px_vec3 pa, pb; /* A's frame, B's frame */
     px_feature fa, fb;
     uint32_t iterations;
-    int fallback; /* 1 when the polytope budget ran out (answer is an upper bound) */
+    int fallback; /* 1 when the polytope budget ran out: depth is then an upper bound along a
+                     direction that does separate (moving B by depth * normal makes them touch),
+                     and pb = T pa - depth * normal may lie outside B */
+    int flat;     /* 1 when A - B is flat within rounding: no depth (touching within rounding) */
 } pxi_penetration;
 void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_simplex_pairs *start,
              pxi_penetration *out);

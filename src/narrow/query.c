@@ -9,12 +9,19 @@
 #include "math/vec3.h"
 #include "narrow/narrow.h"
 
+/* Checks the arguments every query shares and computes T_AB. Poses far
+ * apart (translations of opposite sign near 1e308) can overflow T_AB's
+ * translation even though each pose is finite: PX_ERR_NON_FINITE. */
 static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_convex *b,
-                            const px_pose *pose_b) {
+                            const px_pose *pose_b, px_pose *t_ab) {
     if (!a || !b || !pose_a || !pose_b) return PX_ERR_INVALID_ARGUMENT;
     px_status st = px_pose_check(pose_a, NULL);
     if (st == PX_OK) st = px_pose_check(pose_b, NULL);
-    return st;
+    if (st != PX_OK) return st;
+    /* Checked before the rotation: inf times a zero matrix entry is NaN. */
+    if (!pxi_is_finite3(pxi_sub(pose_a->t, pose_b->t))) return PX_ERR_NON_FINITE;
+    *t_ab = pxi_relative(pose_a, pose_b);
+    return pxi_is_finite3(t_ab->t) ? PX_OK : PX_ERR_NON_FINITE;
 }
 
 /* How far p is from face f: its distance to the face plane, or more when
@@ -103,10 +110,9 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     uint32_t method = options ? options->method : PX_METHOD_LIN_CANNY;
     uint32_t flags = options ? options->flags : 0u;
     if (method > PX_METHOD_HYBRID || (flags & ~PX_QUERY_SIGNED)) return PX_ERR_INVALID_ARGUMENT;
-    px_status st = check_pair(a, pose_a, b, pose_b);
+    px_pose t_ab;
+    px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
     if (st != PX_OK) return st;
-
-    px_pose t_ab = pxi_relative(pose_a, pose_b);
     pxi_answer ans;
     memset(&ans, 0, sizeof ans);
     pxi_simplex_pairs simplex;
@@ -137,6 +143,23 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     if (!(flags & PX_QUERY_SIGNED)) return PX_OK;
     pxi_penetration pen;
     pxi_epa(a, b, &t_ab, method == PX_METHOD_GJK ? &simplex : NULL, &pen);
+    if (pen.flat) return PX_OK; /* A - B flat within rounding: touching, as reported */
+    if (pen.fallback) {
+        /* EPA's budget ran out (deep overlap of finely tessellated round
+         * bodies): its best normal is kept, and the exact depth along it is
+         * a translation query, A moving along +n (entry tau = -depth), so
+         * the answer stays consistent: moving B by depth * normal makes the
+         * pair touch. */
+        pxi_translation tr;
+        pxi_translation_query(a, b, &t_ab, pen.normal, NULL, &tr);
+        if (tr.hit && tr.tau <= 0.0) {
+            pen.depth = -tr.tau;
+            pen.pa = tr.pa;
+            pen.pb = tr.pb;
+            pen.fa = tr.fa;
+            pen.fb = tr.fb;
+        }
+    }
     result->signed_distance = -pen.depth;
     result->point_a = pxi_xform(pose_a, pen.pa);
     result->point_b = pxi_xform(pose_b, pen.pb);
@@ -157,9 +180,9 @@ px_status px_intersect(const px_convex *a, const px_pose *pose_a, const px_conve
                        px_distance_cache *cache, int *intersecting) {
     if (intersecting) *intersecting = 0;
     if (!intersecting) return PX_ERR_INVALID_ARGUMENT;
-    px_status st = check_pair(a, pose_a, b, pose_b);
+    px_pose t_ab;
+    px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
     if (st != PX_OK) return st;
-    px_pose t_ab = pxi_relative(pose_a, pose_b);
     uint32_t it = 0;
     *intersecting = pxi_gjk_intersect(a, b, &t_ab, cache, &it);
     return PX_OK;
@@ -171,24 +194,28 @@ px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_con
     if (!result) return PX_ERR_INVALID_ARGUMENT;
     if (!pxi_is_finite3(direction)) return PX_ERR_NON_FINITE;
     if (!(pxi_max_abs(direction) > 0.0)) return PX_ERR_INVALID_ARGUMENT;
-    px_status st = check_pair(a, pose_a, b, pose_b);
+    px_pose t_ab;
+    px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
     if (st != PX_OK) return st;
-    px_pose t_ab = pxi_relative(pose_a, pose_b);
-    /* Scale the direction to unit max-norm first, so that its squared
-     * length can neither overflow nor underflow; tau is rescaled at the end. */
-    double k = ldexp(1.0, -ilogb(pxi_max_abs(direction)));
-    px_vec3 dir_b = pxi_rot_t(pose_b->r, pxi_scale(direction, k));
+    /* Scale the direction by 2^-e to max-norm in [1, 2) (exact, also for
+     * subnormal lengths), so that its squared length can neither overflow
+     * nor underflow; tau is rescaled at the end. */
+    int e = ilogb(pxi_max_abs(direction));
+    px_vec3 ds = pxi_v(ldexp(direction.x, -e), ldexp(direction.y, -e), ldexp(direction.z, -e));
+    px_vec3 dir_b = pxi_rot_t(pose_b->r, ds);
     pxi_translation tr;
     pxi_translation_query(a, b, &t_ab, dir_b, cache, &tr);
+    double tau = ldexp(tr.tau, -e);
+    if (!isfinite(tau)) return PX_ERR_NON_FINITE; /* a direction so short that tau overflows */
     result->hit = tr.hit;
-    result->tau = tr.tau * k;
+    result->tau = tau;
     result->iterations = tr.iterations;
     result->feature_a = tr.fa;
     result->feature_b = tr.fb;
     result->normal = pxi_rot(pose_b->r, tr.normal);
     result->gap = tr.gap;
     px_vec3 pa = pxi_xform(pose_a, tr.pa);
-    if (tr.hit) pa = pxi_madd(pa, direction, result->tau);
+    if (tr.hit) pa = pxi_madd(pa, ds, tr.tau); /* tau * direction, without overflow */
     result->point_a = pa;
     result->point_b = pxi_xform(pose_b, tr.pb);
     return PX_OK;

@@ -203,7 +203,7 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
     uint32_t it = 0;
     const double eps2 = (64.0 * DBL_EPSILON) * (64.0 * DBL_EPSILON);
     uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
-    int seeded = !warm, certain = 0;
+    int seeded = !warm, certain = 0, v_closest = 0, capped = 1;
     double y2 = 1.0;
     while (it < cap) {
         ++it;
@@ -253,13 +253,15 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
             certain = 1;
             break;
         }
-        if (!advanced && !(vv < pxi_len2(v))) {
+        /* The two stall exits below hold only once v is the closest point
+         * of a solved simplex (not the first direction, nor a warm hint). */
+        if (v_closest && !advanced && !(vv < pxi_len2(v))) {
             /* x did not move and the simplex got no closer: the rounding
              * floor, with x on M's boundary. */
             hit = 1;
             break;
         }
-        if (dup && !advanced) {
+        if (v_closest && dup && !advanced) {
             /* A support point already kept, and no separating plane: v.w >=
              * |v|^2 would hold for it in exact arithmetic, so |v| is
              * rounding. x is on M's boundary. */
@@ -267,6 +269,17 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
             break;
         }
         v = nv;
+        v_closest = 1;
+    }
+    if (hit || it < cap) capped = 0;
+    if (warm && (capped || (hit && !certain))) {
+        /* A warm run that did not converge cleanly (a stale hint can mislead
+         * the stall tests): the answer comes from a cold run instead. */
+        cache->simplex_count = 0;
+        memset(out, 0, sizeof *out);
+        tr_raycast(a, b, t_ab, dir, NULL, out);
+        out->iterations += it;
+        return;
     }
     out->iterations = it;
     if (!hit) {

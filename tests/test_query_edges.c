@@ -1,0 +1,218 @@
+/* Edge cases of the issue-4 queries found by a review of the code, one
+ * function each, each reproduced from the reviewer's inputs:
+ * - a warm px_translation whose cached hint misled its stall tests into a
+ *   hit where the line misses (and random direction changes on one cache);
+ * - px_intersect calling "intersecting" a pair separated by 1e-8 (boxes
+ *   tilted by 1e-9..1e-4 rad near face contact);
+ * - EPA's budget on deep overlaps of near-concentric round bodies: the
+ *   answer must still separate the pair exactly when applied;
+ * - A - B flat within rounding (thin plates): no point at the pose origins;
+ * - subnormal and overflowing translation directions, poses whose relative
+ *   transform overflows: a status, never NaN. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "gen.h"
+#include "math/vec3.h"
+#include "oracle_sat.h"
+#include "proxima/proxima.h"
+#include "test_util.h"
+
+static px_convex *box_at(double cx, double cy, double cz, double hx, double hy, double hz) {
+    double p[24];
+    tg_box(hx, hy, hz, p);
+    for (int i = 0; i < 8; ++i) p[3 * i] += cx, p[3 * i + 1] += cy, p[3 * i + 2] += cz;
+    return px_convex_from_points(p, 8, NULL, NULL);
+}
+
+static px_pose at(double x, double y, double z) {
+    px_pose p = px_pose_identity();
+    p.t = pxi_v(x, y, z);
+    return p;
+}
+
+/* Warm translation must agree with cold on hit/miss and tau, whatever the
+ * cache saw before (the reviewer's pair, then random direction changes). */
+static void test_warm_translation_hint(void) {
+    px_convex *a = box_at(0, 0, 0, 1, 1, 1), *b = box_at(0, 0, 0, 1, 1, 1);
+    px_pose pa = px_pose_identity(), pb = at(1.9623438693421853, 0.18832055771810283, 3.0350363747229396);
+    px_vec3 d0 = {-0.35896571893865292, 0.62651439771320938, -0.6918260779161991};
+    px_vec3 d1 = {-0.99359547034384488, 0.039608627144730291, -0.10582626312926095};
+    px_distance_cache c;
+    memset(&c, 0, sizeof c);
+    px_translation_result r0, rw, rc;
+    px_translation(a, &pa, b, &pb, d0, &c, &r0);
+    px_translation(a, &pa, b, &pb, d1, &c, &rw);
+    px_translation(a, &pa, b, &pb, d1, NULL, &rc);
+    CHECK(r0.hit && !rc.hit && !rw.hit && fabs(rw.gap - rc.gap) <= 1e-12,
+          "reviewer's pair: first hit %d, warm hit %d gap %.17g, cold hit %d gap %.17g", r0.hit, rw.hit,
+          rw.gap, rc.hit, rc.gap);
+    /* Random directions on one cache, several pairs of small hulls. */
+    tg_rng rng;
+    tg_seed(&rng, 4242);
+    double xyz[3 * 40];
+    int bad = 0, n = 0;
+    for (int pair = 0; pair < 20; ++pair) {
+        tg_points_ball(&rng, 12 + pair, 1.0, xyz);
+        px_convex *p = px_convex_from_points(xyz, (size_t)(12 + pair), NULL, NULL);
+        tg_points_ball(&rng, 30 - pair, 0.7, xyz);
+        px_convex *q = px_convex_from_points(xyz, (size_t)(30 - pair), NULL, NULL);
+        if (!p || !q) continue;
+        px_pose pp = tg_pose_random(&rng, 0.0), pq = tg_pose_random(&rng, 3.0);
+        memset(&c, 0, sizeof c);
+        for (int k = 0; k < tu_scaled(100); ++k, ++n) {
+            px_vec3 d = tg_unit(&rng);
+            px_translation_result w, cold;
+            px_translation(p, &pp, q, &pq, d, &c, &w);
+            px_translation(p, &pp, q, &pq, d, NULL, &cold);
+            double size = pxi_len(pxi_sub(pp.t, pq.t)) + 2.0;
+            int same = w.hit == cold.hit && (!w.hit || fabs(w.tau - cold.tau) <= 1e-9 * size) &&
+                       (w.hit || fabs(w.gap - cold.gap) <= 1e-9 * size);
+            if (!same && bad++ < 5)
+                CHECK(0, "pair %d step %d: warm hit %d tau %.17g gap %.3g, cold hit %d tau %.17g gap %.3g",
+                      pair, k, w.hit, w.tau, w.gap, cold.hit, cold.tau, cold.gap);
+        }
+        px_convex_destroy(p);
+        px_convex_destroy(q);
+    }
+    CHECK(bad == 0, "%d of %d warm translations differ from cold", bad, n);
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+}
+
+/* px_intersect near face contact with tiny tilts: must agree with the
+ * distance query outside a 1e-12 band. */
+static void test_intersect_near_contact(void) {
+    px_convex *a = box_at(0, 0, 0, 1, 1, 1), *b = box_at(0, 0, 0, 1, 1, 1);
+    int wrong = 0, n = 0;
+    for (int e = 4; e <= 12; ++e)
+        for (int k = 1; k <= 9; ++k)
+            for (int gi = 6; gi <= 11; ++gi, ++n) {
+                double ang = k * pow(10.0, -e), gap = pow(10.0, -gi);
+                px_pose pa = px_pose_identity(), pb = px_pose_identity();
+                tg_rot_axis_angle(pxi_v(0.6, 0.8, 0), ang, pb.r);
+                pb.t = pxi_v(0.3, 0.2, 2.0);
+                px_distance_result r;
+                px_distance(a, &pa, b, &pb, NULL, &r);
+                pb.t.z += gap - r.distance;
+                px_distance(a, &pa, b, &pb, NULL, &r);
+                int in = -1;
+                px_intersect(a, &pa, b, &pb, NULL, &in);
+                if (r.distance > 1e-12 && in != 0 && wrong++ < 5)
+                    CHECK(0, "tilt %g gap %g: distance %.3g but px_intersect says %d", ang, gap, r.distance,
+                          in);
+            }
+    CHECK(wrong == 0, "px_intersect wrong on %d of %d near-contact poses", wrong, n);
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+}
+
+/* Deep overlap of near-concentric spheres of 500 and 1,000 vertices: even
+ * when EPA's budget runs out (counted in fallbacks), moving B by the depth
+ * along the normal must leave the pair exactly touching, and the depth must
+ * be within 1 % of the SAT oracle. */
+static void test_epa_deep_round(void) {
+    tg_rng rng;
+    tg_seed(&rng, 1);
+    static double xyz[3 * 1000];
+    for (int n = 500; n <= 1000; n += 500) {
+        tg_points_sphere(&rng, (size_t)n, 1.0, xyz);
+        px_convex *s = px_convex_from_points(xyz, (size_t)n, NULL, NULL);
+        os_shape sh;
+        if (!s || os_shape_init(&sh, s) != 0) continue;
+        for (int off = 0; off < 3; ++off) {
+            px_pose pa = px_pose_identity(), pb = at(0.01 * off, 0.0, 0.0);
+            os_pen_result orc;
+            os_penetration(&sh, &pa, &sh, &pb, &orc);
+            for (int m = 0; m < 3; ++m) {
+                px_query_options o;
+                memset(&o, 0, sizeof o);
+                o.method = (uint32_t)m;
+                o.flags = PX_QUERY_SIGNED;
+                px_distance_result r;
+                px_status st = px_distance_ex(s, &pa, s, &pb, &o, NULL, &r);
+                double depth = -r.signed_distance;
+                px_pose moved = pb;
+                moved.t = pxi_madd(pb.t, r.normal, depth * (1.0 + 1e-12));
+                px_distance_result after;
+                px_distance(s, &pa, s, &moved, NULL, &after);
+                CHECK(
+                    st == PX_OK && isfinite(depth) && fabs(depth - orc.depth) <= 1e-2 * orc.depth &&
+                        after.distance <= 1e-9 && fabs(pxi_len(r.normal) - 1.0) <= 1e-12,
+                    "sphere %d method %d offset %d: depth %.17g oracle %.17g (fallbacks %u), distance after "
+                    "the move %.3g",
+                    n, m, off, depth, orc.depth, r.fallbacks, after.distance);
+            }
+        }
+        os_shape_free(&sh);
+        px_convex_destroy(s);
+    }
+}
+
+/* Plates whose Minkowski difference is flat within rounding: the signed
+ * answer is "touching" with a common point on both bodies, not the pose
+ * origins. */
+static void test_flat_difference(void) {
+    px_convex *a = box_at(1e6, 1e6, 1e6, 1, 1, 5e-8), *b = box_at(1e6 + 0.5, 1e6 + 0.3, 1e6, 1, 1, 5e-8);
+    px_pose id = px_pose_identity();
+    for (int m = 0; m < 3 && a && b; ++m) {
+        px_query_options o;
+        memset(&o, 0, sizeof o);
+        o.method = (uint32_t)m;
+        o.flags = PX_QUERY_SIGNED;
+        px_distance_result r;
+        px_status st = px_distance_ex(a, &id, b, &id, &o, NULL, &r);
+        px_vec3 resid = pxi_sub(pxi_sub(r.point_b, r.point_a), pxi_scale(r.normal, r.signed_distance));
+        CHECK(st == PX_OK && r.intersecting && fabs(r.point_a.x - 1e6) < 2.0 &&
+                  fabs(r.point_b.z - 1e6) < 1.0 && pxi_max_abs(resid) <= 1e-9,
+              "plates, method %d: point_a (%.17g %.17g %.17g), signed %.3g", m, r.point_a.x, r.point_a.y,
+              r.point_a.z, r.signed_distance);
+    }
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+}
+
+/* Directions of subnormal length, tau beyond the double range, and poses
+ * whose relative transform overflows: statuses, no NaN. */
+static void test_extreme_numbers(void) {
+    px_convex *a = box_at(0, 0, 0, 1, 1, 1), *b = box_at(0, 0, 0, 1, 1, 1);
+    px_pose pa = px_pose_identity(), pb = at(5, 0, 0), far = at(1e10, 0, 0);
+    px_translation_result t;
+    px_pose near = at(2.01, 0, 0); /* gap 0.01: tau = 1e308 along a direction of 1e-310 */
+    px_status st = px_translation(a, &pa, b, &near, pxi_v(1e-310, 0, 0), NULL, &t);
+    CHECK(st == PX_OK && t.hit && isfinite(t.tau) && fabs(t.tau * 1e-310 - 0.01) <= 1e-12 &&
+              pxi_is_finite3(t.point_a),
+          "subnormal direction: status %d hit %d tau %g", st, t.hit, t.tau);
+    st = px_translation(a, &pa, b, &pb, pxi_v(4.9e-324, 0, 0), NULL, &t);
+    CHECK(st == PX_ERR_NON_FINITE && t.hit == 0 && t.tau == 0.0,
+          "smallest subnormal direction: tau overflows, status %d tau %g", st, t.tau);
+    st = px_translation(a, &pa, b, &far, pxi_v(1e-300, 0, 0), NULL, &t);
+    CHECK(st == PX_ERR_NON_FINITE, "tau = 1e310: status %d tau %g", st, t.tau);
+    px_pose p1 = at(1.5e308, 0, 0), p2 = at(-1.5e308, 0, 0);
+    px_distance_result r;
+    for (uint32_t m = 0; m < 3; ++m) {
+        px_query_options o;
+        memset(&o, 0, sizeof o);
+        o.method = m;
+        CHECK(px_distance_ex(a, &p1, b, &p2, &o, NULL, &r) == PX_ERR_NON_FINITE && r.distance == 0.0,
+              "poses +-1.5e308, method %u: T_AB overflows", m);
+    }
+    int in = 7;
+    CHECK(px_intersect(a, &p1, b, &p2, NULL, &in) == PX_ERR_NON_FINITE && in == 0,
+          "px_intersect at +-1.5e308");
+    CHECK(px_translation(a, &p1, b, &p2, pxi_v(1, 0, 0), NULL, &t) == PX_ERR_NON_FINITE,
+          "px_translation at +-1.5e308");
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+}
+
+int main(void) {
+    tu_init("test_query_edges");
+    test_warm_translation_hint();
+    test_intersect_near_contact();
+    test_epa_deep_round();
+    test_flat_difference();
+    test_extreme_numbers();
+    return tu_finish();
+}

@@ -8,19 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* --- small vector helpers (local copies: the oracle stays independent) --- */
-static px_vec3 v3(double x, double y, double z) {
-    px_vec3 r = {x, y, z};
-    return r;
-}
-static px_vec3 add(px_vec3 a, px_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static px_vec3 sub(px_vec3 a, px_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-static px_vec3 mul(px_vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
-static double dot(px_vec3 a, px_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static px_vec3 cross(px_vec3 a, px_vec3 b) {
-    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-static double len(px_vec3 a) { return sqrt(dot(a, a)); }
+#include "oracle_vec.h"
+
 static double dist(px_vec3 a, px_vec3 b) { return len(sub(a, b)); }
 /* a + t (b - a), evaluated from the nearer end for accuracy. */
 static px_vec3 lerp(px_vec3 a, px_vec3 b, double t) {

@@ -64,11 +64,7 @@ typedef struct epa {
 } epa;
 
 static sx_point epa_point(const epa *e, uint32_t ia, uint32_t ib) {
-    sx_point p;
-    p.ia = ia;
-    p.ib = ib;
-    p.w = pxi_scale(pxi_sub(pxi_xform(e->t, e->a->v[ia]), e->b->v[ib]), e->k);
-    return p;
+    return sx_pair_point(e->a, e->b, e->t, e->k, ia, ib);
 }
 
 /* Support of K along n (scaled frame): A extreme along n, B along -n.
@@ -283,8 +279,7 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
     e.a = a;
     e.b = b;
     e.t = t_ab;
-    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
-    e.k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
+    e.k = sx_pair_scale(a, b, t_ab);
     pxi_simplex_pairs own;
     if (!start || start->n < 4) {
         /* Lin-Canny and the hybrid do not keep a simplex: GJK finds one

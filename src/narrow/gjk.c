@@ -23,10 +23,8 @@
 #include "narrow/narrow.h"
 #include "narrow/simplex.h"
 
-/* One run on a pair: the power-of-two scale (points of K are stored times
- * k, a power of two that brings the problem to unit size: the simplex
- * solver forms fourth powers of lengths, which would overflow for bodies of
- * 1e80 or underflow for bodies of 1e-80) and where support climbs start.
+/* One run on a pair: the power-of-two scale (sx_pair_scale) and where
+ * support climbs start.
  * Sources as above; the warm start from the previous simplex is Cameron's
  * (ICRA 1997, "Enhancing GJK") and van den Bergen's (JGT 1999, §5). */
 typedef struct egjk {
@@ -40,17 +38,12 @@ static void egjk_init(egjk *g, const px_convex *a, const px_convex *b, const px_
     g->a = a;
     g->b = b;
     g->t = t_ab;
-    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
-    g->k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
+    g->k = sx_pair_scale(a, b, t_ab);
     g->start_a = g->start_b = UINT32_MAX;
 }
 
 static sx_point egjk_point(const egjk *g, uint32_t ia, uint32_t ib) {
-    sx_point p;
-    p.ia = ia;
-    p.ib = ib;
-    p.w = pxi_scale(pxi_sub(pxi_xform(g->t, g->a->v[ia]), g->b->v[ib]), g->k);
-    return p;
+    return sx_pair_point(g->a, g->b, g->t, g->k, ia, ib);
 }
 
 /* Support of K = A - B along -v. Warm runs climb from the previous support
@@ -316,7 +309,7 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
     egjk_init(&g, a, b, t_ab);
     sx_simplex s;
     int inside = 0;
-    uint32_t it = 0, cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
+    uint32_t it = 0, cap = sx_iteration_cap(a, b);
     if (egjk_warm_simplex(&g, cache, &s)) {
         g.start_a = s.p[0].ia;
         g.start_b = s.p[0].ib;
@@ -393,7 +386,7 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
     s.n = 0;
     s.margin = 0.0;
     if (!(pxi_len2(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
-    uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0), it = 0;
+    uint32_t cap = sx_iteration_cap(a, b), it = 0;
     int hit = -1; /* -1: not proved either way yet */
     double vv = pxi_len2(v);
     while (it < cap) {

@@ -26,6 +26,31 @@ typedef struct sx_simplex {
     double margin; /* origin inside: its least distance to a face plane */
 } sx_simplex;
 
+/* The power of two k that brings a pair's problem to unit size: points of
+ * A - B are stored times k, because the simplex solvers form fourth powers
+ * of lengths, which would overflow for bodies of 1e80 or underflow for
+ * bodies of 1e-80. Exact, so scaled runs see the same bits. */
+static inline double sx_pair_scale(const px_convex *a, const px_convex *b, const px_pose *t_ab) {
+    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
+    return span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
+}
+
+/* The point (T_AB a_ia - b_ib) k of A - B, with its vertex pair. */
+static inline sx_point sx_pair_point(const px_convex *a, const px_convex *b, const px_pose *t_ab, double k,
+                                     uint32_t ia, uint32_t ib) {
+    sx_point p;
+    p.ia = ia;
+    p.ib = ib;
+    p.w = pxi_scale(pxi_sub(pxi_xform(t_ab, a->v[ia]), b->v[ib]), k);
+    return p;
+}
+
+/* Support calls a GJK-type loop may make on a pair: a safeguard far above
+ * what polytopes need (their loops end on a repeated support). */
+static inline uint32_t sx_iteration_cap(const px_convex *a, const px_convex *b) {
+    return 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
+}
+
 /* Keep the points whose flag is set, with their weights. */
 static inline void sx_keep(sx_simplex *s, const int *use, const double *lam) {
     sx_simplex out;

@@ -172,8 +172,7 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
     c.a = a;
     c.b = b;
     c.t = t_ab;
-    double span = a->scale + b->scale + pxi_max_abs(t_ab->t);
-    c.k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
+    c.k = sx_pair_scale(a, b, t_ab);
     c.start_a = c.start_b = UINT32_MAX;
     px_vec3 d = dir;
     double dd = pxi_dot(d, d);
@@ -202,7 +201,7 @@ static void tr_raycast(const px_convex *a, const px_convex *b, const px_pose *t_
     int hit = 0;
     uint32_t it = 0;
     const double eps2 = (64.0 * DBL_EPSILON) * (64.0 * DBL_EPSILON);
-    uint32_t cap = 64 + 4 * (uint32_t)ilogb((double)a->nv + b->nv + 1.0);
+    uint32_t cap = sx_iteration_cap(a, b);
     int seeded = !warm, certain = 0, v_closest = 0, capped = 1;
     double y2 = 1.0;
     while (it < cap) {

@@ -322,6 +322,19 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
             out->pb = pxi_madd(pxi_xform(t_ab, out->pa), best_n, -out->depth);
             out->fa = pxi_feature_of_vertices(a, &best_ia, 1, NULL);
             out->fb = pxi_feature_of_vertices(b, &best_ib, 1, NULL);
+            /* That support value over-estimates the depth along best_n; the
+             * exact depth along it is a translation query, A moving along +n
+             * (entry tau = -depth), whose contact points lie on both
+             * boundaries, so moving B by depth * normal makes them touch. */
+            pxi_translation tr;
+            pxi_translation_query(a, b, t_ab, best_n, NULL, &tr);
+            if (tr.hit && tr.tau <= 0.0) {
+                out->depth = -tr.tau;
+                out->pa = tr.pa;
+                out->pb = tr.pb;
+                out->fa = tr.fa;
+                out->fb = tr.fb;
+            }
             return;
         }
         e.v[e.nv++] = w;

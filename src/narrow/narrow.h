@@ -68,17 +68,15 @@ void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_
  * `start` (a GJK simplex whose hull contains the origin; may be NULL or
  * lower-dimensional). Outputs in B's frame except pa (A's frame): depth >= 0,
  * unit normal n with pa - pb = depth * n (pa mapped into B's frame), i.e.
- * translating B by depth * n makes the pair touch. Returns the number of
- * expansions. */
+ * translating B by depth * n makes the pair touch. */
 typedef struct pxi_penetration {
     double depth;
     px_vec3 normal; /* B's frame */
     px_vec3 pa, pb; /* A's frame, B's frame */
     px_feature fa, fb;
     uint32_t iterations;
-    int fallback; /* 1 when the polytope budget ran out: depth is then an upper bound along a
-                     direction that does separate (moving B by depth * normal makes them touch),
-                     and pb = T pa - depth * normal may lie outside B */
+    int fallback; /* 1 when the polytope budget ran out: the depth is then exact along EPA's
+                     best normal (a translation query), not necessarily the least over all */
     int flat;     /* 1 when A - B is flat within rounding: no depth (touching within rounding) */
 } pxi_penetration;
 void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_simplex_pairs *start,

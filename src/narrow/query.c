@@ -144,22 +144,6 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     pxi_penetration pen;
     pxi_epa(a, b, &t_ab, method == PX_METHOD_GJK ? &simplex : NULL, &pen);
     if (pen.flat) return PX_OK; /* A - B flat within rounding: touching, as reported */
-    if (pen.fallback) {
-        /* EPA's budget ran out (deep overlap of finely tessellated round
-         * bodies): its best normal is kept, and the exact depth along it is
-         * a translation query, A moving along +n (entry tau = -depth), so
-         * the answer stays consistent: moving B by depth * normal makes the
-         * pair touch. */
-        pxi_translation tr;
-        pxi_translation_query(a, b, &t_ab, pen.normal, NULL, &tr);
-        if (tr.hit && tr.tau <= 0.0) {
-            pen.depth = -tr.tau;
-            pen.pa = tr.pa;
-            pen.pb = tr.pb;
-            pen.fa = tr.fa;
-            pen.fb = tr.fb;
-        }
-    }
     result->signed_distance = -pen.depth;
     result->point_a = pxi_xform(pose_a, pen.pa);
     result->point_b = pxi_xform(pose_b, pen.pb);

@@ -89,8 +89,6 @@ static int feature_valid(const px_convex *c, px_feature f) {
     }
 }
 
-static int finite3(px_vec3 p) { return isfinite(p.x) && isfinite(p.y) && isfinite(p.z); }
-
 int tc_query_and_check(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
                        px_distance_cache *cache, tc_report *rep) {
     memset(rep, 0, sizeof *rep);
@@ -100,7 +98,7 @@ int tc_query_and_check(const px_convex *a, const px_pose *pa, const px_convex *b
         add_msg(rep, TC_STATUS, "px_distance returned %s", px_status_string(rep->status));
         return rep->fail;
     }
-    if (!isfinite(r->distance) || !finite3(r->point_a) || !finite3(r->point_b)) {
+    if (!isfinite(r->distance) || !pxi_is_finite3(r->point_a) || !pxi_is_finite3(r->point_b)) {
         add_msg(rep, TC_NONFINITE, "non-finite result");
         return rep->fail;
     }

@@ -66,8 +66,6 @@ static double pair_size(const shape *a, const px_pose *pa, const shape *b, const
     return pxi_len(pxi_sub(pa->t, pb->t)) + a->s.radius + b->s.radius;
 }
 
-static int finite3(px_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-
 static px_pose moved(const px_pose *p, px_vec3 dir, double s) {
     px_pose q = *p;
     q.t = pxi_madd(q.t, dir, s);
@@ -92,8 +90,8 @@ static int check_signed(const shape *A, const px_pose *pa, const shape *B, const
     g_st.fallbacks[method] += r.fallbacks;
     const char *mn = method_names[method];
     CHECK(st == PX_OK, "%s #%ld %s: status %s", what, idx, mn, px_status_string(st));
-    int fin = isfinite(r.distance) && isfinite(r.signed_distance) && finite3(r.point_a) &&
-              finite3(r.point_b) && finite3(r.normal);
+    int fin = isfinite(r.distance) && isfinite(r.signed_distance) && pxi_is_finite3(r.point_a) &&
+              pxi_is_finite3(r.point_b) && pxi_is_finite3(r.normal);
     CHECK(fin, "%s #%ld %s: non-finite result", what, idx, mn);
     if (st != PX_OK || !fin) return tu_fail_count - before;
     double gap = pxi_len(pxi_sub(r.point_b, r.point_a));
@@ -350,8 +348,8 @@ static void check_touching(const shape *A, const px_pose *pa, const shape *B, co
         px_query_options opt = {(uint32_t)m, PX_QUERY_SIGNED, {0}};
         px_distance_result r;
         px_status st = px_distance_ex(A->c, pa, B->c, pb, &opt, NULL, &r);
-        CHECK(st == PX_OK && isfinite(r.signed_distance) && finite3(r.point_a) && finite3(r.point_b) &&
-                  finite3(r.normal) && fabs(r.signed_distance) <= tol,
+        CHECK(st == PX_OK && isfinite(r.signed_distance) && pxi_is_finite3(r.point_a) &&
+                  pxi_is_finite3(r.point_b) && pxi_is_finite3(r.normal) && fabs(r.signed_distance) <= tol,
               "%s %s: status %s signed %.17g", what, method_names[m], px_status_string(st),
               r.signed_distance);
         if (exact)

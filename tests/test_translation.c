@@ -40,8 +40,6 @@ typedef struct stats {
 } stats;
 static stats g_st;
 
-static int finite3(px_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
-
 /* |v| without overflow or underflow (directions of length 1e200, 1e-200). */
 static double safe_len(px_vec3 v) {
     double m = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
@@ -130,8 +128,8 @@ static int check_query(const shape *A, const px_pose *pa, const shape *B, const 
     g_st.queries++;
     if (out) *out = r;
     CHECK(st == PX_OK, "%s #%ld: status %s", what, idx, px_status_string(st));
-    int fin =
-        isfinite(r.tau) && isfinite(r.gap) && finite3(r.point_a) && finite3(r.point_b) && finite3(r.normal);
+    int fin = isfinite(r.tau) && isfinite(r.gap) && pxi_is_finite3(r.point_a) && pxi_is_finite3(r.point_b) &&
+              pxi_is_finite3(r.normal);
     CHECK(fin, "%s #%ld: non-finite result", what, idx);
     if (st != PX_OK || !fin) return tu_fail_count - before;
     os_tr_result o;

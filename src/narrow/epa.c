@@ -36,8 +36,10 @@
 
 #include "convex/convex.h"
 #include "math/vec3.h"
+#include "narrow/feature.h"
 #include "narrow/narrow.h"
 #include "narrow/simplex.h"
+#include "narrow/tolerance.h"
 
 #define EPA_MAX_V 192
 #define EPA_MAX_F (2 * EPA_MAX_V)
@@ -262,7 +264,7 @@ static void epa_witness(const epa *e, int best, double tol, pxi_penetration *out
                 s.p[m].w = pxi_sub(s.p[m].w, foot);
                 s.lam[m] = 0.0;
             }
-            sx_closest_triangle(&s);
+            pxi_sx_triangle(&s);
             double off = pxi_len2(sx_point_of(&s));
             if (pass == 0 || off < win_off) win_off = off, win = s;
         }
@@ -279,22 +281,14 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
     e.a = a;
     e.b = b;
     e.t = t_ab;
-    e.k = sx_pair_scale(a, b, t_ab);
-    pxi_simplex_pairs own;
-    if (!start || start->n < 4) {
-        /* Lin-Canny and the hybrid do not keep a simplex: GJK finds one
-         * (cheaply: the pair is known to intersect). */
-        pxi_answer g;
-        pxi_gjk_distance(a, b, t_ab, NULL, &g, &own);
-        start = &own;
-    }
+    e.k = pxi_pair_unit(a, b, t_ab);
     if (!epa_start(&e, start)) { /* flat within rounding: touching, no depth */
         out->flat = 1;
         return;
     }
     /* Rounding band of a support value: n.w - d within it means "on K's
      * boundary". Relative to the pair's size (1 here), like GJK's. */
-    const double tol = 64.0 * DBL_EPSILON;
+    const double tol = PXI_SUPPORT_NOISE;
     int best = epa_closest_face(&e);
     uint32_t it = 0;
     /* The least support value seen, h_K(n) along a face normal n: an upper
@@ -313,8 +307,11 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
         int dup = 0;
         for (int m = 0; m < e.nv && !dup; ++m) dup = e.v[m].ia == w.ia && e.v[m].ib == w.ib;
         if (dup) break;
-        if (e.nv >= EPA_MAX_V) { /* deep overlap of finely tessellated round bodies */
-            out->fallback = 1;
+        if (e.nv >= EPA_MAX_V) {
+            /* Deep overlap of finely tessellated round bodies. The support
+             * value over-estimates the depth along best_n; the caller may take
+             * the exact depth along it (a translation query). */
+            out->outcome = PXI_OUT_OF_STEPS;
             out->iterations = it;
             out->depth = best_h > 0.0 ? best_h / e.k : 0.0;
             out->normal = best_n;
@@ -322,19 +319,6 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
             out->pb = pxi_madd(pxi_xform(t_ab, out->pa), best_n, -out->depth);
             out->fa = pxi_feature_of_vertices(a, &best_ia, 1, NULL);
             out->fb = pxi_feature_of_vertices(b, &best_ib, 1, NULL);
-            /* That support value over-estimates the depth along best_n; the
-             * exact depth along it is a translation query, A moving along +n
-             * (entry tau = -depth), whose contact points lie on both
-             * boundaries, so moving B by depth * normal makes them touch. */
-            pxi_translation tr;
-            pxi_translation_query(a, b, t_ab, best_n, NULL, &tr);
-            if (tr.hit && tr.tau <= 0.0) {
-                out->depth = -tr.tau;
-                out->pa = tr.pa;
-                out->pb = tr.pb;
-                out->fa = tr.fa;
-                out->fb = tr.fb;
-            }
             return;
         }
         e.v[e.nv++] = w;
@@ -342,7 +326,7 @@ void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const 
         int next = epa_expand(&e, best);
         if (next < 0) {
             /* Degenerate cone or full arrays: report the last good face. */
-            out->fallback = 1;
+            out->outcome = PXI_UNPROVEN;
             e.f[0] = keep;
             e.nf = 1;
             best = 0;

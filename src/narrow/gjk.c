@@ -20,10 +20,13 @@
 
 #include "convex/convex.h"
 #include "math/vec3.h"
+#include "narrow/closest.h"
+#include "narrow/feature.h"
 #include "narrow/narrow.h"
 #include "narrow/simplex.h"
+#include "narrow/tolerance.h"
 
-/* One run on a pair: the power-of-two scale (sx_pair_scale) and where
+/* One run on a pair: the power-of-two scale (pxi_pair_unit) and where
  * support climbs start.
  * Sources as above; the warm start from the previous simplex is Cameron's
  * (ICRA 1997, "Enhancing GJK") and van den Bergen's (JGT 1999, §5). */
@@ -38,7 +41,7 @@ static void egjk_init(egjk *g, const px_convex *a, const px_convex *b, const px_
     g->a = a;
     g->b = b;
     g->t = t_ab;
-    g->k = sx_pair_scale(a, b, t_ab);
+    g->k = pxi_pair_unit(a, b, t_ab);
     g->start_a = g->start_b = UINT32_MAX;
 }
 
@@ -63,21 +66,21 @@ static sx_point egjk_support(egjk *g, px_vec3 v) {
 static int egjk_solve(sx_simplex *s, int robust) {
     switch (s->n) {
     case 1: s->lam[0] = 1.0; return 0;
-    case 2: sx_closest_segment(s); return 0;
-    case 3: sx_closest_triangle(s); return 0;
+    case 2: pxi_sx_segment(s); return 0;
+    case 3: pxi_sx_triangle(s); return 0;
     default: {
-        if (!robust) return sx_closest_tetra(s);
+        if (!robust) return pxi_sx_tetra(s);
         /* Inside only when the tetrahedron is fat enough for its side tests.
          * Otherwise the closest point over all four faces: the side tests
          * that would skip faces decide on noise when the new point is within
          * rounding of the old triangle's plane (a 1e-12 dihedral angle), and
          * skipping the right face would stall GJK on the wrong facet. */
         sx_simplex t = *s;
-        if (sx_closest_tetra(&t) && (t.margin > 0.0 || sx_tetra_surely_contains(s))) {
+        if (pxi_sx_tetra(&t) && (t.margin > 0.0 || pxi_sx_tetra_surely_contains(s))) {
             *s = t;
             return 1;
         }
-        sx_closest_flat_tetra(s);
+        pxi_sx_flat_tetra(s);
         return 0;
     }
     }
@@ -95,13 +98,14 @@ typedef struct egjk_rules {
  * *vv): add K's support along -v, re-solve, until the duality gap closes, a
  * support repeats, |v| stops shrinking (the round-off floor) or the origin
  * is enclosed. NaN fails every comparison and stops the loop. Returns 1
- * when the origin is inside K (or within the contact band); *last_gap is
+ * when the origin is inside K, 2 when |v| is within the contact band (or
+ * NaN), 0 otherwise; *last_gap is
  * the last duality gap |v|^2 - v.w (the distance lies in
  * [(|v|^2 - gap) / |v|, |v|]). */
 static int egjk_run(egjk *g, sx_simplex *s, px_vec3 *v, double *vv, uint32_t *it, const egjk_rules *r,
                     double *last_gap) {
     for (uint32_t k = 0; k < r->cap; ++k) {
-        if (!(*vv > r->abs2)) return 1; /* touching within the band (or NaN: stop) */
+        if (!(*vv > r->abs2)) return 2; /* touching within the band (or NaN: stop) */
         ++*it;
         sx_point w = egjk_support(g, *v);
         double gap = *vv - pxi_dot(*v, w.w);
@@ -138,8 +142,8 @@ static void egjk_cold(egjk *g, sx_simplex *s) {
 /* The Lin-Canny seed and fallback: cold, always from the direction table,
  * contact only at exactly |v| = 0, the tetrahedron trusted as found (the
  * caller checks inside_margin). */
-void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
-             uint32_t max_iterations, pxi_gjk_result *out) {
+void pxi_gjk_seed_run(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
+                      uint32_t max_iterations, pxi_gjk_seed *out) {
     memset(out, 0, sizeof *out);
     egjk g;
     egjk_init(&g, a, b, t_ab);
@@ -150,7 +154,7 @@ void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double
     uint32_t it = 0;
     egjk_rules r = {0.0, rel_tol * rel_tol, max_iterations, 0};
     double gap = 0.0;
-    int inside = egjk_run(&g, &s, &v, &vv, &it, &r, &gap);
+    int inside = egjk_run(&g, &s, &v, &vv, &it, &r, &gap) != 0;
     uint32_t ia[4], ib[4];
     sx_witness(&s, a, b, &out->pa, &out->pb, ia, ib);
     int big = sx_heaviest(&s);
@@ -187,14 +191,6 @@ static void egjk_store(const sx_simplex *s, px_vec3 dir, px_distance_cache *cach
     cache->direction[1] = dir.y;
     cache->direction[2] = dir.z;
 }
-
-/* Contact tolerance in scaled units (the pair spans about 1): |v| below it
- * is touching within rounding, as in Lin-Canny's contact test. */
-#define EGJK_ABS (32.0 * DBL_EPSILON)
-/* Relative duality-gap tolerance: |v|^2 - v.w <= REL^2 |v|^2 bounds the
- * relative error of |v| by REL^2. On polytopes the loop nearly always ends
- * earlier, when the support repeats a simplex point. */
-#define EGJK_REL 1e-8
 
 /* Final polish of a separated answer: the distance between the convex hulls
  * of the final simplex's A vertices and B vertices (at most three each),
@@ -238,8 +234,8 @@ static void polish_point_set(polish_best *best, px_vec3 p, uint32_t ip, const px
         t.p[k].ib = 0;
         t.lam[k] = 1.0;
     }
-    if (nq == 2) sx_closest_segment(&t);
-    if (nq == 3) sx_closest_triangle(&t);
+    if (nq == 2) pxi_sx_segment(&t);
+    if (nq == 3) pxi_sx_triangle(&t);
     px_vec3 c = p;
     uint32_t ids[3];
     for (int k = 0; k < t.n; ++k) {
@@ -321,12 +317,12 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
     }
     px_vec3 v = sx_point_of(&s);
     double vv = pxi_len2(v);
-    egjk_rules r = {EGJK_ABS * EGJK_ABS, EGJK_REL * EGJK_REL, cap, 1};
+    egjk_rules r = {PXI_GJK_CONTACT * PXI_GJK_CONTACT, PXI_GJK_REL * PXI_GJK_REL, cap, 1};
     double gap = 0.0;
     if (!inside) inside = egjk_run(&g, &s, &v, &vv, &it, &r, &gap);
     uint32_t ia[4], ib[4];
     sx_witness(&s, a, b, &out->pa, &out->pb, ia, ib);
-    out->intersecting = inside;
+    out->intersecting = inside != 0;
     out->distance = inside ? 0.0 : sqrt(vv) / g.k;
     /* Intersecting: the simplex spans the overlap, not a feature; name the
      * vertices of largest weight (a witness pair, as the API says). */
@@ -337,21 +333,16 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
                      : pxi_feature_of_vertices(b, ib, s.n, &out->pb);
     out->iterations = it;
     if (!inside) egjk_polish(&g, &s, out);
-    if (!inside && !(gap <= 1e-6 * vv)) {
+    out->outcome = PXI_DONE;
+    if (inside == 2) out->approx = PXI_APPROX_CONTACT_BAND;
+    if (!inside && !(gap <= PXI_GJK_OPEN_GAP * vv)) {
         /* The loop stopped on a repeat or at the round-off floor with the
          * duality gap still open: the lower bound (|v|^2 - gap) / |v| is
          * far below |v|, so separation is not proved. This happens within
          * about 1e-9 of the size of contact between nearly coplanar facets,
-         * where v's direction is known only to eps / |v|. Lin-Canny, exact
-         * there, finishes from GJK's closest features. */
-        px_distance_cache lc;
-        memset(&lc, 0, sizeof lc);
-        lc.feature_a = out->fa;
-        lc.feature_b = out->fb;
-        uint32_t gjk_it = out->iterations;
-        pxi_lin_canny(a, b, t_ab, &lc, out);
-        out->iterations += gjk_it;
-        inside = out->intersecting;
+         * where v's direction is known only to eps / |v|. */
+        out->outcome = PXI_UNPROVEN;
+        out->gap = vv > 0.0 ? (gap / sqrt(vv)) / g.k : INFINITY;
     }
     egjk_store(&s, v, cache);
     if (cache) {
@@ -369,8 +360,8 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
  * along -v), or when the simplex encloses the origin. A warm cache first
  * tries the previous separating direction: one support pair when the pair
  * is still separated along it. */
-int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
-                      uint32_t *iterations) {
+pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                              px_distance_cache *cache, int *intersecting, uint32_t *iterations) {
     egjk g;
     egjk_init(&g, a, b, t_ab);
     sx_simplex s;
@@ -394,7 +385,7 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
         sx_point w = egjk_support(&g, v);
         /* A separating axis only if the gap it proves clears the contact
          * band (touching within rounding counts as intersecting). */
-        if (pxi_dot(v, w.w) > EGJK_ABS * sqrt(vv)) {
+        if (pxi_dot(v, w.w) > PXI_GJK_CONTACT * sqrt(vv)) {
             hit = 0;
             break;
         }
@@ -407,7 +398,7 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
         }
         px_vec3 nv = sx_point_of(&s);
         double nvv = pxi_len2(nv);
-        if (!(nvv > EGJK_ABS * EGJK_ABS)) { /* within the contact band of K */
+        if (!(nvv > PXI_GJK_CONTACT * PXI_GJK_CONTACT)) { /* within the contact band of K */
             hit = 1;
             break;
         }
@@ -417,11 +408,8 @@ int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_a
     }
     egjk_store(&s, v, cache);
     if (iterations) *iterations = it;
-    if (hit >= 0) return hit;
+    *intersecting = hit > 0;
     /* Stopped without a proof (a repeat, the round-off floor or the cap,
-     * near contact between nearly coplanar facets): the distance query
-     * decides, with its Lin-Canny finish where GJK's gap stays open. */
-    pxi_answer ans;
-    pxi_gjk_distance(a, b, t_ab, NULL, &ans, NULL);
-    return ans.intersecting;
+     * near contact between nearly coplanar facets): the caller decides. */
+    return hit >= 0 ? PXI_DONE : PXI_UNPROVEN;
 }

@@ -50,13 +50,13 @@
 
 #include "convex/convex.h"
 #include "math/vec3.h"
+#include "narrow/feature.h"
 #include "narrow/narrow.h"
+#include "narrow/tolerance.h"
 
 /* van den Bergen's relative tolerance: stop when |v|^2 - v.(wA - wB) <=
  * REL_TOL^2 |v|^2. */
 #define REL_TOL 1e-13
-/* Distance below ABS_C eps span: contact (seed 001's absolute error Ae). */
-#define ABS_C 8.0
 /* A duality gap below GAP_C eps |v| span is rounding noise: it cannot lower
  * the distance by more than the coordinates' own rounding. */
 #define GAP_C 8.0
@@ -568,9 +568,8 @@ static void finish(const hy_ctx *x, int intersecting, pxi_answer *out) {
 /* Sets up the frame: origin o = B's first vertex, scale k. */
 static void setup_frame(hy_ctx *x) {
     const px_pose *t = x->t_ab;
-    double span = x->c[0]->scale + x->c[1]->scale + pxi_max_abs(t->t);
-    x->k = span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
-    x->span = span * x->k;
+    x->k = pxi_pair_unit(x->c[0], x->c[1], t);
+    x->span = pxi_pair_span(x->c[0], x->c[1], t) * x->k;
     x->o = x->c[1]->v[x->s[1].id[0]];
     x->to = pxi_sub(t->t, x->o);
     for (int i = 0; i < 2; ++i)
@@ -608,7 +607,7 @@ void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_
     solve(x.s[0].p, x.s[0].n, x.s[1].p, x.s[1].n, &r);
     int state = r.hit ? HY_HIT : HY_MOVED;
     if (!r.hit) accept(&x, &r);
-    double abs_tol = ABS_C * DBL_EPSILON * x.span;
+    double abs_tol = PXI_HYBRID_CONTACT * DBL_EPSILON * x.span;
     uint32_t cap = round_cap(a, b), rounds = 0;
     int turn = 0; /* seed 001: one body per update, alternating */
     while (state == HY_MOVED && rounds < cap) {
@@ -628,11 +627,12 @@ void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_
         finish(&x, 1, out);
     } else if (state == HY_MOVED && x.vv > abs_tol * abs_tol) {
         /* Out of rounds: a safeguard that should never trigger. */
-        pxi_gjk_distance(a, b, t_ab, NULL, out, NULL);
-        out->iterations += x.iterations;
-        out->fallbacks = 1;
+        finish(&x, 0, out);
+        out->outcome = PXI_OUT_OF_STEPS;
     } else {
-        finish(&x, x.vv <= abs_tol * abs_tol, out);
+        int band = x.vv <= abs_tol * abs_tol;
+        finish(&x, band, out);
+        if (band) out->approx = PXI_APPROX_CONTACT_BAND;
     }
     store_cache(&x, cache, out);
 }

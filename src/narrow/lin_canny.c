@@ -43,7 +43,10 @@
 #include "convex/convex.h"
 #include "core/core.h"
 #include "math/vec3.h"
+#include "narrow/closest.h"
+#include "narrow/feature.h"
 #include "narrow/narrow.h"
+#include "narrow/tolerance.h"
 
 #define NONE UINT32_MAX
 
@@ -51,12 +54,9 @@ enum { LC_CONTINUE, LC_DONE, LC_PENETRATION };
 /* lc_walk's other outcomes. */
 enum { LC_REPEAT = -1, LC_OUT_OF_STEPS = -2 };
 
-/* Steps a cold walk from the line-of-centres guess may take before the
- * query switches to the GJK seed (see px_distance). */
-#define COLD_BUDGET 12
 /* Bodies with px_convex.roundness below this (a width ratio over 13
- * directions) go straight to the GJK seed: on a 1:8:40 ellipsoid the line of
- * centres is a poor guess and the walk from it takes tens of steps. */
+ * directions) do not start from the line of centres: on a 1:8:40 ellipsoid it
+ * is a poor guess and the walk from it takes tens of steps. */
 #define COLD_ROUND 0.5
 
 typedef struct lc_ctx {
@@ -66,6 +66,7 @@ typedef struct lc_ctx {
     px_vec3 p[2];    /* at the end: closest (or witness) points, each in its own body frame */
     double dist;
     double tie; /* 0, or the relative margin of the tie-breaking mode (see noise()) */
+    int band;   /* contact was decided within the rounding band, not proved */
 } lc_ctx;
 
 static inline px_vec3 to_other(const lc_ctx *x, int i, px_vec3 p) { return pxi_xform(&x->T[i], p); }
@@ -140,98 +141,6 @@ static int face_violation(double tie, const px_convex *c, uint32_t f, px_vec3 p,
         }
     }
     return *edge != NONE;
-}
-
-/* ---- Segment helpers. ---- */
-
-static inline double clamp01(double x) { return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x; }
-
-/* Closest points of two segments (Ericson, Real-Time Collision Detection
- * §5.1.9, rewritten). The closed form divides by a e - b^2 = |d1|^2 |d2|^2
- * sin^2(angle); its parameters carry an error of about eps / sin^2, harmless
- * where the minimum is well defined. For nearly parallel segments (sin^2 below
- * 1e-6) the distance is nearly constant along the overlap and the closed form
- * is noise, so the answer is the best of well-conditioned candidates: the four
- * endpoint-to-segment projections, plus the closed form if it lands inside
- * both segments. Each candidate is a real pair of points, so the minimum is
- * never below the true distance and misses it by at most second order. */
-static double seg_dist2(px_vec3 d1, px_vec3 d2, px_vec3 r, double s, double t) {
-    /* |p0 + s d1 - (q0 + t d2)|^2 with r = p0 - q0 */
-    return pxi_len2(pxi_sub(pxi_madd(r, d1, s), pxi_scale(d2, t)));
-}
-
-void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double *s_out, double *t_out) {
-    px_vec3 d1 = pxi_sub(p1, p0), d2 = pxi_sub(q1, q0), r = pxi_sub(p0, q0);
-    /* Work at unit scale (a power of two, so exactly): a * e below is a
-     * fourth power of lengths and would overflow at 1e80 or underflow at
-     * 1e-80; the parameters s, t do not depend on the scale. */
-    double m = pxi_max_abs(d1);
-    if (pxi_max_abs(d2) > m) m = pxi_max_abs(d2);
-    if (pxi_max_abs(r) > m) m = pxi_max_abs(r);
-    if (m > 0.0 && isfinite(m)) {
-        double k = ldexp(1.0, -ilogb(m));
-        d1 = pxi_scale(d1, k), d2 = pxi_scale(d2, k), r = pxi_scale(r, k);
-    }
-    double a = pxi_dot(d1, d1), e = pxi_dot(d2, d2), f = pxi_dot(d2, r);
-    double c = pxi_dot(d1, r), b = pxi_dot(d1, d2);
-    double s, t;
-    if (!(a > 0.0) || !(e > 0.0)) { /* degenerate segment: cannot happen on a valid hull */
-        *s_out = 0.0;
-        *t_out = e > 0.0 ? clamp01(f / e) : 0.0;
-        return;
-    }
-    double denom = a * e - b * b;
-    if (denom > 1e-6 * a * e) {
-        s = clamp01((b * f - c * e) / denom);
-        t = (b * s + f) / e;
-        if (t < 0.0) {
-            t = 0.0;
-            s = clamp01(-c / a);
-        } else if (t > 1.0) {
-            t = 1.0;
-            s = clamp01((b - c) / a);
-        }
-        *s_out = s;
-        *t_out = t;
-        return;
-    }
-    /* Nearly parallel. Candidates: endpoints of one against the other. */
-    double cs[5], ct[5];
-    int n = 0;
-    cs[n] = 0.0, ct[n++] = clamp01(f / e);       /* p0 on q */
-    cs[n] = 1.0, ct[n++] = clamp01((b + f) / e); /* p1 on q */
-    cs[n] = clamp01(-c / a), ct[n++] = 0.0;      /* q0 on p */
-    cs[n] = clamp01((b - c) / a), ct[n++] = 1.0; /* q1 on p */
-    /* The crossing of the two lines, from the cross product: a e - b^2
-     * cancels catastrophically at small angles (sin^2 1e-9 = 1e-18 < eps),
-     * |d1 x d2|^2 keeps relative precision eps / sin. */
-    px_vec3 cr = pxi_cross(d1, d2), qp = pxi_neg(r);
-    double den2 = pxi_dot(cr, cr);
-    if (den2 > 0.0) {
-        double si = pxi_dot(pxi_cross(qp, d2), cr) / den2, ti = pxi_dot(pxi_cross(qp, d1), cr) / den2;
-        if (si >= 0.0 && si <= 1.0 && ti >= 0.0 && ti <= 1.0) cs[n] = si, ct[n++] = ti;
-    }
-    double best = INFINITY;
-    s = t = 0.0;
-    for (int k = 0; k < n; ++k) {
-        double d = seg_dist2(d1, d2, r, cs[k], ct[k]);
-        if (d < best) best = d, s = cs[k], t = ct[k];
-    }
-    /* Exactly parallel with overlap: every overlap point is closest; prefer
-     * the middle of the overlap so that both points are edge interiors and
-     * the region tests see no false violation at a shared endpoint plane. */
-    if (den2 <= 1e-30 * a * e) {
-        double s0 = -c / a, s1 = (b - c) / a;
-        double lo = s0 < s1 ? s0 : s1, hi = s0 < s1 ? s1 : s0;
-        if (lo < 0.0) lo = 0.0;
-        if (hi > 1.0) hi = 1.0;
-        if (lo < hi) {
-            double sm = 0.5 * (lo + hi), tm = clamp01((b * sm + f) / e);
-            if (seg_dist2(d1, d2, r, sm, tm) <= best) s = sm, t = tm;
-        }
-    }
-    *s_out = s;
-    *t_out = t;
 }
 
 static inline px_vec3 lerp(px_vec3 a, px_vec3 b, double s) { return pxi_madd(a, pxi_sub(b, a), s); }
@@ -327,7 +236,7 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     }
     px_vec3 t = cj->v[E->tail], h = cj->v[E->head];
     px_vec3 d = pxi_sub(h, t);
-    double lam = clamp01(pxi_dot(pxi_sub(q, t), d) / pxi_dot(d, d));
+    double lam = pxi_clamp01(pxi_dot(pxi_sub(q, t), d) / pxi_dot(d, d));
     px_vec3 y = lerp(t, h, lam);
     int clip = x->tie == 0.0 ? -1 : 0;
     if (clip < 0) { /* exact mode: clip E against the cone of v (V-Clip) */
@@ -382,10 +291,11 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     const px_vec3 f0 = cj->v[cj->f_verts[F->first]];
     double h = pxi_dot(F->n, pxi_sub(q, f0));
     x->p[i] = ci->v[v];
-    if (fabs(h) <= 16.0 * DBL_EPSILON * (pxi_max_abs(q) + cj->scale)) {
+    if (fabs(h) <= PXI_LC_CONTACT * (pxi_max_abs(q) + cj->scale)) {
         /* The vertex lies on the face plane up to the rounding of q: contact. */
         x->p[j] = q;
         x->dist = 0.0;
+        x->band = 1;
         return LC_PENETRATION;
     }
     /* Is the foot of the perpendicular in VR(v)? An edge at v along which
@@ -418,9 +328,10 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     uint32_t g = highest_face(cj, q, &hb);
     /* Inside or on every face plane, up to the rounding of q (NaN also ends
      * here): a vertex lying on the other body's surface is contact. */
-    if (!(hb > 16.0 * DBL_EPSILON * (pxi_max_abs(q) + cj->scale))) {
+    if (!(hb > PXI_LC_CONTACT * (pxi_max_abs(q) + cj->scale))) {
         x->p[j] = q;
         x->dist = 0.0;
+        x->band = !(hb < -PXI_LC_CONTACT * (pxi_max_abs(q) + cj->scale)); /* inside by less than noise */
         return LC_PENETRATION;
     }
     x->f[j] = feat(PX_FEATURE_FACE, g);
@@ -600,7 +511,7 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
      * A height within the rounding of the points is contact, as in
      * vertex_face (deciding its sign here and there independently would let
      * the two states undo each other). */
-    double hnoise = 16.0 * DBL_EPSILON * (pxi_max_abs(plo) + pxi_max_abs(phi) + cj->scale);
+    double hnoise = PXI_LC_CONTACT * (pxi_max_abs(plo) + pxi_max_abs(phi) + cj->scale);
     if (fabs(hl) <= hnoise || fabs(hh) <= hnoise || (hl <= 0.0) != (hh <= 0.0) || hl == 0.0 || hh == 0.0 ||
         !(hl == hl && hh == hh)) {
         /* The clipped edge meets the face plane inside the prism: the edge
@@ -616,6 +527,7 @@ static int edge_face(lc_ctx *x, int i) { /* edge on i, face on j */
         x->p[j] = lerp(p0, p1, lam);
         x->p[i] = lerp(ci->v[Ei->tail], ci->v[Ei->head], lam);
         x->dist = 0.0;
+        x->band = fabs(hl) <= hnoise || fabs(hh) <= hnoise; /* an end on the plane within rounding */
         return LC_PENETRATION;
     }
     /* Same side: |height| is linear along the clipped edge; follow its
@@ -658,15 +570,6 @@ static int lc_step(lc_ctx *x) {
     return edge_face(x, i);
 }
 
-static int feature_valid(const px_convex *c, px_feature f) {
-    switch (f.type) {
-    case PX_FEATURE_VERTEX: return f.index < c->nv;
-    case PX_FEATURE_EDGE: return f.index < c->ne;
-    case PX_FEATURE_FACE: return f.index < c->nf;
-    default: return 0;
-    }
-}
-
 /* Runs the walk from x->f. Returns the final state, LC_REPEAT when it
  * revisited a recent pair (a floating-point cycle), or LC_OUT_OF_STEPS. */
 static int lc_walk(lc_ctx *x, uint32_t max_steps, uint32_t *iterations) {
@@ -702,11 +605,14 @@ static int lc_walk(lc_ctx *x, uint32_t max_steps, uint32_t *iterations) {
  *   B's highest and A's lowest vertex along it, by support queries. If they
  *   overlap by more than the noise, the solids intersect.
  * Returns 1 when the pair is really contact. */
-static int contact_within_rounding(const lc_ctx *x) {
+static int contact_within_rounding(lc_ctx *x) {
     const px_convex *a = x->c[0], *b = x->c[1];
     px_vec3 pa = pxi_xform(&x->T[0], x->p[0]);
-    double noise_d = 16.0 * DBL_EPSILON * (pxi_max_abs(pa) + pxi_max_abs(x->p[1]));
-    if (x->dist <= noise_d) return 1;
+    double noise_d = PXI_LC_CONTACT * (pxi_max_abs(pa) + pxi_max_abs(x->p[1]));
+    if (x->dist <= noise_d) {
+        x->band = 1;
+        return 1;
+    }
     double span =
         a->radius + b->radius + pxi_len(x->T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
     if (x->dist > 1e-8 * span) return 0;
@@ -723,39 +629,13 @@ static int contact_within_rounding(const lc_ctx *x) {
     return gap < -64.0 * DBL_EPSILON * span;
 }
 
-/* Cold start, second try (thin or far-from-round bodies, where the line of
- * centres is a poor guess): GJK to a loose tolerance finds vertices near the
- * closest points in a few support queries (direction table plus hill
- * climbing), and the walk starts from there. Returns the walk's result, or
- * LC_PENETRATION with a common point in x->p when GJK already proved an
- * overlap. */
-static int cold_start_gjk(lc_ctx *x, uint32_t cap, uint32_t *iterations) {
-    const px_convex *a = x->c[0], *b = x->c[1];
-    pxi_gjk_result g;
-    /* A few iterations suffice: the walk finishes the job, and each GJK
-     * iteration (two support queries) costs about three walk steps. */
-    uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv);
-    pxi_gjk(a, b, &x->T[0], 1e-3, gjk_cap, &g);
-    x->f[0] = feat(PX_FEATURE_VERTEX, g.va);
-    x->f[1] = feat(PX_FEATURE_VERTEX, g.vb);
-    double span =
-        a->radius + b->radius + pxi_len(x->T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
-    if (g.intersecting && g.inside_margin > 64.0 * DBL_EPSILON * span) {
-        /* The origin lies in a simplex of A - B: the solids overlap, and the
-         * barycentric combination is a common point. Walking to a penetration
-         * witness from here would cost O(n) for nothing. Only trusted when
-         * the origin is inside by more than rounding noise; near contact the
-         * walk decides. */
-        x->p[0] = g.pa;
-        x->p[1] = g.pb;
-        x->dist = 0.0;
-        return LC_PENETRATION;
-    }
-    return lc_walk(x, cap, iterations);
+int pxi_lc_line_of_centres_ok(const px_convex *a, const px_convex *b) {
+    return a->roundness >= COLD_ROUND && b->roundness >= COLD_ROUND;
 }
 
-void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_lc_start *start,
                    pxi_answer *out) {
+    memset(out, 0, sizeof *out);
     lc_ctx x;
     x.c[0] = a;
     x.c[1] = b;
@@ -766,63 +646,41 @@ void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
     x.T[1].t = pxi_neg(pxi_rot_t(x.T[0].r, x.T[0].t));
     x.dist = 0.0;
     x.p[0] = x.p[1] = pxi_v(0, 0, 0);
+    x.band = 0;
+    x.tie = start->tie ? PXI_LC_TIE : 0.0;
 
-    int warm = cache && feature_valid(a, cache->feature_a) && feature_valid(b, cache->feature_b);
     uint64_t total = (uint64_t)a->nv + a->ne + a->nf + b->nv + b->ne + b->nf;
     uint32_t cap = total > 100000000u ? 400000000u : (uint32_t)(4 * total + 64);
-    uint32_t iterations = 0, fallbacks = 0;
-    x.tie = 0.0;
-    int r;
-    if (warm) {
-        x.f[0] = cache->feature_a;
-        x.f[1] = cache->feature_b;
-        r = lc_walk(&x, cap, &iterations);
-    } else if (a->roundness < COLD_ROUND || b->roundness < COLD_ROUND) {
-        r = cold_start_gjk(&x, cap, &iterations);
+    if (pxi_feature_valid(a, start->fa) && pxi_feature_valid(b, start->fb)) {
+        x.f[0] = start->fa;
+        x.f[1] = start->fb;
     } else {
-        /* Cold start on round bodies: the vertices extreme along the line of
-         * centres, and a walk of at most COLD_BUDGET steps; nearly always
-         * enough (about 4 steps). Otherwise the GJK seed. */
+        /* Cold: the vertices extreme along the line of centres; on round
+         * bodies about 4 steps from the answer. */
         px_vec3 ab = pxi_sub(b->center, pxi_xform(&x.T[0], a->center)); /* B's frame */
         x.f[0] = feat(PX_FEATURE_VERTEX, pxi_support(a, pxi_rot_t(x.T[0].r, ab), UINT32_MAX));
         x.f[1] = feat(PX_FEATURE_VERTEX, pxi_support(b, pxi_neg(ab), UINT32_MAX));
-        r = lc_walk(&x, COLD_BUDGET, &iterations);
-        if (r == LC_OUT_OF_STEPS) r = cold_start_gjk(&x, cap, &iterations);
     }
-    if (r < 0) {
+    uint32_t budget = start->budget > 0 && start->budget < cap ? start->budget : cap, iterations = 0;
+    int r = lc_walk(&x, budget, &iterations);
+    out->outcome = PXI_DONE;
+    if (r == LC_OUT_OF_STEPS && budget < cap) {
+        out->outcome = PXI_OUT_OF_STEPS; /* a budgeted cold walk: the caller seeds it */
+    } else if (r < 0 && x.tie == 0.0) {
         /* A revisited pair: round-off ties between neighbouring regions.
          * Continue from there with tie-breaking margins (see noise()). */
-        x.tie = 8.0 * DBL_EPSILON;
+        x.tie = PXI_LC_TIE;
         r = lc_walk(&x, cap, &iterations);
     }
-    if (r < 0) {
-        /* Safeguard: restart once from GJK's answer at full precision. */
-        ++fallbacks;
-        pxi_gjk_result g;
-        pxi_gjk(a, b, &x.T[0], 1e-12, 256, &g);
-        x.f[0] = feat(PX_FEATURE_VERTEX, g.va);
-        x.f[1] = feat(PX_FEATURE_VERTEX, g.vb);
-        r = lc_walk(&x, cap, &iterations);
-        if (r < 0) {
-            /* Still cycling: GJK's own answer is the result. */
-            ++fallbacks;
-            x.p[0] = g.pa;
-            x.p[1] = g.pb;
-            x.dist = g.distance;
-            r = g.intersecting ? LC_PENETRATION : LC_DONE;
-        }
-    }
-    if (r == LC_DONE && contact_within_rounding(&x)) r = LC_PENETRATION;
-    out->distance = r == LC_PENETRATION ? 0.0 : x.dist;
-    out->intersecting = r == LC_PENETRATION;
-    out->pa = x.p[0];
-    out->pb = x.p[1];
+    if (out->outcome == PXI_DONE && r < 0) out->outcome = PXI_UNPROVEN; /* still cycling */
     out->fa = x.f[0];
     out->fb = x.f[1];
     out->iterations = iterations;
-    out->fallbacks = fallbacks;
-    if (cache) {
-        cache->feature_a = x.f[0];
-        cache->feature_b = x.f[1];
-    }
+    if (out->outcome != PXI_DONE) return;
+    if (r == LC_DONE && contact_within_rounding(&x)) r = LC_PENETRATION;
+    out->distance = r == LC_PENETRATION ? 0.0 : x.dist;
+    out->intersecting = r == LC_PENETRATION;
+    out->approx = out->intersecting && x.band ? PXI_APPROX_CONTACT_BAND : 0u;
+    out->pa = x.p[0];
+    out->pb = x.p[1];
 }

@@ -1,4 +1,16 @@
-/* Narrow phase on convex pairs (internal). */
+/* Narrow phase on convex pairs (internal): the methods and what they return.
+ *
+ * Layout (an arrow only points down; tests/check_layers.sh checks it):
+ *   primitives   tolerance.h, simplex.c, closest.c, feature.c
+ *   methods      lin_canny.c, gjk.c, hybrid.c, epa.c, raycast.c
+ *   derived      advance.c (conservative advancement, on Lin-Canny)
+ *   policy       query.c: the public entry points and the fallback table,
+ *                the only file that calls more than one method.
+ *
+ * Every method runs alone, on A in its body frame mapped into B's by T_AB,
+ * and reports an outcome with its best answer; it never calls another
+ * method. What happens after an unproven answer is query.c's decision.
+ */
 #ifndef PXI_NARROW_H
 #define PXI_NARROW_H
 
@@ -6,85 +18,128 @@
 
 #include "convex/convex.h"
 
-/* Result of the seeding / fallback GJK (frames: A's body frame for pa, B's
- * for pb; relative pose T_AB maps A's frame into B's). */
-typedef struct pxi_gjk_result {
-    double distance; /* |pa - pb| measured in B's frame; 0 when intersecting */
-    px_vec3 pa, pb;  /* closest points, pa in A's frame, pb in B's frame */
-    uint32_t va, vb; /* vertices of A and B carrying the largest weight */
-    int intersecting;
-    double inside_margin; /* intersecting: distance of the origin to the simplex boundary (0 if unknown) */
-    uint32_t iterations;
-} pxi_gjk_result;
+/* How a method ended. */
+typedef enum pxi_outcome {
+    PXI_DONE = 0,        /* proved, within the bands of tolerance.h */
+    PXI_UNPROVEN = 1,    /* stopped without a proof (a rounding floor, a cycle) */
+    PXI_OUT_OF_STEPS = 2 /* its step budget ran out */
+} pxi_outcome;
 
-/* GJK (Gilbert, Johnson, Keerthi 1988) with van den Bergen's termination,
- * on A (frame A) and B (frame B) with T_AB = A -> B. `rel_tol` is the relative
- * duality-gap tolerance: the loop stops when |v|^2 - v.w <= rel_tol^2 |v|^2.
- * Terminates on every input (iteration cap, NaN-safe conditions). */
-void pxi_gjk(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
-             uint32_t max_iterations, pxi_gjk_result *out);
-
-/* Segment-segment closest points: parameters s on [p0,p1] and t on [q0,q1]
- * (both in [0,1]). Parallel segments get the middle of their overlap. */
-void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double *s, double *t);
+/* Why an answer is not exact (bits; 0 = exact). */
+enum {
+    PXI_APPROX_CONTACT_BAND = 1u, /* "intersecting" because the distance is within the contact band */
+    PXI_APPROX_DEPTH_BUDGET = 2u, /* EPA out of budget: depth exact along its best normal only */
+    PXI_APPROX_UNPROVEN = 4u      /* an unproven bound accepted as the answer */
+};
 
 /* One distance answer in body frames (pa in A's frame, pb in B's), shared
- * by every method; query.c turns it into a px_distance_result. */
+ * by every distance method; query.c turns it into a public result. */
 typedef struct pxi_answer {
     double distance; /* 0 when intersecting */
     px_vec3 pa, pb;
     px_feature fa, fb;
     int intersecting;
-    uint32_t iterations, fallbacks;
+    uint32_t iterations;
+    pxi_outcome outcome;
+    double gap;      /* PXI_UNPROVEN (GJK): the true distance is at least distance - gap */
+    uint32_t approx; /* PXI_APPROX_* bits */
 } pxi_answer;
 
-/* Lin-Canny walk (lin_canny.c). `cache` may be NULL; updated on return. */
-void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+/* ---- Lin-Canny (lin_canny.c). ---- */
+
+/* Where a walk starts. A zero start is cold: the vertices extreme along the
+ * line of centres. */
+typedef struct pxi_lc_start {
+    px_feature fa, fb; /* start pair (type PX_FEATURE_NONE: cold) */
+    uint32_t budget;   /* steps of the first walk; 0 = the safeguard cap */
+    int tie;           /* 1: in tie-breaking mode from the start */
+} pxi_lc_start;
+
+/* The closest-feature walk from `start`. A walk that revisits a pair (a
+ * rounding cycle) continues in tie-breaking mode. Outcomes: PXI_DONE;
+ * PXI_OUT_OF_STEPS when a first walk with a budget below the cap ran out (a
+ * cold start that needs a seed); PXI_UNPROVEN when it still cycles. fa, fb
+ * always hold the last pair. */
+void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_lc_start *start,
                    pxi_answer *out);
 
-/* Enhanced GJK distance (gjk.c): warm start from the cache's simplex,
- * supports by direction table and hill climbing, van den Bergen's relative
- * and absolute termination. `cache` may be NULL; updated on return. When
- * `simplex_out` is not NULL it receives the final simplex (for EPA). */
+/* Steps of the cold line-of-centres walk before a seed is asked for, and
+ * whether the pair is round enough for that start (thin bodies go straight
+ * to a GJK seed: from the line of centres a 1:8:40 ellipsoid takes tens of
+ * steps). */
+#define PXI_LC_COLD_BUDGET 12
+int pxi_lc_line_of_centres_ok(const px_convex *a, const px_convex *b);
+
+/* ---- GJK (gjk.c). ---- */
+
+/* A simplex of A - B as vertex pairs (for EPA's start). */
 typedef struct pxi_simplex_pairs {
     uint32_t ia[4], ib[4];
     int n;
 } pxi_simplex_pairs;
+
+/* Cold GJK to a relative tolerance, used as a seed: closest points, the
+ * vertices carrying the largest weight, and when the origin is enclosed by
+ * a tetrahedron its margin to the tetrahedron's faces (0 if unknown).
+ * Frames: pa in A's, pb in B's. */
+typedef struct pxi_gjk_seed {
+    double distance;
+    px_vec3 pa, pb;
+    uint32_t va, vb;
+    int intersecting;
+    double inside_margin;
+    uint32_t iterations;
+} pxi_gjk_seed;
+void pxi_gjk_seed_run(const px_convex *a, const px_convex *b, const px_pose *t_ab, double rel_tol,
+                      uint32_t max_iterations, pxi_gjk_seed *out);
+
+/* Enhanced GJK distance: warm start from the cache's simplex, supports by
+ * direction table and hill climbing, van den Bergen's relative and absolute
+ * termination, a direct polish of the final features. PXI_UNPROVEN (with
+ * gap) when it stopped on a repeat or the rounding floor with the duality
+ * gap open. `cache` (may be NULL) receives the simplex, direction and
+ * features; `simplex_out` (may be NULL) the final simplex. */
 void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
                       pxi_answer *out, pxi_simplex_pairs *simplex_out);
 
-/* GJK boolean test with early exit on a separating axis (gjk.c). Returns 1
- * when the solids intersect (touching within rounding counts). */
-int pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
-                      uint32_t *iterations);
+/* Boolean GJK with early exit on a separating axis. PXI_DONE with
+ * *intersecting set when proved either way, else PXI_UNPROVEN. */
+pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                              px_distance_cache *cache, int *intersecting, uint32_t *iterations);
 
-/* The Lin-Canny/GJK hybrid of seed 001 (hybrid.c). `cache` may be NULL;
- * its vertex_a[0..count_a) / vertex_b[0..count_b) sets are read and
- * updated. */
+/* ---- The Lin-Canny/GJK hybrid of seed 001 (hybrid.c). ---- */
+
+/* PXI_DONE, or PXI_OUT_OF_STEPS when its rounds ran out (a safeguard).
+ * `cache` (may be NULL): its vertex sets are read and updated. */
 void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
                 pxi_answer *out);
 
-/* Penetration depth of an intersecting pair by EPA (epa.c), started from
- * `start` (a GJK simplex whose hull contains the origin; may be NULL or
- * lower-dimensional). Outputs in B's frame except pa (A's frame): depth >= 0,
- * unit normal n with pa - pb = depth * n (pa mapped into B's frame), i.e.
- * translating B by depth * n makes the pair touch. */
+/* ---- Penetration depth by EPA (epa.c). ---- */
+
+/* Outputs in B's frame except pa (A's frame): depth >= 0, unit normal n with
+ * pa - pb = depth * n (pa mapped into B's frame), so translating B by
+ * depth * n makes the pair touch. */
 typedef struct pxi_penetration {
     double depth;
     px_vec3 normal; /* B's frame */
     px_vec3 pa, pb; /* A's frame, B's frame */
     px_feature fa, fb;
     uint32_t iterations;
-    int fallback; /* 1 when the polytope budget ran out: the depth is then exact along EPA's
-                     best normal (a translation query), not necessarily the least over all */
-    int flat;     /* 1 when A - B is flat within rounding: no depth (touching within rounding) */
+    pxi_outcome outcome; /* PXI_OUT_OF_STEPS: budget ran out; normal is the best one seen and depth is
+                            its support bound; PXI_UNPROVEN: a degenerate cone, the last good face */
+    int flat;            /* 1 when A - B is flat within rounding: no depth (touching within rounding) */
 } pxi_penetration;
+
+/* EPA from `start`, a GJK simplex whose hull holds the origin (4 points;
+ * fewer are grown to a tetrahedron). */
 void pxi_epa(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_simplex_pairs *start,
              pxi_penetration *out);
 
-/* Collision translation (translation.c), direction `dir` in B's frame
- * (not necessarily unit). Output frames: pa in A's frame at its original
- * pose (the caller adds tau * dir), pb and normal in B's frame. */
+/* ---- Collision translation: ray cast (raycast.c), advancement (advance.c). ---- */
+
+/* Direction `dir` in B's frame (not necessarily unit). Frames: pa in A's
+ * frame at its original pose (the caller adds tau * dir), pb and normal in
+ * B's frame. */
 typedef struct pxi_translation {
     int hit;
     double tau;
@@ -93,14 +148,56 @@ typedef struct pxi_translation {
     px_feature fa, fb;
     uint32_t iterations;
 } pxi_translation;
-void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                           px_distance_cache *cache, pxi_translation *out);
 
-/* The smallest feature of `c` holding the given vertices (1-4 ids, repeats
- * allowed): the vertex, the edge joining two, or a face holding all.
- * Vertices on no common face (possible only within rounding of coplanar
- * faces): the face around them whose polygon holds the witness point `p`
- * (body frame; NULL: the vertex ids[0]). */
-px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p);
+/* What the ray cast leaves for the caller when it stopped at the rounding
+ * floor (PXI_UNPROVEN): a proved lower bound on tau, the plane normal there
+ * (from A to B) and the features of its simplex. */
+typedef struct pxi_ray_bound {
+    double tau;
+    px_vec3 normal;
+    px_feature fa, fb;
+    pxi_simplex_pairs simplex; /* at most 3 pairs: what a warm cache keeps */
+} pxi_ray_bound;
+
+/* The GJK ray cast against B - A (van den Bergen 2004). `cache` (may be
+ * NULL) warm-starts it and receives its final simplex and normal.
+ * PXI_DONE: a certain hit or a miss, in out. PXI_UNPROVEN: a hit at the
+ * rounding floor: out holds the hit refined from the final simplex, *bound
+ * the lower bound to finish from. PXI_OUT_OF_STEPS: a warm run that did not
+ * converge cleanly (a stale hint): out is not set, the caller reruns cold. */
+pxi_outcome pxi_raycast(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                        px_distance_cache *cache, pxi_translation *out, pxi_ray_bound *bound);
+
+/* Conservative advancement with Lin-Canny from tau, a proved lower bound
+ * (A + tau d does not overlap B); n is the normal to report if the first
+ * query already touches, (fa, fb) the features the walks start from.
+ * PXI_DONE with the hit in out, or PXI_UNPROVEN when it cannot conclude (a
+ * normal turning away from the motion, slow convergence on a curved part of
+ * B - A). */
+pxi_outcome pxi_advance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d, double tau,
+                        px_vec3 n, px_feature fa, px_feature fb, pxi_translation *out);
+
+/* The warm start of a tracked translation: a lower bound from the cached
+ * contact normal, then pxi_advance; updates the cache on PXI_DONE. */
+pxi_outcome pxi_advance_warm(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d,
+                             px_distance_cache *cache, pxi_translation *out);
+
+/* ---- Policy (query.c). ---- */
+
+/* How query.c may finish an unproven answer. */
+typedef struct pxi_policy {
+    uint32_t method;  /* px_method */
+    int signed_depth; /* also the penetration depth (EPA) of intersecting pairs */
+    int accept_bound; /* stop at the first unproven answer and flag it approximate */
+} pxi_policy;
+
+/* The distance of a pair under a policy (T_AB already checked). */
+void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_policy *policy,
+                       px_distance_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks);
+
+/* The collision translation of a pair (dir in B's frame, scaled to max-norm
+ * in [1, 2)). */
+void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                           px_distance_cache *cache, pxi_translation *out, uint32_t *fallbacks);
 
 #endif

@@ -1,13 +1,42 @@
-/* The public query entry points: argument checks, the relative transform,
- * dispatch to a method, and the conversion of body-frame answers to world
- * results. Every method answers through the same pxi_answer, so the result
- * conventions (docs/methods.md) are written once, here. */
+/* The public query entry points and the one place that chooses methods and
+ * fallbacks: argument checks, the relative transform, the fallback table,
+ * and the conversion of body-frame answers to world results. Every method
+ * answers through the same pxi_answer, so the result conventions
+ * (docs/methods.md) are written once, here.
+ *
+ * The fallback table (k_next below). A method that ends without a proof
+ * (pxi_outcome) hands its pair to the next step of its row:
+ *
+ *   step          what runs                                 unproven      out of steps
+ *   LC            Lin-Canny from the cache's features, or   LC_RESTART    LC_SEEDED (cold
+ *                 cold from the line of centres (round                    start, not a
+ *                 bodies, 12 steps)                                       fallback)
+ *   LC_SEEDED     GJK to 1e-3, then Lin-Canny from its      LC_RESTART    LC_RESTART
+ *                 vertices (the cold start of thin bodies)
+ *   LC_FINISH     Lin-Canny from the last answer's features LC_RESTART    LC_RESTART
+ *   LC_RESTART    GJK to 1e-12, Lin-Canny in tie-breaking   (GJK's own answer, flagged)
+ *                 mode from it
+ *   GJK           enhanced GJK                              LC_FINISH     LC_FINISH
+ *   HYBRID        the seed 001 hybrid                       GJK           GJK
+ *
+ * Signed distance adds EPA (from GJK's simplex) and, when EPA's polytope
+ * budget runs out, a translation query along its best normal. Translation
+ * tries conservative advancement from a warm cache, then the ray cast (cold
+ * again when a warm ray cast does not converge cleanly), and finishes a ray
+ * cast that stopped at the rounding floor by advancement.
+ *
+ * `fallbacks` counts every hand-off after a method that should have
+ * concluded did not; seeding a cold walk and declining a warm fast path are
+ * not fallbacks. Iterations of every method that ran are summed. */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #include "convex/convex.h"
 #include "math/vec3.h"
+#include "narrow/feature.h"
 #include "narrow/narrow.h"
+#include "narrow/tolerance.h"
 
 /* Checks the arguments every query shares and computes T_AB. Poses far
  * apart (translations of opposite sign near 1e308) can overflow T_AB's
@@ -24,83 +53,252 @@ static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_
     return pxi_is_finite3(t_ab->t) ? PX_OK : PX_ERR_NON_FINITE;
 }
 
-/* How far p is from face f: its distance to the face plane, or more when
- * it lies outside the polygon (the largest violation of the face's edge
- * side planes). */
-static double outside_face(const px_convex *c, uint32_t f, px_vec3 p) {
-    const pxi_face *F = &c->f[f];
-    double worst = fabs(pxi_dot(F->n, p) - F->d);
-    for (uint32_t q = 0; q < F->count; ++q) {
-        const pxi_edge *e = &c->e[c->f_edges[F->first + q]];
-        px_vec3 side = e->left == f ? e->wl : e->wr;
-        double out = -pxi_dot(pxi_sub(p, c->v[e->tail]), side);
-        if (out > worst) worst = out;
-    }
-    return worst;
-}
-
-px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p) {
-    px_feature f = {PX_FEATURE_VERTEX, ids[0]};
-    uint32_t u[4] = {ids[0], ids[0], ids[0], ids[0]};
-    int m = 0;
-    for (int k = 0; k < n; ++k) {
-        int seen = 0;
-        for (int j = 0; j < m; ++j) seen |= u[j] == ids[k];
-        if (!seen) u[m++] = ids[k];
-    }
-    if (m == 1) return f;
-    uint32_t v = u[0];
-    if (m == 2) /* the edge joining them, before any face holding both */
-        for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k)
-            if (c->v_adj[k] == u[1]) {
-                f.type = PX_FEATURE_EDGE;
-                f.index = c->v_edges[k];
-                return f;
-            }
-    for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
-        const pxi_edge *e = &c->e[c->v_edges[k]];
-        /* A face holding all of them is a face of an edge incident to v. */
-        uint32_t faces[2] = {e->left, e->right};
-        for (int s = 0; s < 2; ++s) {
-            const pxi_face *F = &c->f[faces[s]];
-            int all = 1;
-            for (int j = 1; j < m && all; ++j) {
-                int in = 0;
-                for (uint32_t q = 0; q < F->count && !in; ++q) in = c->f_verts[F->first + q] == u[j];
-                all = in;
-            }
-            if (all) {
-                f.type = PX_FEATURE_FACE;
-                f.index = faces[s];
-                return f;
-            }
-        }
-    }
-    if (!p) return f;
-    /* On no common face: the vertices lie on faces within rounding of
-     * coplanar. The witness p then lies on one of the faces around them:
-     * the one whose polygon it is least outside of. */
-    double best = INFINITY;
-    for (int j = 0; j < m; ++j)
-        for (uint32_t k = c->v_first[u[j]]; k < c->v_first[u[j] + 1]; ++k) {
-            const pxi_edge *e = &c->e[c->v_edges[k]];
-            uint32_t faces[2] = {e->left, e->right};
-            for (int s = 0; s < 2; ++s) {
-                double out = outside_face(c, faces[s], *p);
-                if (out < best) {
-                    best = out;
-                    f.type = PX_FEATURE_FACE;
-                    f.index = faces[s];
-                }
-            }
-        }
-    return f;
-}
-
 static px_vec3 unit_or_zero(px_vec3 v) {
     double l = pxi_len(v);
     return l > 0.0 && isfinite(l) ? pxi_scale(v, 1.0 / l) : pxi_v(0, 0, 0);
 }
+
+/* ---- The fallback table. ---- */
+
+typedef enum step {
+    STEP_END,
+    STEP_LC,
+    STEP_LC_SEEDED,
+    STEP_LC_FINISH,
+    STEP_LC_RESTART,
+    STEP_GJK,
+    STEP_HYBRID
+} step;
+
+typedef struct next_row {
+    step unproven, out_of_steps;
+    int oos_is_seed; /* running out of steps is the designed cold start, not a fallback */
+} next_row;
+
+static const next_row k_next[] = {
+    [STEP_END] = {STEP_END, STEP_END, 0},
+    [STEP_LC] = {STEP_LC_RESTART, STEP_LC_SEEDED, 1},
+    [STEP_LC_SEEDED] = {STEP_LC_RESTART, STEP_LC_RESTART, 0},
+    [STEP_LC_FINISH] = {STEP_LC_RESTART, STEP_LC_RESTART, 0},
+    [STEP_LC_RESTART] = {STEP_END, STEP_END, 0},
+    [STEP_GJK] = {STEP_LC_FINISH, STEP_LC_FINISH, 0},
+    [STEP_HYBRID] = {STEP_GJK, STEP_GJK, 0},
+};
+
+/* Lin-Canny from a start; its answer. */
+static void run_lc(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_feature fa, px_feature fb,
+                   uint32_t budget, int tie, pxi_answer *ans) {
+    pxi_lc_start start;
+    memset(&start, 0, sizeof start);
+    start.fa = fa;
+    start.fb = fb;
+    start.budget = budget;
+    start.tie = tie;
+    pxi_lin_canny(a, b, t_ab, &start, ans);
+}
+
+static px_feature vertex_feature(uint32_t v) {
+    px_feature f = {PX_FEATURE_VERTEX, v};
+    return f;
+}
+
+/* The cold start of thin bodies (and of round ones whose line-of-centres
+ * walk ran long): GJK to a loose tolerance finds vertices near the closest
+ * points in a few support queries, and the walk starts from there. When
+ * GJK's simplex already encloses the origin by more than rounding, the
+ * solids overlap and its barycentric point is a common point: walking to a
+ * penetration witness would cost O(n) for nothing. */
+static void run_lc_seeded(const px_convex *a, const px_convex *b, const px_pose *t_ab, pxi_answer *ans) {
+    pxi_gjk_seed g;
+    /* A few iterations suffice: the walk finishes the job, and each GJK
+     * iteration (two support queries) costs about three walk steps. */
+    uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv);
+    pxi_gjk_seed_run(a, b, t_ab, 1e-3, gjk_cap, &g);
+    double span = a->radius + b->radius + pxi_len(t_ab->t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
+    if (g.intersecting && g.inside_margin > 64.0 * DBL_EPSILON * span) {
+        memset(ans, 0, sizeof *ans);
+        ans->intersecting = 1;
+        ans->pa = g.pa;
+        ans->pb = g.pb;
+        ans->fa = vertex_feature(g.va);
+        ans->fb = vertex_feature(g.vb);
+        ans->iterations = g.iterations;
+        ans->outcome = PXI_DONE;
+        return;
+    }
+    run_lc(a, b, t_ab, vertex_feature(g.va), vertex_feature(g.vb), 0, 0, ans);
+    ans->iterations += g.iterations;
+}
+
+/* The last resort of a cycling walk: GJK at full precision, a walk in
+ * tie-breaking mode from its answer, and GJK's own answer if that walk
+ * still cycles. */
+static void run_lc_restart(const px_convex *a, const px_convex *b, const px_pose *t_ab, pxi_answer *ans) {
+    pxi_gjk_seed g;
+    pxi_gjk_seed_run(a, b, t_ab, 1e-12, 256, &g);
+    run_lc(a, b, t_ab, vertex_feature(g.va), vertex_feature(g.vb), 0, 1, ans);
+    ans->iterations += g.iterations;
+    if (ans->outcome == PXI_DONE) return;
+    uint32_t it = ans->iterations;
+    memset(ans, 0, sizeof *ans);
+    ans->distance = g.intersecting ? 0.0 : g.distance;
+    ans->intersecting = g.intersecting;
+    ans->pa = g.pa;
+    ans->pb = g.pb;
+    ans->fa = vertex_feature(g.va);
+    ans->fb = vertex_feature(g.vb);
+    ans->iterations = it;
+    ans->outcome = PXI_DONE;
+    ans->approx = PXI_APPROX_UNPROVEN;
+}
+
+/* Runs one step on the pair. `cache` is the caller's for the first step
+ * only (fallbacks run cold); `prev` is the answer being finished. */
+static void run_step(step s, const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                     px_distance_cache *cache, const pxi_answer *prev, pxi_simplex_pairs *simplex,
+                     pxi_answer *ans) {
+    px_feature none = {PX_FEATURE_NONE, 0};
+    switch (s) {
+    case STEP_LC: {
+        int warm = cache && pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b);
+        if (warm)
+            run_lc(a, b, t_ab, cache->feature_a, cache->feature_b, 0, 0, ans);
+        else
+            run_lc(a, b, t_ab, none, none, PXI_LC_COLD_BUDGET, 0, ans);
+        break;
+    }
+    case STEP_LC_SEEDED: run_lc_seeded(a, b, t_ab, ans); break;
+    case STEP_LC_FINISH: run_lc(a, b, t_ab, prev->fa, prev->fb, 0, 0, ans); break;
+    case STEP_LC_RESTART: run_lc_restart(a, b, t_ab, ans); break;
+    case STEP_GJK: pxi_gjk_distance(a, b, t_ab, cache, ans, simplex); break;
+    case STEP_HYBRID: pxi_hybrid(a, b, t_ab, cache, ans); break;
+    case STEP_END: break;
+    }
+}
+
+/* The first step of a method on this pair. */
+static step first_step(uint32_t method, const px_convex *a, const px_convex *b,
+                       const px_distance_cache *cache) {
+    switch (method) {
+    case PX_METHOD_GJK: return STEP_GJK;
+    case PX_METHOD_HYBRID: return STEP_HYBRID;
+    default: {
+        int warm = cache && pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b);
+        return warm || pxi_lc_line_of_centres_ok(a, b) ? STEP_LC : STEP_LC_SEEDED;
+    }
+    }
+}
+
+/* The translation chain (also EPA's fallback). */
+void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                           px_distance_cache *cache, pxi_translation *out, uint32_t *fallbacks) {
+    memset(out, 0, sizeof *out);
+    int warm = cache && cache->simplex_count >= 1 && cache->simplex_count <= 3 &&
+               cache->vertex_a[0] < a->nv && cache->vertex_b[0] < b->nv &&
+               cache->feature_a.type >= PX_FEATURE_VERTEX && cache->feature_b.type >= PX_FEATURE_VERTEX;
+    if (warm && pxi_advance_warm(a, b, t_ab, dir, cache, out) == PXI_DONE) return;
+    pxi_ray_bound bound;
+    px_distance_cache *ray_cache = cache;
+    pxi_outcome st = pxi_raycast(a, b, t_ab, dir, ray_cache, out, &bound);
+    if (st == PXI_OUT_OF_STEPS) { /* a warm ray cast that did not converge cleanly: cold */
+        uint32_t it = out->iterations;
+        ray_cache = NULL;
+        st = pxi_raycast(a, b, t_ab, dir, NULL, out, &bound);
+        out->iterations += it;
+        ++*fallbacks;
+    }
+    if (st != PXI_UNPROVEN) return;
+    /* Stopped at the rounding floor: conservative advancement (exact there)
+     * finishes from the proved lower bound; else the ray cast's refined hit
+     * stands. */
+    ++*fallbacks;
+    pxi_translation adv;
+    if (pxi_advance(a, b, t_ab, dir, bound.tau, bound.normal, bound.fa, bound.fb, &adv) != PXI_DONE) return;
+    adv.iterations += out->iterations;
+    *out = adv;
+    if (ray_cache) {
+        ray_cache->simplex_count = (uint8_t)bound.simplex.n;
+        for (int m = 0; m < bound.simplex.n; ++m) {
+            ray_cache->vertex_a[m] = bound.simplex.ia[m];
+            ray_cache->vertex_b[m] = bound.simplex.ib[m];
+        }
+        ray_cache->direction[0] = -out->normal.x;
+        ray_cache->direction[1] = -out->normal.y;
+        ray_cache->direction[2] = -out->normal.z;
+        ray_cache->feature_a = out->fa;
+        ray_cache->feature_b = out->fb;
+    }
+}
+
+/* Penetration depth of an intersecting pair: EPA from GJK's simplex (one is
+ * computed when the method kept none), and when EPA's budget runs out the
+ * exact depth along its best normal: a translation query of A along +n
+ * (entry tau = -depth), whose contact points lie on both boundaries. */
+static void penetration(const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                        const pxi_simplex_pairs *method_simplex, pxi_penetration *pen, uint32_t *iterations,
+                        uint32_t *fallbacks, uint32_t *approx) {
+    pxi_simplex_pairs simplex = *method_simplex;
+    if (simplex.n < 4) {
+        pxi_answer g;
+        pxi_gjk_distance(a, b, t_ab, NULL, &g, &simplex);
+        *iterations += g.iterations;
+    }
+    pxi_epa(a, b, t_ab, &simplex, pen);
+    *iterations += pen->iterations;
+    if (pen->outcome == PXI_UNPROVEN) *approx |= PXI_APPROX_UNPROVEN;
+    if (pen->outcome != PXI_OUT_OF_STEPS) return;
+    ++*fallbacks;
+    *approx |= PXI_APPROX_DEPTH_BUDGET;
+    pxi_translation tr;
+    pxi_translation_query(a, b, t_ab, pen->normal, NULL, &tr, fallbacks);
+    *iterations += tr.iterations;
+    if (tr.hit && tr.tau <= 0.0) {
+        pen->depth = -tr.tau;
+        pen->pa = tr.pa;
+        pen->pb = tr.pb;
+        pen->fa = tr.fa;
+        pen->fb = tr.fb;
+    }
+}
+
+void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_policy *policy,
+                       px_distance_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks) {
+    pxi_simplex_pairs simplex;
+    simplex.n = 0;
+    step s = first_step(policy->method, a, b, cache);
+    /* The first step answers into out directly: most queries end there. */
+    run_step(s, a, b, t_ab, cache, NULL, &simplex, out);
+    if (out->outcome != PXI_DONE) {
+        uint32_t iterations = out->iterations;
+        pxi_answer prev;
+        for (;;) {
+            int seed = out->outcome == PXI_OUT_OF_STEPS && k_next[s].oos_is_seed;
+            if (policy->accept_bound && !seed) {
+                out->approx |= PXI_APPROX_UNPROVEN;
+                break;
+            }
+            step next = out->outcome == PXI_UNPROVEN ? k_next[s].unproven : k_next[s].out_of_steps;
+            if (!seed) ++*fallbacks;
+            if (next == STEP_END) break;
+            s = next;
+            prev = *out;
+            run_step(s, a, b, t_ab, NULL, &prev, &simplex, out); /* fallbacks run cold */
+            iterations += out->iterations;
+            if (out->outcome == PXI_DONE) break;
+        }
+        out->iterations = iterations;
+    }
+    if (cache) {
+        cache->feature_a = out->fa;
+        cache->feature_b = out->fb;
+    }
+    if (pen) pen->flat = 1; /* no depth unless computed below */
+    if (!pen || !policy->signed_depth || !out->intersecting) return;
+    if (policy->method != PX_METHOD_GJK) simplex.n = 0;
+    penetration(a, b, t_ab, &simplex, pen, &out->iterations, fallbacks, &out->approx);
+}
+
+/* ---- Public entry points. ---- */
 
 px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
                          const px_query_options *options, px_distance_cache *cache,
@@ -113,22 +311,21 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     px_pose t_ab;
     px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
     if (st != PX_OK) return st;
+    pxi_policy policy;
+    memset(&policy, 0, sizeof policy);
+    policy.method = method;
+    policy.signed_depth = (flags & PX_QUERY_SIGNED) != 0;
     pxi_answer ans;
-    memset(&ans, 0, sizeof ans);
-    pxi_simplex_pairs simplex;
-    simplex.n = 0;
-    switch (method) {
-    case PX_METHOD_GJK: pxi_gjk_distance(a, b, &t_ab, cache, &ans, &simplex); break;
-    case PX_METHOD_HYBRID: pxi_hybrid(a, b, &t_ab, cache, &ans); break;
-    default: pxi_lin_canny(a, b, &t_ab, cache, &ans); break;
-    }
+    pxi_penetration pen;
+    uint32_t fallbacks = 0;
+    pxi_distance_pair(a, b, &t_ab, &policy, cache, &ans, &pen, &fallbacks);
     result->distance = ans.distance;
     result->signed_distance = ans.distance;
     result->intersecting = ans.intersecting;
     result->feature_a = ans.fa;
     result->feature_b = ans.fb;
     result->iterations = ans.iterations;
-    result->fallbacks = ans.fallbacks;
+    result->fallbacks = fallbacks;
     result->point_a = pxi_xform(pose_a, ans.pa);
     if (!ans.intersecting) {
         result->point_b = pxi_xform(pose_b, ans.pb);
@@ -140,18 +337,13 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     result->point_b = result->point_a;
     result->distance = 0.0;
     result->signed_distance = 0.0;
-    if (!(flags & PX_QUERY_SIGNED)) return PX_OK;
-    pxi_penetration pen;
-    pxi_epa(a, b, &t_ab, method == PX_METHOD_GJK ? &simplex : NULL, &pen);
-    if (pen.flat) return PX_OK; /* A - B flat within rounding: touching, as reported */
+    if (pen.flat) return PX_OK; /* not asked, or A - B flat within rounding: touching, as reported */
     result->signed_distance = -pen.depth;
     result->point_a = pxi_xform(pose_a, pen.pa);
     result->point_b = pxi_xform(pose_b, pen.pb);
     result->normal = pen.depth > 0.0 ? pxi_rot(pose_b->r, pen.normal) : pxi_v(0, 0, 0);
     result->feature_a = pen.fa;
     result->feature_b = pen.fb;
-    result->iterations += pen.iterations;
-    result->fallbacks += (uint32_t)pen.fallback;
     return PX_OK;
 }
 
@@ -168,7 +360,16 @@ px_status px_intersect(const px_convex *a, const px_pose *pose_a, const px_conve
     px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
     if (st != PX_OK) return st;
     uint32_t it = 0;
-    *intersecting = pxi_gjk_intersect(a, b, &t_ab, cache, &it);
+    if (pxi_gjk_intersect(a, b, &t_ab, cache, intersecting, &it) == PXI_DONE) return PX_OK;
+    /* Not proved either way (near contact between nearly coplanar facets):
+     * the GJK distance chain decides, with its Lin-Canny finish. */
+    pxi_policy policy;
+    memset(&policy, 0, sizeof policy);
+    policy.method = PX_METHOD_GJK;
+    pxi_answer ans;
+    uint32_t fallbacks = 1;
+    pxi_distance_pair(a, b, &t_ab, &policy, NULL, &ans, NULL, &fallbacks);
+    *intersecting = ans.intersecting;
     return PX_OK;
 }
 
@@ -188,7 +389,8 @@ px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_con
     px_vec3 ds = pxi_v(ldexp(direction.x, -e), ldexp(direction.y, -e), ldexp(direction.z, -e));
     px_vec3 dir_b = pxi_rot_t(pose_b->r, ds);
     pxi_translation tr;
-    pxi_translation_query(a, b, &t_ab, dir_b, cache, &tr);
+    uint32_t fallbacks = 0;
+    pxi_translation_query(a, b, &t_ab, dir_b, cache, &tr, &fallbacks);
     double tau = ldexp(tr.tau, -e);
     if (!isfinite(tau)) return PX_ERR_NON_FINITE; /* a direction so short that tau overflows */
     result->hit = tr.hit;

@@ -5,8 +5,8 @@
 #include <float.h>
 
 #include "check.h"
-#include "gen.h"
 #include "math/vec3.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 /* ----------------------------------------------------------------- helpers */
@@ -76,7 +76,7 @@ static void check_exact(const px_convex *a, const px_pose *pa, const px_convex *
 
 static px_convex *unit_cube(double h) {
     double b[24];
-    tg_box(h, h, h, b);
+    pg_box(h, h, h, b);
     return build(b, 8, "cube");
 }
 
@@ -90,7 +90,7 @@ static void bad_input_01_nan_inf_in_setters(void) {
     for (int b = 0; b < 3; ++b) {
         for (int pos = 0; pos < 24; pos += 7) { /* first point, middle, last */
             double box[24];
-            tg_box(1, 2, 3, box);
+            pg_box(1, 2, 3, box);
             box[pos] = bad[b];
             px_error err;
             CHECK(build_status(box, 8, &err) == PX_ERR_NON_FINITE && err.message[0], "coordinate %d = %g: %s",
@@ -156,16 +156,16 @@ static void bad_input_02_nan_no_infinite_loop(void) {
 static void bad_input_03_nan_witness_points(void) {
     double tri_prism[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1e-9, 1, 0, 1e-9, 0, 1, 1e-9}; /* near-2D */
     double seg_prism[24];
-    tg_box(2, 1e-9, 1e-9, seg_prism); /* near-1D */
+    pg_box(2, 1e-9, 1e-9, seg_prism); /* near-1D */
     px_convex *T = build(tri_prism, 6, "flat prism"), *S = build(seg_prism, 8, "needle box");
     px_convex *C = unit_cube(0.5);
     if (!T || !S || !C) return;
-    tg_rng rng;
-    tg_seed(&rng, 303);
+    pg_rng rng;
+    pg_seed(&rng, 303);
     const px_convex *shapes[3] = {T, S, C};
     for (int i = 0; i < 300; ++i) {
         const px_convex *a = shapes[i % 3], *b = shapes[(i / 3) % 3];
-        px_pose pb = tg_pose_random(&rng, 1), pa = tg_pose_random(&rng, 1);
+        px_pose pb = pg_pose_random(&rng, 1), pa = pg_pose_random(&rng, 1);
         if (i % 5 == 0) pa = pb; /* coincident poses */
         tc_report rep;
         checked(a, &pa, b, &pb, NULL, 1e-12, "degenerate witness", &rep);
@@ -179,10 +179,10 @@ static void bad_input_03_nan_witness_points(void) {
  * reject non-finite vertices at load time, naming the index. Subnormal and
  * signed-zero coordinates are finite and accepted. */
 static void bad_input_04_single_nan_vertex(void) {
-    tg_rng rng;
-    tg_seed(&rng, 404);
+    pg_rng rng;
+    pg_seed(&rng, 404);
     double *xyz = malloc(3 * 1000 * sizeof *xyz);
-    tg_points_sphere(&rng, 1000, 1, xyz);
+    pg_points_sphere(&rng, 1000, 1, xyz);
     xyz[3 * 537 + 1] = NAN;
     px_error err;
     CHECK(build_status(xyz, 1000, &err) == PX_ERR_NON_FINITE, "one NaN among 1000 points: %s",
@@ -200,18 +200,18 @@ static void bad_input_04_single_nan_vertex(void) {
  * the box-box EPA loop of fcl #578. Rule: every query is bounded; we check
  * the iteration counter stays below 2 (V+E+F) of both bodies. */
 static void bad_input_05_unbounded_iterations(void) {
-    tg_rng rng;
-    tg_seed(&rng, 505);
+    pg_rng rng;
+    pg_seed(&rng, 505);
     double box[24], sph[3 * 400];
-    tg_box(1, 1, 1, box);
-    tg_points_sphere(&rng, 400, 1, sph);
+    pg_box(1, 1, 1, box);
+    pg_points_sphere(&rng, 400, 1, sph);
     px_convex *B = build(box, 8, "box"), *S = build(sph, 400, "sphere");
     if (!B || !S) return;
     const px_convex *shapes[2] = {B, S};
     uint32_t worst = 0;
     for (int i = 0; i < 2000; ++i) {
         const px_convex *a = shapes[i & 1], *b = shapes[(i >> 1) & 1];
-        px_pose pa = tg_pose_random(&rng, 0.3 + 2 * (i % 7) / 7.0), pb = tg_pose_random(&rng, 0.3);
+        px_pose pa = pg_pose_random(&rng, 0.3 + 2 * (i % 7) / 7.0), pb = pg_pose_random(&rng, 0.3);
         px_distance_result r;
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
@@ -258,10 +258,10 @@ static void bad_input_06_huge_coordinate_ranges(void) {
         }
     }
     /* Hulls with coordinates of 1e139: distance relative to scale. */
-    tg_rng rng;
-    tg_seed(&rng, 606);
+    pg_rng rng;
+    pg_seed(&rng, 606);
     double big[3 * 50];
-    tg_points_sphere(&rng, 50, 1e139, big);
+    pg_points_sphere(&rng, 50, 1e139, big);
     px_convex *B = build(big, 50, "sphere of radius 1e139");
     if (B) {
         px_pose pa = px_pose_identity(), pb = pose_t(2.5e139, 0, 0);
@@ -277,21 +277,21 @@ static void bad_input_06_huge_coordinate_ranges(void) {
  * precision (bulletphysics/bullet3 #2579); Bullet's 0.04 margin
  * (jsk-ros-pkg/jsk_roseus #616). Rule: no absolute margins. */
 static void bad_input_07_tiny_objects(void) {
-    tg_rng rng;
-    tg_seed(&rng, 707);
+    pg_rng rng;
+    pg_seed(&rng, 707);
     double sph[3 * 100];
     for (int e = 0; e >= -12; e -= 3) {
         double s = pow(10.0, e);
         double box[24];
-        tg_box(0.0025 * s, 0.0025 * s, 0.0025 * s, box);
-        tg_points_sphere(&rng, 100, 0.005 * s, sph);
+        pg_box(0.0025 * s, 0.0025 * s, 0.0025 * s, box);
+        pg_points_sphere(&rng, 100, 0.005 * s, sph);
         px_convex *B = build(box, 8, "tiny box"), *S = build(sph, 100, "tiny sphere");
         if (!B || !S) return;
         for (int i = 0; i < 50; ++i) {
-            px_pose pb = tg_pose_random(&rng, s);
-            px_pose pa = tg_pose_random(&rng, 0);
-            px_vec3 dir = tg_unit(&rng);
-            pa.t = pxi_add(pb.t, pxi_scale(dir, s * 0.0075 * tg_range(&rng, 0.5, 1.5)));
+            px_pose pb = pg_pose_random(&rng, s);
+            px_pose pa = pg_pose_random(&rng, 0);
+            px_vec3 dir = pg_unit(&rng);
+            pa.t = pxi_add(pb.t, pxi_scale(dir, s * 0.0075 * pg_range(&rng, 0.5, 1.5)));
             tc_report rep;
             checked(B, &pb, S, &pa, NULL, 1e-12, "tiny objects", &rep);
             check_exact(B, &pb, S, &pa, &rep, "tiny objects");
@@ -307,14 +307,14 @@ static void bad_input_07_tiny_objects(void) {
  * tolerance tightens (fcl #250). Rule: classification follows the exact
  * answer for the given doubles. */
 static void bad_input_08_tolerance_dependent(void) {
-    tg_rng rng;
-    tg_seed(&rng, 808);
+    pg_rng rng;
+    pg_seed(&rng, 808);
     double sph[3 * 201];
-    tg_points_sphere(&rng, 200, 1, sph);
+    pg_points_sphere(&rng, 200, 1, sph);
     sph[600] = 0, sph[601] = 0, sph[602] = -1; /* exact south pole */
     px_convex *S = build(sph, 201, "sphere with pole");
     double box[24];
-    tg_box(2, 2, 1, box);
+    pg_box(2, 2, 1, box);
     px_convex *B = build(box, 8, "box");
     if (!S || !B) return;
     px_pose pb = pose_t(0, 0, -1); /* box top at z = 0 */
@@ -362,7 +362,7 @@ static void bad_input_09_flat_point_sets(void) {
  * points (MeshInspector/MeshLib #5450). */
 static void bad_input_10_duplicate_points(void) {
     double box[24], rep[24 * 5];
-    tg_box(1, 1, 1, box);
+    pg_box(1, 1, 1, box);
     for (int i = 0; i < 5; ++i) memcpy(rep + 24 * i, box, sizeof box);
     px_convex *c = build(rep, 40, "cube corners five times");
     CHECK(c && px_convex_vertex_count(c) == 8 && px_convex_face_count(c) == 6, "duplicated cube");
@@ -372,12 +372,12 @@ static void bad_input_10_duplicate_points(void) {
     CHECK(build_status(dup, 5, &err) == PX_ERR_DEGENERATE, "3 distinct points: %s",
           px_status_string(err.code));
     /* Near-duplicates: each corner of a tetrahedron with 10 copies perturbed by 1e-14. */
-    tg_rng rng;
-    tg_seed(&rng, 1010);
+    pg_rng rng;
+    pg_seed(&rng, 1010);
     double t[12], cloud[3 * 40];
-    tg_regular_tetrahedron(1, t);
+    pg_regular_tetrahedron(1, t);
     for (int i = 0; i < 40; ++i)
-        for (int j = 0; j < 3; ++j) cloud[3 * i + j] = t[3 * (i % 4) + j] + 1e-14 * tg_range(&rng, -1, 1);
+        for (int j = 0; j < 3; ++j) cloud[3 * i + j] = t[3 * (i % 4) + j] + 1e-14 * pg_range(&rng, -1, 1);
     c = build(cloud, 40, "near-duplicate cloud");
     if (c) {
         px_convex *d = unit_cube(1);
@@ -393,23 +393,23 @@ static void bad_input_10_duplicate_points(void) {
  * failing a convexity check (elalish/manifold #1785); quickhull without
  * robust predicates (tomilov/quickhull #14); Jolt TestHullEdgeCases. */
 static void bad_input_11_nearly_coplanar_clusters(void) {
-    tg_rng rng;
-    tg_seed(&rng, 1111);
+    pg_rng rng;
+    pg_seed(&rng, 1111);
     px_convex *cube = unit_cube(0.5);
     for (int trial = 0; trial < 20; ++trial) {
         double pts[3 * 201];
         double eps = pow(10.0, -8 - (trial % 7));
         for (int i = 0; i < 200; ++i) {
-            pts[3 * i] = tg_range(&rng, -1, 1);
-            pts[3 * i + 1] = tg_range(&rng, -1, 1);
-            pts[3 * i + 2] = 0.3 * pts[3 * i] - 0.2 * pts[3 * i + 1] + eps * tg_range(&rng, -1, 1);
+            pts[3 * i] = pg_range(&rng, -1, 1);
+            pts[3 * i + 1] = pg_range(&rng, -1, 1);
+            pts[3 * i + 2] = 0.3 * pts[3 * i] - 0.2 * pts[3 * i + 1] + eps * pg_range(&rng, -1, 1);
         }
         pts[600] = 0.1, pts[601] = 0.2, pts[602] = (trial & 1) ? 1.0 : 1e-6; /* apex */
         px_convex *c = build(pts, 201, "nearly coplanar cluster");
         if (!c || !cube) continue;
         for (int q = 0; q < 20; ++q) {
-            px_pose pa = tg_pose_random(&rng, 0), pb = tg_pose_random(&rng, 0);
-            pb.t = pxi_scale(tg_unit(&rng), tg_range(&rng, 0.5, 2.5));
+            px_pose pa = pg_pose_random(&rng, 0), pb = pg_pose_random(&rng, 0);
+            pb.t = pxi_scale(pg_unit(&rng), pg_range(&rng, 0.5, 2.5));
             tc_report rep;
             checked(c, &pa, cube, &pb, NULL, 1e-12, "nearly coplanar cluster", &rep);
         }
@@ -423,7 +423,7 @@ static void bad_input_11_nearly_coplanar_clusters(void) {
  * model answers exactly like the plain one. */
 static void bad_input_12_coplanar_faces_merged(void) {
     double plain[24], rich[3 * 26];
-    tg_box(1, 1, 1, plain);
+    pg_box(1, 1, 1, plain);
     memcpy(rich, plain, sizeof plain);
     int k = 8;
     for (int ax = 0; ax < 3; ++ax)
@@ -440,10 +440,10 @@ static void bad_input_12_coplanar_faces_merged(void) {
     CHECK(R && px_convex_face_count(R) == 6 && px_convex_vertex_count(R) == 8, "coplanar faces merged");
     px_convex *T = unit_cube(0.3);
     if (!P || !R || !T) return;
-    tg_rng rng;
-    tg_seed(&rng, 1212);
+    pg_rng rng;
+    pg_seed(&rng, 1212);
     for (int i = 0; i < 500; ++i) {
-        px_pose pa = tg_pose_random(&rng, 0), pb = tg_pose_random(&rng, 3);
+        px_pose pa = pg_pose_random(&rng, 0), pb = pg_pose_random(&rng, 3);
         px_distance_result rp, rr;
         px_distance(P, &pa, T, &pb, NULL, &rp);
         tc_report rep;
@@ -463,17 +463,17 @@ static void bad_input_12_coplanar_faces_merged(void) {
  * never returns (fcl #346); a zero initial direction hides identical boxes
  * (rustgd/collision-rs #51, pull #52); Bullet skips co-centric spheres. */
 static void bad_input_13_identical_cocentred(void) {
-    tg_rng rng;
-    tg_seed(&rng, 1313);
+    pg_rng rng;
+    pg_seed(&rng, 1313);
     double sph[3 * 300];
-    tg_points_sphere(&rng, 300, 1, sph);
+    pg_points_sphere(&rng, 300, 1, sph);
     px_convex *S = build(sph, 300, "sphere");
     for (int i = 0; i < 3 * 300; ++i) sph[i] *= 0.25;
     px_convex *s = build(sph, 300, "small sphere");
     px_convex *B = unit_cube(1);
     if (!S || !s || !B) return;
     for (int i = 0; i < 50; ++i) {
-        px_pose p = tg_pose_random(&rng, 10), q = tg_pose_random(&rng, 0);
+        px_pose p = pg_pose_random(&rng, 10), q = pg_pose_random(&rng, 0);
         q.t = p.t; /* co-centred, different orientation */
         const px_convex *pairs[4][2] = {{S, S}, {B, B}, {S, s}, {s, B}};
         for (int k = 0; k < 4; ++k) {
@@ -520,22 +520,22 @@ static void bad_input_14_touching_faces(void) {
  * reported 0.51 apart (MattiaMontanari/openGJK #3); nearly identical
  * triangles failing the intersection test (kroitor/gjk.c pull #5). */
 static void bad_input_15_overlap_by_rounding(void) {
-    tg_rng rng;
-    tg_seed(&rng, 1515);
+    pg_rng rng;
+    pg_seed(&rng, 1515);
     for (int i = 0; i < 200; ++i) {
         double tri[9], prism[18], prism2[18];
-        tg_points_sphere(&rng, 3, 1, tri);
+        pg_points_sphere(&rng, 3, 1, tri);
         for (int v = 0; v < 3; ++v)
             for (int j = 0; j < 3; ++j) {
                 prism[3 * v + j] = tri[3 * v + j];
                 prism[9 + 3 * v + j] = tri[3 * v + j] + (j == 2 ? 1e-3 : 0);
-                double jit = 1e-12 * tg_range(&rng, -1, 1);
+                double jit = 1e-12 * pg_range(&rng, -1, 1);
                 prism2[3 * v + j] = prism[3 * v + j] + jit;
                 prism2[9 + 3 * v + j] = prism[9 + 3 * v + j] + jit;
             }
         px_convex *A = build(prism, 6, "thin prism"), *B = build(prism2, 6, "jittered prism");
         if (!A || !B) continue;
-        px_pose p = tg_pose_random(&rng, 1);
+        px_pose p = pg_pose_random(&rng, 1);
         tc_report rep;
         checked(A, &p, B, &p, NULL, 1e-12, "nearly identical prisms", &rep);
         CHECK(rep.res.intersecting, "nearly identical prisms reported %.3g apart", rep.res.distance);
@@ -548,18 +548,18 @@ static void bad_input_15_overlap_by_rounding(void) {
  * misreports on thin meshes (MuJoCo box fuzz test header). Aspect-ratio
  * sweep (needles, slabs), crossing deeply and separated. */
 static void bad_input_16_deep_penetration_thin(void) {
-    tg_rng rng;
-    tg_seed(&rng, 1616);
+    pg_rng rng;
+    pg_seed(&rng, 1616);
     for (int e = 0; e <= 4; ++e) {
         double asp = pow(10.0, e);
         double needle[24], slab[24];
-        tg_box(1, 1 / asp, 1 / asp, needle);
-        tg_box(1, 1, 1 / asp, slab);
+        pg_box(1, 1 / asp, 1 / asp, needle);
+        pg_box(1, 1, 1 / asp, slab);
         px_convex *N = build(needle, 8, "needle"), *S = build(slab, 8, "slab");
         if (!N || !S) return;
         for (int i = 0; i < 60; ++i) {
-            px_pose pa = tg_pose_random(&rng, 0), pb = tg_pose_random(&rng, 0);
-            pb.t = pxi_scale(tg_unit(&rng), (i % 3 == 0) ? 0.0 : tg_range(&rng, 0.0, 2.5));
+            px_pose pa = pg_pose_random(&rng, 0), pb = pg_pose_random(&rng, 0);
+            pb.t = pxi_scale(pg_unit(&rng), (i % 3 == 0) ? 0.0 : pg_range(&rng, 0.0, 2.5));
             const px_convex *x = (i & 1) ? N : S, *y = (i & 2) ? N : S;
             tc_report rep;
             checked(x, &pa, y, &pb, NULL, 1e-12, "thin shapes", &rep);

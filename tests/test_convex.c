@@ -8,9 +8,9 @@
 #include <stdint.h>
 
 #include "check.h"
-#include "gen.h"
 #include "oracle.h"
 #include "proxima/proxima.h"
+#include "px_gen.h"
 #include "pxcd.h"
 #include "test_util.h"
 
@@ -183,31 +183,31 @@ static px_convex *build_checked(const double *xyz, size_t n, const char *what) {
 /* --------------------------------------------------------------- the tests */
 
 static void test_random_polytopes(int count) {
-    tg_rng rng;
-    tg_seed(&rng, 3001);
+    pg_rng rng;
+    pg_seed(&rng, 3001);
     double *xyz = malloc(3 * 2000 * sizeof *xyz);
     printf("  %-16s %6s %6s %6s %10s\n", "shape", "n", "V", "F", "bytes/V");
     for (int i = 0; i < count; ++i) {
-        tg_kind kind = (tg_kind)(i % TG_KIND_COUNT);
-        size_t n = i < TG_KIND_COUNT * 3 ? (size_t)(i < TG_KIND_COUNT       ? 8
-                                                    : i < 2 * TG_KIND_COUNT ? 200
+        pg_kind kind = (pg_kind)(i % PG_KIND_COUNT);
+        size_t n = i < PG_KIND_COUNT * 3 ? (size_t)(i < PG_KIND_COUNT       ? 8
+                                                    : i < 2 * PG_KIND_COUNT ? 200
                                                                             : 2000)
-                                         : tg_log_int(&rng, 4, 2000);
+                                         : pg_log_int(&rng, 4, 2000);
         if (n < 8) n = 8;
-        double size = pow(10.0, tg_range(&rng, -3, 3));
-        n = tg_shape(&rng, kind, n, size, xyz);
+        double size = pow(10.0, pg_range(&rng, -3, 3));
+        n = pg_shape(&rng, kind, n, size, xyz);
         char what[96];
-        snprintf(what, sizeof what, "random #%d %s n=%zu size=%.3g", i, tg_kind_name(kind), n, size);
+        snprintf(what, sizeof what, "random #%d %s n=%zu size=%.3g", i, pg_kind_name(kind), n, size);
         px_convex *c = build_checked(xyz, n, what);
         if (c && (i % 37 == 0 || n >= 2000))
-            printf("  %-16s %6zu %6u %6u %10.0f\n", tg_kind_name(kind), n, px_convex_vertex_count(c),
+            printf("  %-16s %6zu %6u %6u %10.0f\n", pg_kind_name(kind), n, px_convex_vertex_count(c),
                    px_convex_face_count(c), (double)px_convex_memory_bytes(c) / px_convex_vertex_count(c));
         px_convex_destroy(c);
     }
     /* Exactly 4 vertices: tetrahedra at many scales. */
     for (int i = 0; i < 50; ++i) {
         double t[12];
-        tg_random_tetrahedron(&rng, pow(10.0, tg_range(&rng, -20, 20)), t);
+        pg_random_tetrahedron(&rng, pow(10.0, pg_range(&rng, -20, 20)), t);
         px_convex *c = build_checked(t, 4, "tetrahedron");
         CHECK(c && px_convex_vertex_count(c) == 4 && px_convex_face_count(c) == 4, "tetra counts");
         px_convex_destroy(c);
@@ -235,7 +235,7 @@ static void test_coplanar_merging(void) {
     /* Cylinder: the caps are single k-gons; k rectangles around. */
     for (size_t kk = 3; kk <= 200; kk = kk * 2 + 1) {
         double *cy = malloc(6 * kk * sizeof *cy);
-        tg_cylinder(kk, 1.0, 0.5, cy);
+        pg_cylinder(kk, 1.0, 0.5, cy);
         c = build_checked(cy, 2 * kk, "cylinder");
         CHECK(c && px_convex_face_count(c) == kk + 2 && px_convex_vertex_count(c) == 2 * kk,
               "cylinder k=%zu: F=%u", kk, c ? px_convex_face_count(c) : 0);
@@ -243,15 +243,15 @@ static void test_coplanar_merging(void) {
         free(cy);
     }
     /* Box with many random points on its faces (dyadic, so exactly coplanar). */
-    tg_rng rng;
-    tg_seed(&rng, 77);
+    pg_rng rng;
+    pg_seed(&rng, 77);
     double bp[3 * 208];
-    tg_box(2, 1, 0.5, bp);
+    pg_box(2, 1, 0.5, bp);
     for (int i = 8; i < 208; ++i) {
-        int axis = (int)tg_below(&rng, 3), side = (int)tg_below(&rng, 2);
+        int axis = (int)pg_below(&rng, 3), side = (int)pg_below(&rng, 2);
         double h[3] = {2, 1, 0.5};
         for (int j = 0; j < 3; ++j)
-            bp[3 * i + j] = ldexp((double)tg_below(&rng, 1024), -10) * 2 * h[j] - h[j];
+            bp[3 * i + j] = ldexp((double)pg_below(&rng, 1024), -10) * 2 * h[j] - h[j];
         bp[3 * i + axis] = side ? h[axis] : -h[axis];
     }
     c = build_checked(bp, 208, "box with face points");
@@ -303,10 +303,10 @@ static void test_degenerate_inputs(void) {
     for (int i = 0; i < 20; ++i) col[3 * i] = i, col[3 * i + 1] = 2.0 * i, col[3 * i + 2] = -3.0 * i;
     expect_status(col, 20, PX_ERR_DEGENERATE, "collinear", "collinear points");
     double pl[300];
-    tg_rng rng;
-    tg_seed(&rng, 5);
+    pg_rng rng;
+    pg_seed(&rng, 5);
     for (int i = 0; i < 100; ++i) {
-        double x = (double)tg_below(&rng, 1000), y = (double)tg_below(&rng, 1000);
+        double x = (double)pg_below(&rng, 1000), y = (double)pg_below(&rng, 1000);
         pl[3 * i] = x, pl[3 * i + 1] = y, pl[3 * i + 2] = 3 * x - 2 * y + 7; /* exact, tilted plane */
     }
     expect_status(pl, 100, PX_ERR_DEGENERATE, "coplanar", "coplanar points");
@@ -316,7 +316,7 @@ static void test_degenerate_inputs(void) {
     for (int b = 0; b < 3; ++b)
         for (int comp = 0; comp < 3; ++comp) {
             double box[24];
-            tg_box(1, 1, 1, box);
+            pg_box(1, 1, 1, box);
             box[3 * 5 + comp] = bad[b];
             char what[64];
             snprintf(what, sizeof what, "%s coordinate (point 5, component %d)", names[b], comp);
@@ -331,12 +331,12 @@ static void test_degenerate_inputs(void) {
 /* Leak check and failure injection at every allocation of a build (and of
  * queries, which must not allocate at all). */
 static void test_allocator(void) {
-    tg_rng rng;
-    tg_seed(&rng, 99);
+    pg_rng rng;
+    pg_seed(&rng, 99);
     double xyz[3 * 300];
-    tg_points_sphere(&rng, 300, 1.0, xyz);
+    pg_points_sphere(&rng, 300, 1.0, xyz);
     double box[24];
-    tg_box(0.5, 0.25, 2, box);
+    pg_box(0.5, 0.25, 2, box);
 
     memset(&g_count, 0, sizeof g_count);
     install_counting();
@@ -356,7 +356,7 @@ static void test_allocator(void) {
     px_distance_cache cache;
     memset(&cache, 0, sizeof cache);
     for (int i = 0; i < 50 && a && b; ++i) {
-        px_pose pa = tg_pose_random(&rng, 2), pb = tg_pose_random(&rng, 2);
+        px_pose pa = pg_pose_random(&rng, 2), pb = pg_pose_random(&rng, 2);
         px_distance_result res;
         px_distance(a, &pa, b, &pb, &cache, &res);
     }

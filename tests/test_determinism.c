@@ -8,8 +8,8 @@
 #include <stdint.h>
 
 #include "check.h"
-#include "gen.h"
 #include "math/vec3.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 #define NSHAPES 24
@@ -55,12 +55,12 @@ static uint64_t hash_convex(const px_convex *c) {
 }
 
 static void run(int pass, out_rec *out, uint64_t *shape_hash) {
-    tg_rng rng;
-    tg_seed(&rng, 8080);
+    pg_rng rng;
+    pg_seed(&rng, 8080);
     static double xyz[NSHAPES][3 * 600];
     static size_t n[NSHAPES];
     for (int i = 0; i < NSHAPES; ++i)
-        n[i] = tg_shape(&rng, (tg_kind)(i % TG_KIND_COUNT), 8 + 25 * i, 1.0, xyz[i]);
+        n[i] = pg_shape(&rng, (pg_kind)(i % PG_KIND_COUNT), 8 + 25 * i, 1.0, xyz[i]);
     px_convex *c[NSHAPES];
     for (int k = 0; k < NSHAPES; ++k) {
         int i = pass ? NSHAPES - 1 - k : k;
@@ -75,17 +75,17 @@ static void run(int pass, out_rec *out, uint64_t *shape_hash) {
     for (int i = 0; i < NSHAPES; ++i) shape_hash[i] = c[i] ? hash_convex(c[i]) : 0;
     px_distance_cache cache;
     memset(&cache, 0, sizeof cache);
-    px_pose pa = tg_pose_random(&rng, 0), pb = tg_pose_random(&rng, 0);
+    px_pose pa = pg_pose_random(&rng, 0), pb = pg_pose_random(&rng, 0);
     for (int q = 0; q < NQUERIES; ++q) {
-        int ia = (int)tg_below(&rng, NSHAPES), ib = (int)tg_below(&rng, NSHAPES);
+        int ia = (int)pg_below(&rng, NSHAPES), ib = (int)pg_below(&rng, NSHAPES);
         if (q % 100 == 0) memset(&cache, 0, sizeof cache);
         if (q < NQUERIES / 2) { /* cold, random poses */
-            pa = tg_pose_random(&rng, 1), pb = tg_pose_random(&rng, 1);
+            pa = pg_pose_random(&rng, 1), pb = pg_pose_random(&rng, 1);
         } else { /* warm: one pair in motion */
             ia = 5, ib = 17;
             double r[9];
-            tg_rot_axis_angle(pxi_v(0.6, 0.8, 0), 0.01, r);
-            tg_mat_mul(r, pa.r, pa.r);
+            pg_rot_axis_angle(pxi_v(0.6, 0.8, 0), 0.01, r);
+            pg_mat_mul(r, pa.r, pa.r);
             pa.t = pxi_v(1.2 * cos(q * 0.01), 0.3, 0.2 * sin(q * 0.013));
         }
         px_distance_result res;

@@ -9,13 +9,13 @@
  * realising the distance. Fallbacks are counted and must be 0. A subset is
  * compared with the exact distance (CGAL Polytope_distance_d). */
 #include "check.h"
-#include "gen.h"
 #include "math/vec3.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 typedef struct pool_item {
     px_convex *c;
-    tg_kind kind;
+    pg_kind kind;
     size_t n;
     double size;
 } pool_item;
@@ -33,15 +33,15 @@ typedef struct stats {
 static stats g_st;
 
 static void build_pool(void) {
-    tg_rng rng;
-    tg_seed(&rng, 4242);
+    pg_rng rng;
+    pg_seed(&rng, 4242);
     double *xyz = malloc(3 * 2000 * sizeof *xyz);
     for (int i = 0; i < POOL_SMALL + POOL_LARGE; ++i) {
         pool_item *it = &g_pool[i];
-        it->kind = (tg_kind)tg_below(&rng, TG_KIND_COUNT);
-        size_t n = i < POOL_SMALL ? tg_log_int(&rng, 8, 80) : tg_log_int(&rng, 300, 2000);
-        it->size = tg_range(&rng, 0.3, 3.0);
-        it->n = tg_shape(&rng, it->kind, n, it->size, xyz);
+        it->kind = (pg_kind)pg_below(&rng, PG_KIND_COUNT);
+        size_t n = i < POOL_SMALL ? pg_log_int(&rng, 8, 80) : pg_log_int(&rng, 300, 2000);
+        it->size = pg_range(&rng, 0.3, 3.0);
+        it->n = pg_shape(&rng, it->kind, n, it->size, xyz);
         px_error err;
         it->c = px_convex_from_points(xyz, it->n, NULL, &err);
         CHECK(it->c != NULL, "pool hull %d failed: %s", i, err.message);
@@ -49,18 +49,16 @@ static void build_pool(void) {
     free(xyz);
 }
 
-static const pool_item *pick(tg_rng *rng, int allow_large) {
-    if (allow_large && tg_below(rng, 100) < 2) return &g_pool[POOL_SMALL + tg_below(rng, POOL_LARGE)];
-    return &g_pool[tg_below(rng, POOL_SMALL)];
+static const pool_item *pick(pg_rng *rng, int allow_large) {
+    if (allow_large && pg_below(rng, 100) < 2) return &g_pool[POOL_SMALL + pg_below(rng, POOL_LARGE)];
+    return &g_pool[pg_below(rng, POOL_SMALL)];
 }
 
-/* Pose of A placed near B: along a random direction at `factor` times the
- * sum of the sizes (small factors overlap, large ones are disjoint). */
-static px_pose place_near(tg_rng *rng, const px_pose *pb, double reach, double factor) {
-    px_pose p = tg_pose_random(rng, 0);
-    px_vec3 dir = tg_unit(rng);
-    p.t = pxi_add(pb->t, pxi_scale(dir, factor * reach));
-    return p;
+/* Pose of A placed near B (pg_pose_around): along a random direction at
+ * `factor` times the sum of the sizes (small factors overlap, large ones are
+ * disjoint). */
+static px_pose place_near(pg_rng *rng, const px_pose *pb, double reach, double factor) {
+    return pg_pose_around(rng, pb->t, factor * reach);
 }
 
 static void record(const tc_report *rep, const char *what, long idx) {
@@ -101,12 +99,12 @@ static void exact_compare(const px_convex *a, const px_pose *pa, const px_convex
 }
 
 static void test_cold(int count, int exact_every) {
-    tg_rng rng;
-    tg_seed(&rng, 1001);
+    pg_rng rng;
+    pg_seed(&rng, 1001);
     for (int i = 0; i < count; ++i) {
         const pool_item *A = pick(&rng, 1), *B = pick(&rng, i % 500 != 0);
-        px_pose pb = tg_pose_random(&rng, 5.0);
-        double factor = tg_range(&rng, 0.05, 1.5);
+        px_pose pb = pg_pose_random(&rng, 5.0);
+        double factor = pg_range(&rng, 0.05, 1.5);
         px_pose pa = place_near(&rng, &pb, 0.5 * (A->size + B->size), factor);
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
@@ -114,8 +112,8 @@ static void test_cold(int count, int exact_every) {
         tc_query_and_check(A->c, &pa, B->c, &pb, (i & 1) ? &cache : NULL, &rep);
         record(&rep, "cold", i);
         if (rep.fail && g_st.failed <= 5)
-            fprintf(stderr, "  repro: cold #%d A=%s n=%zu B=%s n=%zu factor %.3f\n", i, tg_kind_name(A->kind),
-                    A->n, tg_kind_name(B->kind), B->n, factor);
+            fprintf(stderr, "  repro: cold #%d A=%s n=%zu B=%s n=%zu factor %.3f\n", i, pg_kind_name(A->kind),
+                    A->n, pg_kind_name(B->kind), B->n, factor);
         if (exact_every && i % exact_every == 0) exact_compare(A->c, &pa, B->c, &pb, &rep, i);
     }
 }
@@ -125,23 +123,23 @@ static void test_cold(int count, int exact_every) {
  * B spins slowly. The warm cache is carried along; each step is also
  * queried cold and both distances must agree. */
 static void test_motion(int sequences, int steps) {
-    tg_rng rng;
-    tg_seed(&rng, 2002);
+    pg_rng rng;
+    pg_seed(&rng, 2002);
     long idx = 0;
     for (int s = 0; s < sequences; ++s) {
         const pool_item *A = pick(&rng, 1), *B = pick(&rng, 0);
         double reach = 0.5 * (A->size + B->size);
-        px_pose pb = tg_pose_random(&rng, 3.0);
-        px_pose pa = place_near(&rng, &pb, reach, tg_range(&rng, 0.8, 1.6));
+        px_pose pb = pg_pose_random(&rng, 3.0);
+        px_pose pa = place_near(&rng, &pb, reach, pg_range(&rng, 0.8, 1.6));
         px_vec3 dir = pxi_sub(pb.t, pa.t);
         dir = pxi_scale(dir, 1.0 / pxi_len(dir));
         /* step length: 0.1% .. 3% of the reach, towards B */
-        double step = reach * pow(10.0, tg_range(&rng, -3, -1.5));
-        px_vec3 axis_a = tg_unit(&rng), axis_b = tg_unit(&rng);
-        double ang_a = tg_range(&rng, 0.001, 0.1), ang_b = tg_range(&rng, 0.0, 0.02);
+        double step = reach * pow(10.0, pg_range(&rng, -3, -1.5));
+        px_vec3 axis_a = pg_unit(&rng), axis_b = pg_unit(&rng);
+        double ang_a = pg_range(&rng, 0.001, 0.1), ang_b = pg_range(&rng, 0.0, 0.02);
         double ra[9], rb[9];
-        tg_rot_axis_angle(axis_a, ang_a, ra);
-        tg_rot_axis_angle(axis_b, ang_b, rb);
+        pg_rot_axis_angle(axis_a, ang_a, ra);
+        pg_rot_axis_angle(axis_b, ang_b, rb);
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int k = 0; k < steps; ++k, ++idx) {
@@ -154,7 +152,7 @@ static void test_motion(int sequences, int steps) {
             }
             if (rep.fail && g_st.failed <= 5)
                 fprintf(stderr, "  repro: motion seq %d step %d A=%s n=%zu B=%s n=%zu\n", s, k,
-                        tg_kind_name(A->kind), A->n, tg_kind_name(B->kind), B->n);
+                        pg_kind_name(A->kind), A->n, pg_kind_name(B->kind), B->n);
             /* Cold query on the same poses: same distance. */
             px_distance_result cold;
             px_status st = px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, NULL, &cold);
@@ -163,11 +161,11 @@ static void test_motion(int sequences, int steps) {
                   "motion #%ld: warm d=%.17g (int %d), cold d=%.17g (int %d)", idx, rep.res.distance,
                   rep.res.intersecting, cold.distance, cold.intersecting);
             /* Advance: rotate A about its centre, translate towards B; spin B. */
-            tg_mat_mul(ra, pa.r, pa.r);
-            tg_rot_orthonormalize(pa.r);
+            pg_mat_mul(ra, pa.r, pa.r);
+            pg_rot_orthonormalize(pa.r);
             pa.t = pxi_add(pa.t, pxi_scale(dir, step));
-            tg_mat_mul(rb, pb.r, pb.r);
-            tg_rot_orthonormalize(pb.r);
+            pg_mat_mul(rb, pb.r, pb.r);
+            pg_rot_orthonormalize(pb.r);
         }
     }
 }
@@ -177,15 +175,15 @@ static void test_motion(int sequences, int steps) {
  * rounded differently). A cache holding features out of range for the
  * pair (reused from another pair) is ignored: the query runs cold. */
 static void test_frame_invariance_and_foreign_cache(int count) {
-    tg_rng rng;
-    tg_seed(&rng, 3003);
+    pg_rng rng;
+    pg_seed(&rng, 3003);
     for (int i = 0; i < count; ++i) {
         const pool_item *A = pick(&rng, 0), *B = pick(&rng, 0);
-        px_pose pb = tg_pose_random(&rng, 2.0);
-        px_pose pa = place_near(&rng, &pb, 0.5 * (A->size + B->size), tg_range(&rng, 0.05, 1.5));
-        px_pose g = tg_pose_random(&rng, 100.0), pa2 = pa, pb2 = pb;
-        tg_mat_mul(g.r, pa.r, pa2.r);
-        tg_mat_mul(g.r, pb.r, pb2.r);
+        px_pose pb = pg_pose_random(&rng, 2.0);
+        px_pose pa = place_near(&rng, &pb, 0.5 * (A->size + B->size), pg_range(&rng, 0.05, 1.5));
+        px_pose g = pg_pose_random(&rng, 100.0), pa2 = pa, pb2 = pb;
+        pg_mat_mul(g.r, pa.r, pa2.r);
+        pg_mat_mul(g.r, pb.r, pb2.r);
         pa2.t = pxi_xform(&g, pa.t);
         pb2.t = pxi_xform(&g, pb.t);
         px_distance_result r1, r2, r3;

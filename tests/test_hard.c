@@ -23,8 +23,8 @@
 #include <float.h>
 
 #include "check.h"
-#include "gen.h"
 #include "math/vec3.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 #define C_EPS 64.0
@@ -143,31 +143,31 @@ static void test_tiny_tetrahedra(int velocities, int steps) {
     const double scales[3] = {1.0, 1e-23, 0x1p-76};
     px_convex *tet[3];
     double unit[12];
-    tg_regular_tetrahedron(1.0, unit);
+    pg_regular_tetrahedron(1.0, unit);
     for (int s = 0; s < 3; ++s) {
         double v[12];
         for (int i = 0; i < 12; ++i) v[i] = unit[i] * scales[s];
         tet[s] = build(v, 4, "tetrahedron");
         if (!tet[s]) return;
     }
-    tg_rng rng;
-    tg_seed(&rng, 23);
+    pg_rng rng;
+    pg_seed(&rng, 23);
     long idx = 0, walk_mismatch = 0, bit_mismatch = 0, compared = 0;
     double worst_rel = 0;
     for (int v = 0; v < velocities; ++v) {
-        px_vec3 axis_a = tg_unit(&rng), axis_b = tg_unit(&rng), dir = tg_unit(&rng);
-        double wa = tg_range(&rng, 0.2, 20) * PI / 180, wb = tg_range(&rng, 0.0, 20) * PI / 180;
+        px_vec3 axis_a = pg_unit(&rng), axis_b = pg_unit(&rng), dir = pg_unit(&rng);
+        double wa = pg_range(&rng, 0.2, 20) * PI / 180, wb = pg_range(&rng, 0.0, 20) * PI / 180;
         double ra0[9], rb0[9];
-        tg_rot_random(&rng, ra0);
-        tg_rot_random(&rng, rb0);
+        pg_rot_random(&rng, ra0);
+        pg_rot_random(&rng, rb0);
         px_distance_cache cache[3];
         memset(cache, 0, sizeof cache);
         for (int k = 0; k < steps; ++k, ++idx) {
             double rka[9], rkb[9], ra[9], rb[9];
-            tg_rot_axis_angle(axis_a, wa * k, rka);
-            tg_rot_axis_angle(axis_b, wb * k, rkb);
-            tg_mat_mul(rka, ra0, ra);
-            tg_mat_mul(rkb, rb0, rb);
+            pg_rot_axis_angle(axis_a, wa * k, rka);
+            pg_rot_axis_angle(axis_b, wb * k, rkb);
+            pg_mat_mul(rka, ra0, ra);
+            pg_mat_mul(rkb, rb0, rb);
             px_distance_result warm[3], cold[3];
             for (int s = 0; s < 3; ++s) {
                 px_pose pa = pose_rt(ra, pxi_v(0, 0, 0));
@@ -227,33 +227,33 @@ static void test_tiny_tetrahedra(int velocities, int steps) {
 /* ------------------------------------------------------------------ (b) */
 
 static void test_cubes_2000_vs_1e15(int velocities, int steps) {
-    tg_rng rng;
-    tg_seed(&rng, 39);
+    pg_rng rng;
+    pg_seed(&rng, 39);
     long idx = 0;
     double worst = 0; /* |d - d*| / (eps (|t_AB| + R_A + R_B)) */
     for (int e = 0; e <= 39; e += 3) {
         double s = pow(10.0, e);
         double big[24], small[24];
-        tg_box(1000 * s, 1000 * s, 1000 * s, big);
-        tg_box(0.5e-15 * s, 0.5e-15 * s, 0.5e-15 * s, small);
+        pg_box(1000 * s, 1000 * s, 1000 * s, big);
+        pg_box(0.5e-15 * s, 0.5e-15 * s, 0.5e-15 * s, small);
         px_convex *A = build(big, 8, "cube 2000"), *B = build(small, 8, "cube 1e-15");
         if (!A || !B) return;
         for (int v = 0; v < velocities; ++v) {
             double g[9];
-            tg_rot_random(&rng, g); /* the whole scene's orientation */
-            double wa = tg_range(&rng, 0.1, 20) * PI / 180, wb = tg_range(&rng, 0.1, 45) * PI / 180;
-            px_vec3 axis_b = tg_unit(&rng);
+            pg_rot_random(&rng, g); /* the whole scene's orientation */
+            double wa = pg_range(&rng, 0.1, 20) * PI / 180, wb = pg_range(&rng, 0.1, 45) * PI / 180;
+            px_vec3 axis_b = pg_unit(&rng);
             /* B's centre 1e-10 + half its diagonal beyond A's +x face, near the face centre. */
-            px_vec3 c_local = pxi_v((1000 + 1e-10 + 0.87e-15) * s, tg_range(&rng, -500, 500) * s,
-                                    tg_range(&rng, -500, 500) * s);
+            px_vec3 c_local = pxi_v((1000 + 1e-10 + 0.87e-15) * s, pg_range(&rng, -500, 500) * s,
+                                    pg_range(&rng, -500, 500) * s);
             px_distance_cache cache;
             memset(&cache, 0, sizeof cache);
             for (int k = 0; k < steps; ++k, ++idx) {
                 double rx[9], rb[9], ra[9], rbw[9];
-                tg_rot_axis_angle(pxi_v(1, 0, 0), wa * k, rx); /* A spins about its face normal */
-                tg_mat_mul(g, rx, ra);
-                tg_rot_axis_angle(axis_b, wb * k, rb);
-                tg_mat_mul(g, rb, rbw);
+                pg_rot_axis_angle(pxi_v(1, 0, 0), wa * k, rx); /* A spins about its face normal */
+                pg_mat_mul(g, rx, ra);
+                pg_rot_axis_angle(axis_b, wb * k, rb);
+                pg_mat_mul(g, rb, rbw);
                 px_pose pa = pose_rt(ra, pxi_v(0, 0, 0));
                 /* B's centre is fixed in the scene: g * (rx * c_local) rotates with A. */
                 px_pose pb = pose_rt(rbw, pxi_rot(ra, c_local));
@@ -297,7 +297,7 @@ static void rot_z90(int k, double r[9]) {
  * doubles is the reference). */
 static void test_touching(int velocities) {
     double cube[24];
-    tg_box(1, 1, 1, cube);
+    pg_box(1, 1, 1, cube);
     px_convex *C = build(cube, 8, "cube");
     /* wedge A: top edge (-1,0,0)-(1,0,0) at z = 0; wedge B: bottom edge along y at z = 0 */
     double wa[12] = {-1, 0, 0, 1, 0, 0, 0, -1, -1, 0, 1, -1};
@@ -318,8 +318,8 @@ static void test_touching(int velocities) {
         {"edge across edge", WA, WB, {0, 0, 0}, 0},   {"vertex on face", C, TV, {0.25, 0.5, 1}, 0},
         {"vertex on vertex", C, C, {2, 2, 2}, 0},
     };
-    tg_rng rng;
-    tg_seed(&rng, 1414);
+    pg_rng rng;
+    pg_seed(&rng, 1414);
     long idx = 0, touching = 0;
     for (size_t ci = 0; ci < sizeof cases / sizeof cases[0]; ++ci) {
         for (int v = 0; v <= velocities; ++v, ++idx) {
@@ -328,10 +328,10 @@ static void test_touching(int velocities) {
                 double id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
                 memcpy(g, id, sizeof g);
             } else {
-                tg_rot_random(&rng, g);
+                pg_rot_random(&rng, g);
             }
             rot_z90(cases[ci].rotk, rz);
-            tg_mat_mul(g, rz, rb);
+            pg_mat_mul(g, rz, rb);
             px_pose pa = pose_rt(g, pxi_v(0, 0, 0));
             px_pose pb = pose_rt(rb, pxi_rot(g, cases[ci].tb));
             tc_report rep;
@@ -360,23 +360,23 @@ static void test_touching(int velocities) {
 /* Cube on cube with parallel faces at gap g, sliding (warm) along the face. */
 static void test_parallel_faces(int velocities, int steps) {
     double big[24], small[24];
-    tg_box(1, 1, 1, big);
-    tg_box(0.5, 0.25, 0.75, small);
+    pg_box(1, 1, 1, big);
+    pg_box(0.5, 0.25, 0.75, small);
     px_convex *A = build(big, 8, "cube"), *B = build(small, 8, "box");
     if (!A || !B) return;
-    tg_rng rng;
-    tg_seed(&rng, 4711);
+    pg_rng rng;
+    pg_seed(&rng, 4711);
     long idx = 0;
     uint32_t max_it = 0;
     for (int v = 0; v < velocities; ++v) {
         double g[9];
-        tg_rot_random(&rng, g);
-        double gap = pow(10.0, tg_range(&rng, -12, 0));
-        double ang = tg_range(&rng, 0.0, 2 * PI);
+        pg_rot_random(&rng, g);
+        double gap = pow(10.0, pg_range(&rng, -12, 0));
+        double ang = pg_range(&rng, 0.0, 2 * PI);
         px_vec3 vel = pxi_v(0.05 * cos(ang), 0.05 * sin(ang), 0);
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
-        px_vec3 c = pxi_v(tg_range(&rng, -1, 1), tg_range(&rng, -1, 1), 1 + 0.75 + gap);
+        px_vec3 c = pxi_v(pg_range(&rng, -1, 1), pg_range(&rng, -1, 1), 1 + 0.75 + gap);
         for (int k = 0; k < steps; ++k, ++idx) {
             px_vec3 ck = pxi_add(c, pxi_scale(vel, (double)k));
             px_pose pa = pose_rt(g, pxi_v(0, 0, 0)), pb = pose_rt(g, pxi_rot(g, ck));
@@ -397,29 +397,29 @@ static void test_parallel_faces(int velocities, int steps) {
 }
 
 static void test_identical_and_inside(int velocities) {
-    tg_rng rng;
-    tg_seed(&rng, 777);
+    pg_rng rng;
+    pg_seed(&rng, 777);
     double xyz[3 * 200];
     long idx = 0;
     for (int v = 0; v < velocities; ++v, ++idx) {
-        tg_kind kind = (tg_kind)(v % TG_KIND_COUNT);
-        size_t n = tg_shape(&rng, kind, 8 + tg_below(&rng, 150), tg_range(&rng, 0.01, 100), xyz);
+        pg_kind kind = (pg_kind)(v % PG_KIND_COUNT);
+        size_t n = pg_shape(&rng, kind, 8 + pg_below(&rng, 150), pg_range(&rng, 0.01, 100), xyz);
         px_convex *c = build(xyz, n, "identical");
         if (!c) continue;
-        px_pose p = tg_pose_random(&rng, 10);
+        px_pose p = pg_pose_random(&rng, 10);
         px_distance_result r;
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int w = 0; w < 2; ++w) {
             px_status st = px_distance_ex(c, &p, c, &p, &tc_options, &cache, &r);
             CHECK(st == PX_OK && r.intersecting && r.distance == 0,
-                  "identical %s bodies, same pose: st %d int %d d %.3g", tg_kind_name(kind), st,
+                  "identical %s bodies, same pose: st %d int %d d %.3g", pg_kind_name(kind), st,
                   r.intersecting, r.distance);
             g_fallbacks += r.fallbacks;
             if (r.fallbacks)
                 fprintf(stderr,
                         "  note: identical %s bodies (n=%zu), same pose, %s: %u fallbacks, %u iterations\n",
-                        tg_kind_name(kind), n, w ? "warm" : "cold", r.fallbacks, r.iterations);
+                        pg_kind_name(kind), n, w ? "warm" : "cold", r.fallbacks, r.iterations);
         }
         /* One inside the other: a copy shrunk to 10 % about an interior point. */
         uint32_t nv = px_convex_vertex_count(c);
@@ -439,10 +439,10 @@ static void test_identical_and_inside(int velocities) {
             tc_report rep;
             hard_query(inner, &p, c, &p, NULL, 0, "inside", idx, &rep);
             CHECK(rep.res.intersecting && rep.res.distance == 0, "inner %s: int %d d %.3g",
-                  tg_kind_name(kind), rep.res.intersecting, rep.res.distance);
+                  pg_kind_name(kind), rep.res.intersecting, rep.res.distance);
             hard_query(c, &p, inner, &p, NULL, 0, "containing", idx, &rep);
             CHECK(rep.res.intersecting && rep.res.distance == 0, "outer %s: int %d d %.3g",
-                  tg_kind_name(kind), rep.res.intersecting, rep.res.distance);
+                  pg_kind_name(kind), rep.res.intersecting, rep.res.distance);
             px_convex_destroy(inner);
         }
         px_convex_destroy(c);
@@ -459,7 +459,7 @@ static int result_is_zero(const px_distance_result *r) {
 
 static void test_bad_poses(void) {
     double cube[24];
-    tg_box(1, 1, 1, cube);
+    pg_box(1, 1, 1, cube);
     px_convex *C = build(cube, 8, "cube");
     if (!C) return;
     const double bad[3] = {NAN, INFINITY, -INFINITY};
@@ -521,18 +521,18 @@ static void test_bad_poses(void) {
  * parallel edges: exact comparison with a relative bound where the gap is
  * sensible, under random global rotations and small motions. */
 static void test_near_degenerate(int velocities) {
-    tg_rng rng;
-    tg_seed(&rng, 1212);
+    pg_rng rng;
+    pg_seed(&rng, 1212);
     /* Cube whose top face is a pyramid of height 1e-12 (dihedral ~1e-12). */
     double pyr[27];
-    tg_box(1, 1, 1, pyr);
+    pg_box(1, 1, 1, pyr);
     pyr[24] = 0, pyr[25] = 0, pyr[26] = 1 + 1e-12;
     px_convex *P = build(pyr, 9, "near-coplanar pyramid top");
     CHECK(P && px_convex_face_count(P) == 9, "pyramid top kept as 4 faces (F=%u)",
           P ? px_convex_face_count(P) : 0);
     /* Needle (radius 1e-6, length 2) and sliver tetrahedron. */
     double needle[3 * 16];
-    tg_cylinder(8, 1e-6, 1, needle);
+    pg_cylinder(8, 1e-6, 1, needle);
     px_convex *N = build(needle, 16, "needle");
     double sliver[12] = {-1, 0, 0, 1, 0, 0, 0, 1e-7, 1e-9, 0.3, -1e-7, 2e-9};
     px_convex *S = build(sliver, 4, "sliver");
@@ -540,23 +540,23 @@ static void test_near_degenerate(int velocities) {
     double wa[12] = {-1, 0, 0, 1, 0, 0, 0, -1, -1, 0, 1, -1};
     px_convex *WA = build(wa, 4, "wedge a");
     double small[24];
-    tg_box(0.2, 0.3, 0.1, small);
+    pg_box(0.2, 0.3, 0.1, small);
     px_convex *B = build(small, 8, "small box");
     if (!P || !N || !S || !WA || !B) return;
     long idx = 0;
     double worst = 0;
     for (int v = 0; v < velocities; ++v) {
         double g[9];
-        tg_rot_random(&rng, g);
+        pg_rot_random(&rng, g);
         /* 1. small box hovering above the pyramid top, sliding across the ridge lines */
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
-        double h = pow(10.0, tg_range(&rng, -6, -1));
+        double h = pow(10.0, pg_range(&rng, -6, -1));
         for (int k = 0; k < 20; ++k, ++idx) {
-            px_vec3 c = pxi_v(-0.6 + 0.06 * k, tg_range(&rng, -0.5, 0.5), 1 + 1e-12 + 0.1 + h);
+            px_vec3 c = pxi_v(-0.6 + 0.06 * k, pg_range(&rng, -0.5, 0.5), 1 + 1e-12 + 0.1 + h);
             double rb[9], rz[9];
-            tg_rot_axis_angle(pxi_v(0, 0, 1), 0.02 * k, rz);
-            tg_mat_mul(g, rz, rb);
+            pg_rot_axis_angle(pxi_v(0, 0, 1), 0.02 * k, rz);
+            pg_mat_mul(g, rz, rb);
             px_pose pa = pose_rt(g, pxi_v(1, 2, 3)), pb = pose_rt(rb, pxi_add(pxi_v(1, 2, 3), pxi_rot(g, c)));
             tc_report rep;
             hard_query(B, &pb, P, &pa, &cache, 1e-12, "near-coplanar", idx, &rep);
@@ -565,14 +565,14 @@ static void test_near_degenerate(int velocities) {
         const px_convex *thin[2] = {N, S};
         for (int t = 0; t < 2; ++t) {
             memset(&cache, 0, sizeof cache);
-            px_pose pa = tg_pose_random(&rng, 1);
-            px_vec3 dir = tg_unit(&rng);
+            px_pose pa = pg_pose_random(&rng, 1);
+            px_vec3 dir = pg_unit(&rng);
             for (int k = 0; k < 10; ++k, ++idx) {
                 px_pose pb = pa;
                 double rk[9];
-                tg_rot_axis_angle(dir, 0.05 * k, rk);
-                tg_mat_mul(rk, pa.r, pb.r);
-                pb.t = pxi_add(pa.t, pxi_scale(dir, 1.9 + 0.1 * tg_uniform(&rng)));
+                pg_rot_axis_angle(dir, 0.05 * k, rk);
+                pg_mat_mul(rk, pa.r, pb.r);
+                pb.t = pxi_add(pa.t, pxi_scale(dir, 1.9 + 0.1 * pg_uniform(&rng)));
                 tc_report rep;
                 hard_query(thin[t], &pb, P, &pa, &cache, 0, t ? "sliver" : "needle", idx, &rep);
                 hard_query(thin[t], &pb, P, &pa, NULL, 0, t ? "sliver cold" : "needle cold", idx, &rep);
@@ -581,13 +581,13 @@ static void test_near_degenerate(int velocities) {
         /* 3. nearly parallel edges: B = wedge a turned upside down, its
          * bottom edge at angle 1e-9 (times 1..1000) to A's top edge. */
         {
-            double ang = 1e-9 * pow(10.0, tg_range(&rng, 0, 3));
-            double gap = pow(10.0, tg_range(&rng, -9, -1));
+            double ang = 1e-9 * pow(10.0, pg_range(&rng, 0, 3));
+            double gap = pow(10.0, pg_range(&rng, -9, -1));
             double flip[9] = {1, 0, 0, 0, -1, 0, 0, 0, -1}, rz[9], rb[9], rl[9];
-            tg_rot_axis_angle(pxi_v(0, 0, 1), ang, rz);
-            tg_mat_mul(rz, flip, rl);
-            tg_mat_mul(g, rl, rb);
-            px_vec3 off = pxi_v(tg_range(&rng, -0.5, 0.5), 0, gap);
+            pg_rot_axis_angle(pxi_v(0, 0, 1), ang, rz);
+            pg_mat_mul(rz, flip, rl);
+            pg_mat_mul(g, rl, rb);
+            px_vec3 off = pxi_v(pg_range(&rng, -0.5, 0.5), 0, gap);
             px_pose pa = pose_rt(g, pxi_v(0, 0, 0)), pb = pose_rt(rb, pxi_rot(g, off));
             tc_report rep;
             hard_query(WA, &pb, WA, &pa, NULL, 1e-12, "nearly parallel edges", idx, &rep);
@@ -628,8 +628,8 @@ static px_pose pose_hex(const double r[9], double x, double y, double z) {
  * (1.0015810403274372e-10) without traps. */
 static void regression_gjk_degenerate_triangle(void) {
     double big[24], small[24];
-    tg_box(1000, 1000, 1000, big);
-    tg_box(0.5e-15, 0.5e-15, 0.5e-15, small);
+    pg_box(1000, 1000, 1000, big);
+    pg_box(0.5e-15, 0.5e-15, 0.5e-15, small);
     px_convex *A = build(big, 8, "cube 2000"), *B = build(small, 8, "cube 1e-15");
     if (!A || !B) return;
     static const double ra[9] = {-0x1.e1147388ba812p-1, -0x1.ffc708cc65974p-4, 0x1.46462d007a615p-2,
@@ -651,8 +651,8 @@ static void regression_gjk_degenerate_triangle(void) {
  * with distance 0, cold (iterations 0, a vertex-vertex pair) and warm. */
 static void regression_cubes_scale_1e9_misclassified(void) {
     double big[24], small[24];
-    tg_box(1000e9, 1000e9, 1000e9, big);
-    tg_box(0.5e-6, 0.5e-6, 0.5e-6, small);
+    pg_box(1000e9, 1000e9, 1000e9, big);
+    pg_box(0.5e-6, 0.5e-6, 0.5e-6, small);
     px_convex *A = build(big, 8, "cube 2000e9"), *B = build(small, 8, "cube 1e-6");
     if (!A || !B) return;
     static const double ra[9] = {0x1.52aaf0c342efcp-1,  0x1.6f9f9bfc8184cp-2,  -0x1.51231795a6b1cp-1,
@@ -678,7 +678,7 @@ static void regression_cubes_scale_1e9_misclassified(void) {
  * its witness points. */
 static void regression_touching_faces_fallback_features(void) {
     double cube[24];
-    tg_box(1, 1, 1, cube);
+    pg_box(1, 1, 1, cube);
     px_convex *C = build(cube, 8, "cube");
     if (!C) return;
     static const double ra[9] = {-0x1.b9a958d20d7e2p-1, 0x1.786a2ff8996b6p-2, -0x1.63d948476521cp-2,
@@ -736,9 +736,9 @@ static void regression_nearly_parallel_edges(void) {
  * 8.0102352942799593e-05: error 7.6e-14 > 64 eps (|t_AB| + R_A + R_B). */
 static void regression_near_coplanar(void) {
     double pyr[27], small[24];
-    tg_box(1, 1, 1, pyr);
+    pg_box(1, 1, 1, pyr);
     pyr[24] = 0, pyr[25] = 0, pyr[26] = 1 + 1e-12;
-    tg_box(0.2, 0.3, 0.1, small);
+    pg_box(0.2, 0.3, 0.1, small);
     px_convex *P = build(pyr, 9, "pyramid top"), *B = build(small, 8, "small box");
     if (!P || !B) return;
     static const double ra[9] = {0x1.84429648abfacp-3,  -0x1.3ec64a47642dp-1,  -0x1.84b8f35d5ee37p-1,

@@ -3,8 +3,8 @@
  * hull pairs against the exact distance of CGAL Polytope_distance_d
  * (pxcd_exact_distance, Homogeneous<Gmpzf>). Hulls come straight from
  * pxcd_hull_compute, so this test does not depend on px_convex. */
-#include "gen.h"
 #include "oracle.h"
+#include "px_gen.h"
 #include "pxcd.h"
 #include "test_util.h"
 
@@ -118,23 +118,23 @@ static int hull_poly(const double *xyz, size_t n, or_poly *p, double **verts, si
 }
 
 static void test_random_vs_exact(int pairs) {
-    tg_rng rng;
-    tg_seed(&rng, 0x0ac1e5eedULL);
+    pg_rng rng;
+    pg_seed(&rng, 0x0ac1e5eedULL);
     double *pa = malloc(3 * 2000 * sizeof *pa), *pb = malloc(3 * 2000 * sizeof *pb);
     int compared = 0, band = 0, inter = 0;
     double worst = 0;
     for (int it = 0; it < pairs; ++it) {
-        tg_kind ka = (tg_kind)tg_below(&rng, TG_KIND_COUNT), kb = (tg_kind)tg_below(&rng, TG_KIND_COUNT);
-        size_t na = tg_log_int(&rng, 8, it % 50 == 0 ? 1000 : 40);
-        size_t nb = tg_log_int(&rng, 8, 40);
-        double sa = tg_range(&rng, 0.5, 2), sb = tg_range(&rng, 0.5, 2);
-        na = tg_shape(&rng, ka, na, sa, pa);
-        nb = tg_shape(&rng, kb, nb, sb, pb);
+        pg_kind ka = (pg_kind)pg_below(&rng, PG_KIND_COUNT), kb = (pg_kind)pg_below(&rng, PG_KIND_COUNT);
+        size_t na = pg_log_int(&rng, 8, it % 50 == 0 ? 1000 : 40);
+        size_t nb = pg_log_int(&rng, 8, 40);
+        double sa = pg_range(&rng, 0.5, 2), sb = pg_range(&rng, 0.5, 2);
+        na = pg_shape(&rng, ka, na, sa, pa);
+        nb = pg_shape(&rng, kb, nb, sb, pb);
         /* Pose A relative to B (common frame = B's). */
         double r[9];
-        tg_rot_random(&rng, r);
-        px_vec3 dir = tg_unit(&rng);
-        double gap = tg_range(&rng, 0.0, 1.2) * 0.5 * (sa + sb);
+        pg_rot_random(&rng, r);
+        px_vec3 dir = pg_unit(&rng);
+        double gap = pg_range(&rng, 0.0, 1.2) * 0.5 * (sa + sb);
         for (size_t i = 0; i < na; ++i) {
             double x = pa[3 * i], y = pa[3 * i + 1], z = pa[3 * i + 2];
             pa[3 * i] = r[0] * x + r[1] * y + r[2] * z + gap * dir.x;
@@ -159,8 +159,8 @@ static void test_random_vs_exact(int pairs) {
         double tol = 1e-13 * scale;
         double err = fabs(res.distance - ex);
         if (err / scale > worst) worst = err / scale;
-        CHECK(err <= tol, "pair %d (%s %zu, %s %zu): oracle %.17g exact %.17g", it, tg_kind_name(ka), na,
-              tg_kind_name(kb), nb, res.distance, ex);
+        CHECK(err <= tol, "pair %d (%s %zu, %s %zu): oracle %.17g exact %.17g", it, pg_kind_name(ka), na,
+              pg_kind_name(kb), nb, res.distance, ex);
         /* Classification, outside the ambiguous band. */
         if (zero) {
             inter++;

@@ -22,10 +22,10 @@
  * The oracle itself is cross-checked on a subset: pruned vs unpruned axes,
  * and its classification and depth against the brute-force distance oracle
  * (oracle.h). */
-#include "gen.h"
 #include "math/vec3.h"
 #include "oracle.h"
 #include "oracle_sat.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 static const char *method_names[3] = {"lin-canny", "gjk", "hybrid"};
@@ -198,12 +198,11 @@ static void check_pose(const shape *A, const px_pose *pa, const shape *B, const 
     }
 }
 
-/* Pose of A: random rotation, centre at B's plus `f` times the sum of the
- * radii in a random direction (f < ~0.7 overlaps for most shapes). */
-static px_pose place(tg_rng *rng, const px_pose *pb, double reach, double f) {
-    px_pose p = tg_pose_random(rng, 0);
-    p.t = pxi_add(pb->t, pxi_scale(tg_unit(rng), f * reach));
-    return p;
+/* Pose of A (pg_pose_around): random rotation, centre at B's plus `f` times
+ * the sum of the radii in a random direction (f < ~0.7 overlaps for most
+ * shapes). */
+static px_pose place(pg_rng *rng, const px_pose *pb, double reach, double f) {
+    return pg_pose_around(rng, pb->t, f * reach);
 }
 
 /* Cross-check of the oracle itself: pruned == unpruned axes; separated /
@@ -264,49 +263,49 @@ typedef struct pair_def {
 #define NPAIRS 7
 
 static void build_pairs(pair_def *p) {
-    tg_rng rng;
-    tg_seed(&rng, 7007);
+    pg_rng rng;
+    pg_seed(&rng, 7007);
     double xyz[3 * 400], xyz2[3 * 400];
     p[0].name = "ball12 vs ball30";
-    tg_points_ball(&rng, 12, 0.5, xyz);
+    pg_points_ball(&rng, 12, 0.5, xyz);
     make_shape(&p[0].a, xyz, 12);
-    tg_points_ball(&rng, 30, 0.7, xyz2);
+    pg_points_ball(&rng, 30, 0.7, xyz2);
     make_shape(&p[0].b, xyz2, 30);
     p[1].name = "tetra vs sphere40";
-    tg_random_tetrahedron(&rng, 0.6, xyz);
+    pg_random_tetrahedron(&rng, 0.6, xyz);
     make_shape(&p[1].a, xyz, 4);
-    tg_points_sphere(&rng, 40, 0.5, xyz2);
+    pg_points_sphere(&rng, 40, 0.5, xyz2);
     make_shape(&p[1].b, xyz2, 40);
     p[2].name = "box vs box";
-    tg_box(0.5, 0.5, 0.5, xyz);
+    pg_box(0.5, 0.5, 0.5, xyz);
     make_shape(&p[2].a, xyz, 8);
-    tg_box(1.0, 0.25, 0.5, xyz2);
+    pg_box(1.0, 0.25, 0.5, xyz2);
     make_shape(&p[2].b, xyz2, 8);
     p[3].name = "slab vs ball20";
-    tg_box(1.0, 1.0, 0.02, xyz);
+    pg_box(1.0, 1.0, 0.02, xyz);
     make_shape(&p[3].a, xyz, 8);
-    tg_points_ball(&rng, 20, 0.4, xyz2);
+    pg_points_ball(&rng, 20, 0.4, xyz2);
     make_shape(&p[3].b, xyz2, 20);
     p[4].name = "ellipsoid200 vs ball8";
-    tg_points_ellipsoid(&rng, 200, 1.0, 0.6, 0.4, xyz);
+    pg_points_ellipsoid(&rng, 200, 1.0, 0.6, 0.4, xyz);
     make_shape(&p[4].a, xyz, 200);
-    tg_points_ball(&rng, 8, 0.25, xyz2);
+    pg_points_ball(&rng, 8, 0.25, xyz2);
     make_shape(&p[4].b, xyz2, 8);
     p[5].name = "cylinder24 vs box";
-    tg_cylinder(12, 0.4, 0.6, xyz);
+    pg_cylinder(12, 0.4, 0.6, xyz);
     make_shape(&p[5].a, xyz, 24);
-    tg_box(0.3, 0.2, 0.1, xyz2);
+    pg_box(0.3, 0.2, 0.1, xyz2);
     make_shape(&p[5].b, xyz2, 8);
     p[6].name = "tetra vs tetra";
-    tg_random_tetrahedron(&rng, 0.5, xyz);
+    pg_random_tetrahedron(&rng, 0.5, xyz);
     make_shape(&p[6].a, xyz, 4);
-    tg_random_tetrahedron(&rng, 0.4, xyz2);
+    pg_random_tetrahedron(&rng, 0.4, xyz2);
     make_shape(&p[6].b, xyz2, 4);
 }
 
 static void test_random(pair_def *pairs, int want) {
-    tg_rng rng;
-    tg_seed(&rng, 8008);
+    pg_rng rng;
+    pg_seed(&rng, 8008);
     for (int k = 0; k < NPAIRS; ++k) {
         pair_def *P = &pairs[k];
         if (!P->a.c || !P->b.c) continue;
@@ -314,9 +313,9 @@ static void test_random(pair_def *pairs, int want) {
         long overl0 = g_st.overlapping, idx = 0;
         double t0 = tu_now();
         while (g_st.overlapping - overl0 < want && idx < 4L * want) {
-            px_pose pb = tg_pose_random(&rng, 2.0);
+            px_pose pb = pg_pose_random(&rng, 2.0);
             /* Mostly overlapping, a fifth reaching into separation. */
-            double f = tg_below(&rng, 5) ? tg_range(&rng, 0.0, 0.6) : tg_range(&rng, 0.4, 1.2);
+            double f = pg_below(&rng, 5) ? pg_range(&rng, 0.0, 0.6) : pg_range(&rng, 0.4, 1.2);
             px_pose pa = place(&rng, &pb, reach, f);
             check_pose(&P->a, &pa, &P->b, &pb, P->name, idx);
             if (idx < 40 && k != 4) oracle_self_check(&P->a, &pa, &P->b, &pb, idx);
@@ -363,19 +362,19 @@ static void check_touching(const shape *A, const px_pose *pa, const shape *B, co
 }
 
 static void test_bad_inputs(void) {
-    tg_rng rng;
-    tg_seed(&rng, 9009);
+    pg_rng rng;
+    pg_seed(&rng, 9009);
     double xyz[3 * 64], I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     shape cube, big, small, hull, slab;
-    tg_box(0.5, 0.5, 0.5, xyz);
+    pg_box(0.5, 0.5, 0.5, xyz);
     make_shape(&cube, xyz, 8);
-    tg_box(1.0, 1.0, 1.0, xyz);
+    pg_box(1.0, 1.0, 1.0, xyz);
     make_shape(&big, xyz, 8);
-    tg_points_ball(&rng, 20, 0.1, xyz);
+    pg_points_ball(&rng, 20, 0.1, xyz);
     make_shape(&small, xyz, 20);
-    tg_points_sphere(&rng, 30, 0.6, xyz);
+    pg_points_sphere(&rng, 30, 0.6, xyz);
     make_shape(&hull, xyz, 30);
-    tg_box(0.8, 0.6, 0.01, xyz);
+    pg_box(0.8, 0.6, 0.01, xyz);
     make_shape(&slab, xyz, 8);
     long before = tu_fail_count;
 
@@ -389,26 +388,26 @@ static void test_bad_inputs(void) {
     check_touching(&cube, &p0, &cube, &pv, "touching vertices", 1);
     /* Crossed edges: A turned 45 degrees about x, B about y, stacked. */
     double rx[9], ry[9];
-    tg_rot_axis_angle(pxi_v(1, 0, 0), M_PI / 4, rx);
-    tg_rot_axis_angle(pxi_v(0, 1, 0), M_PI / 4, ry);
+    pg_rot_axis_angle(pxi_v(1, 0, 0), M_PI / 4, rx);
+    pg_rot_axis_angle(pxi_v(0, 1, 0), M_PI / 4, ry);
     px_pose pcx = pose_rt(rx, 0, 0, 0), pcy = pose_rt(ry, 0.1, -0.2, sqrt(2.0));
     check_touching(&cube, &pcx, &cube, &pcy, "touching crossed edges", 0);
     /* Touching after a rotation: same random rotation, B one face further. */
     for (int i = 0; i < 20; ++i) {
-        px_pose pa = tg_pose_random(&rng, 3.0), pb = pa;
-        px_vec3 off = pxi_v(1.0, tg_range(&rng, -0.5, 0.5), tg_range(&rng, -0.5, 0.5));
+        px_pose pa = pg_pose_random(&rng, 3.0), pb = pa;
+        px_vec3 off = pxi_v(1.0, pg_range(&rng, -0.5, 0.5), pg_range(&rng, -0.5, 0.5));
         pb.t = pxi_add(pa.t, pxi_rot(pa.r, off));
         check_touching(&cube, &pa, &cube, &pb, "touching after rotation", 0);
     }
     /* Nested: a small hull strictly inside the big box; coinciding centres. */
     for (int i = 0; i < 30; ++i) {
-        px_pose pb = tg_pose_random(&rng, 1.0);
-        px_pose pa = tg_pose_random(&rng, 0);
-        pa.t = pxi_add(pb.t, pxi_rot(pb.r, pxi_v(tg_range(&rng, -0.8, 0.8), tg_range(&rng, -0.8, 0.8),
-                                                 tg_range(&rng, -0.8, 0.8))));
+        px_pose pb = pg_pose_random(&rng, 1.0);
+        px_pose pa = pg_pose_random(&rng, 0);
+        pa.t = pxi_add(pb.t, pxi_rot(pb.r, pxi_v(pg_range(&rng, -0.8, 0.8), pg_range(&rng, -0.8, 0.8),
+                                                 pg_range(&rng, -0.8, 0.8))));
         check_pose(&small, &pa, &big, &pb, "nested small in big", i);
         check_pose(&big, &pb, &small, &pa, "nested big around small", i);
-        px_pose pc = tg_pose_random(&rng, 0);
+        px_pose pc = pg_pose_random(&rng, 0);
         pc.t = pb.t;
         check_pose(&hull, &pc, &cube, &pb, "coinciding centres", i);
         check_pose(&slab, &pc, &hull, &pb, "coinciding centres slab", i);
@@ -417,7 +416,7 @@ static void test_bad_inputs(void) {
      * with the oracle's depth (the least width of A - A). */
     const shape *same[4] = {&cube, &hull, &slab, &small};
     for (int i = 0; i < 4; ++i) {
-        px_pose p = tg_pose_random(&rng, 2.0);
+        px_pose p = pg_pose_random(&rng, 2.0);
         double t0 = tu_now();
         check_pose(same[i], &p, same[i], &p, "coincident", i);
         CHECK(tu_now() - t0 < 5.0, "coincident #%d took %.2f s", i, tu_now() - t0);
@@ -427,20 +426,20 @@ static void test_bad_inputs(void) {
     /* Huge/tiny pair: a 1e-3 box half inside a face of a 1e3 box, and the
      * same pair at random rotations; then both bodies tiny, both huge. */
     shape huge, tiny;
-    tg_box(1e3, 1e3, 1e3, xyz);
+    pg_box(1e3, 1e3, 1e3, xyz);
     make_shape(&huge, xyz, 8);
-    tg_box(1e-3, 1e-3, 1e-3, xyz);
+    pg_box(1e-3, 1e-3, 1e-3, xyz);
     make_shape(&tiny, xyz, 8);
     px_pose ph = pose_rt(I, 0, 0, 0), pt = pose_rt(I, 1e3, 0.5, -0.25);
     check_pose(&tiny, &pt, &huge, &ph, "tiny on huge face", 0);
     check_pose(&huge, &ph, &tiny, &pt, "huge under tiny", 0);
     for (int i = 0; i < 20; ++i) {
-        px_pose pa = tg_pose_random(&rng, 0), pb = tg_pose_random(&rng, 0);
-        pa.t = pxi_scale(tg_unit(&rng), tg_range(&rng, 0, 1.5e-3));
+        px_pose pa = pg_pose_random(&rng, 0), pb = pg_pose_random(&rng, 0);
+        pa.t = pxi_scale(pg_unit(&rng), pg_range(&rng, 0, 1.5e-3));
         check_pose(&tiny, &pa, &tiny, &pb, "tiny pair", i);
-        pa.t = pxi_scale(tg_unit(&rng), tg_range(&rng, 0, 1.5e3));
+        pa.t = pxi_scale(pg_unit(&rng), pg_range(&rng, 0, 1.5e3));
         check_pose(&huge, &pa, &huge, &pb, "huge pair", i);
-        pa.t = pxi_add(pb.t, pxi_rot(pb.r, pxi_v(1e3 - 1e-3 * tg_range(&rng, 0, 2), 0.1 * i, -5.0 * i)));
+        pa.t = pxi_add(pb.t, pxi_rot(pb.r, pxi_v(1e3 - 1e-3 * pg_range(&rng, 0, 2), 0.1 * i, -5.0 * i)));
         check_pose(&tiny, &pa, &huge, &pb, "tiny at huge face", i);
     }
     printf("  section C cases: %ld failed checks\n", (long)(tu_fail_count - before));

@@ -13,15 +13,15 @@
 #include <math.h>
 #include <string.h>
 
-#include "gen.h"
 #include "math/vec3.h"
 #include "oracle_sat.h"
 #include "proxima/proxima.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 static px_convex *box_at(double cx, double cy, double cz, double hx, double hy, double hz) {
     double p[24];
-    tg_box(hx, hy, hz, p);
+    pg_box(hx, hy, hz, p);
     for (int i = 0; i < 8; ++i) p[3 * i] += cx, p[3 * i + 1] += cy, p[3 * i + 2] += cz;
     return px_convex_from_points(p, 8, NULL, NULL);
 }
@@ -49,20 +49,20 @@ static void test_warm_translation_hint(void) {
           "reviewer's pair: first hit %d, warm hit %d gap %.17g, cold hit %d gap %.17g", r0.hit, rw.hit,
           rw.gap, rc.hit, rc.gap);
     /* Random directions on one cache, several pairs of small hulls. */
-    tg_rng rng;
-    tg_seed(&rng, 4242);
+    pg_rng rng;
+    pg_seed(&rng, 4242);
     double xyz[3 * 40];
     int bad = 0, n = 0;
     for (int pair = 0; pair < 20; ++pair) {
-        tg_points_ball(&rng, 12 + pair, 1.0, xyz);
+        pg_points_ball(&rng, 12 + pair, 1.0, xyz);
         px_convex *p = px_convex_from_points(xyz, (size_t)(12 + pair), NULL, NULL);
-        tg_points_ball(&rng, 30 - pair, 0.7, xyz);
+        pg_points_ball(&rng, 30 - pair, 0.7, xyz);
         px_convex *q = px_convex_from_points(xyz, (size_t)(30 - pair), NULL, NULL);
         if (!p || !q) continue;
-        px_pose pp = tg_pose_random(&rng, 0.0), pq = tg_pose_random(&rng, 3.0);
+        px_pose pp = pg_pose_random(&rng, 0.0), pq = pg_pose_random(&rng, 3.0);
         memset(&c, 0, sizeof c);
         for (int k = 0; k < tu_scaled(100); ++k, ++n) {
-            px_vec3 d = tg_unit(&rng);
+            px_vec3 d = pg_unit(&rng);
             px_translation_result w, cold;
             px_translation(p, &pp, q, &pq, d, &c, &w);
             px_translation(p, &pp, q, &pq, d, NULL, &cold);
@@ -91,7 +91,7 @@ static void test_intersect_near_contact(void) {
             for (int gi = 6; gi <= 11; ++gi, ++n) {
                 double ang = k * pow(10.0, -e), gap = pow(10.0, -gi);
                 px_pose pa = px_pose_identity(), pb = px_pose_identity();
-                tg_rot_axis_angle(pxi_v(0.6, 0.8, 0), ang, pb.r);
+                pg_rot_axis_angle(pxi_v(0.6, 0.8, 0), ang, pb.r);
                 pb.t = pxi_v(0.3, 0.2, 2.0);
                 px_distance_result r;
                 px_distance(a, &pa, b, &pb, NULL, &r);
@@ -113,11 +113,11 @@ static void test_intersect_near_contact(void) {
  * along the normal must leave the pair exactly touching, and the depth must
  * be within 1 % of the SAT oracle. */
 static void test_epa_deep_round(void) {
-    tg_rng rng;
-    tg_seed(&rng, 1);
+    pg_rng rng;
+    pg_seed(&rng, 1);
     static double xyz[3 * 1000];
     for (int n = 500; n <= 1000; n += 500) {
-        tg_points_sphere(&rng, (size_t)n, 1.0, xyz);
+        pg_points_sphere(&rng, (size_t)n, 1.0, xyz);
         px_convex *s = px_convex_from_points(xyz, (size_t)n, NULL, NULL);
         os_shape sh;
         if (!s || os_shape_init(&sh, s) != 0) continue;

@@ -19,9 +19,9 @@
  * answers as cold queries. Bad inputs: zero, NaN and infinite directions,
  * lengths 1e-200 and 1e200 (tau scales), directions grazing faces of both
  * bodies, coincident bodies. */
-#include "gen.h"
 #include "math/vec3.h"
 #include "oracle_sat.h"
+#include "px_gen.h"
 #include "test_util.h"
 
 typedef struct shape {
@@ -67,40 +67,40 @@ static void free_shape(shape *s) {
 }
 
 static void build_pool(void) {
-    tg_rng rng;
-    tg_seed(&rng, 5005);
+    pg_rng rng;
+    pg_seed(&rng, 5005);
     double xyz[3 * 64];
     for (int i = 0; i < POOL; ++i) {
-        double h = 0.5 * tg_range(&rng, 0.3, 2.0);
+        double h = 0.5 * pg_range(&rng, 0.3, 2.0);
         switch (i % 5) {
         case 0:
         case 1: {
-            size_t n = tg_log_int(&rng, 4, 30);
+            size_t n = pg_log_int(&rng, 4, 30);
             if (n < 8) {
-                tg_random_tetrahedron(&rng, h, xyz);
+                pg_random_tetrahedron(&rng, h, xyz);
                 n = 4;
             } else {
-                tg_points_ball(&rng, n, h, xyz);
+                pg_points_ball(&rng, n, h, xyz);
             }
             make_shape(&g_pool[i], xyz, n, n == 4 ? "tetra" : "hull");
             break;
         }
         case 2: {
-            size_t n = 12 + tg_below(&rng, 19);
-            tg_points_sphere(&rng, n, h, xyz);
+            size_t n = 12 + pg_below(&rng, 19);
+            pg_points_sphere(&rng, n, h, xyz);
             make_shape(&g_pool[i], xyz, n, "hull");
             break;
         }
         case 3:
-            tg_box(h * tg_range(&rng, 0.1, 1), h * tg_range(&rng, 0.1, 1), h * tg_range(&rng, 0.1, 1), xyz);
+            pg_box(h * pg_range(&rng, 0.1, 1), h * pg_range(&rng, 0.1, 1), h * pg_range(&rng, 0.1, 1), xyz);
             make_shape(&g_pool[i], xyz, 8, "box");
             break;
         default:
-            if (tg_below(&rng, 2)) {
-                tg_box(h, h * tg_range(&rng, 0.3, 1), h / 50, xyz);
+            if (pg_below(&rng, 2)) {
+                pg_box(h, h * pg_range(&rng, 0.3, 1), h / 50, xyz);
                 make_shape(&g_pool[i], xyz, 8, "slab box");
             } else {
-                tg_points_in_box(&rng, 20, h, h, h / 50, xyz);
+                pg_points_in_box(&rng, 20, h, h, h / 50, xyz);
                 make_shape(&g_pool[i], xyz, 20, "slab");
             }
             break;
@@ -212,36 +212,36 @@ static int check_query(const shape *A, const px_pose *pa, const shape *B, const 
 }
 
 /* Random direction scaled to a log-uniform length in [1e-3, 1e3]. */
-static px_vec3 scaled_dir(tg_rng *rng, px_vec3 v) {
+static px_vec3 scaled_dir(pg_rng *rng, px_vec3 v) {
     double l = pxi_len(v);
-    if (!(l > 0)) v = tg_unit(rng), l = 1;
-    return pxi_scale(v, pow(10.0, tg_range(rng, -3, 3)) / l);
+    if (!(l > 0)) v = pg_unit(rng), l = 1;
+    return pxi_scale(v, pow(10.0, pg_range(rng, -3, 3)) / l);
 }
 
-static px_vec3 pick_direction(tg_rng *rng, const px_pose *pa, const px_pose *pb, double reach) {
+static px_vec3 pick_direction(pg_rng *rng, const px_pose *pa, const px_pose *pb, double reach) {
     px_vec3 to_b = pxi_sub(pb->t, pa->t);
-    px_vec3 noise = pxi_scale(tg_unit(rng), tg_range(rng, 0, 0.8) * reach);
-    switch (tg_below(rng, 10)) {
+    px_vec3 noise = pxi_scale(pg_unit(rng), pg_range(rng, 0, 0.8) * reach);
+    switch (pg_below(rng, 10)) {
     case 0:
     case 1:
     case 2:
     case 3: return scaled_dir(rng, pxi_add(to_b, noise)); /* towards B: mostly hits */
     case 4:
     case 5: return scaled_dir(rng, pxi_sub(noise, to_b)); /* away: hits behind A (tau < 0) */
-    default: return scaled_dir(rng, tg_unit(rng));        /* random: hits and misses */
+    default: return scaled_dir(rng, pg_unit(rng));        /* random: hits and misses */
     }
 }
 
 static void test_random(int count) {
-    tg_rng rng;
-    tg_seed(&rng, 6006);
+    pg_rng rng;
+    pg_seed(&rng, 6006);
     for (int i = 0; i < count; ++i) {
-        const shape *A = &g_pool[tg_below(&rng, POOL)], *B = &g_pool[tg_below(&rng, POOL)];
+        const shape *A = &g_pool[pg_below(&rng, POOL)], *B = &g_pool[pg_below(&rng, POOL)];
         if (!A->c || !B->c) continue;
         double reach = A->s.radius + B->s.radius;
-        px_pose pb = tg_pose_random(&rng, 2.0), pa = tg_pose_random(&rng, 0);
+        px_pose pb = pg_pose_random(&rng, 2.0), pa = pg_pose_random(&rng, 0);
         /* From deep overlap (f < 0.5) to well separated (f up to 2.5). */
-        pa.t = pxi_add(pb.t, pxi_scale(tg_unit(&rng), tg_range(&rng, 0, 2.5) * reach));
+        pa.t = pxi_add(pb.t, pxi_scale(pg_unit(&rng), pg_range(&rng, 0, 2.5) * reach));
         px_vec3 d = pick_direction(&rng, &pa, &pb, reach);
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
@@ -253,21 +253,21 @@ static void test_random(int count) {
  * direction turns slowly) with one warm cache: each answer equals the cold
  * one; every fifth step is also checked against the oracle. */
 static void test_incremental(int sequences) {
-    tg_rng rng;
-    tg_seed(&rng, 6116);
+    pg_rng rng;
+    pg_seed(&rng, 6116);
     long idx = 0;
     for (int s = 0; s < sequences; ++s) {
-        const shape *A = &g_pool[tg_below(&rng, POOL)], *B = &g_pool[tg_below(&rng, POOL)];
+        const shape *A = &g_pool[pg_below(&rng, POOL)], *B = &g_pool[pg_below(&rng, POOL)];
         if (!A->c || !B->c) continue;
         double reach = A->s.radius + B->s.radius;
-        px_pose pb = tg_pose_random(&rng, 2.0), pa = tg_pose_random(&rng, 0);
-        pa.t = pxi_add(pb.t, pxi_scale(tg_unit(&rng), tg_range(&rng, 0.3, 2.0) * reach));
+        px_pose pb = pg_pose_random(&rng, 2.0), pa = pg_pose_random(&rng, 0);
+        pa.t = pxi_add(pb.t, pxi_scale(pg_unit(&rng), pg_range(&rng, 0.3, 2.0) * reach));
         px_vec3 d = pick_direction(&rng, &pa, &pb, reach);
-        px_vec3 step = pxi_scale(tg_unit(&rng), reach * pow(10.0, tg_range(&rng, -3, -1.5)));
+        px_vec3 step = pxi_scale(pg_unit(&rng), reach * pow(10.0, pg_range(&rng, -3, -1.5)));
         double ra[9], rb[9], rd[9];
-        tg_rot_axis_angle(tg_unit(&rng), tg_range(&rng, 0.001, 0.05), ra);
-        tg_rot_axis_angle(tg_unit(&rng), tg_range(&rng, 0.0, 0.02), rb);
-        tg_rot_axis_angle(tg_unit(&rng), tg_range(&rng, 0.0, 0.02), rd);
+        pg_rot_axis_angle(pg_unit(&rng), pg_range(&rng, 0.001, 0.05), ra);
+        pg_rot_axis_angle(pg_unit(&rng), pg_range(&rng, 0.0, 0.02), rb);
+        pg_rot_axis_angle(pg_unit(&rng), pg_range(&rng, 0.0, 0.02), rd);
         px_distance_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int k = 0; k < 100; ++k, ++idx) {
@@ -297,11 +297,11 @@ static void test_incremental(int sequences) {
                 CHECK(fabs(o.gap) <= tol, "incremental #%ld: warm hit %d, cold hit %d, oracle gap %.3g", idx,
                       warm.hit, cold.hit, o.gap);
             }
-            tg_mat_mul(ra, pa.r, pa.r);
-            tg_rot_orthonormalize(pa.r);
+            pg_mat_mul(ra, pa.r, pa.r);
+            pg_rot_orthonormalize(pa.r);
             pa.t = pxi_add(pa.t, step);
-            tg_mat_mul(rb, pb.r, pb.r);
-            tg_rot_orthonormalize(pb.r);
+            pg_mat_mul(rb, pb.r, pb.r);
+            pg_rot_orthonormalize(pb.r);
             d = pxi_rot(rd, d);
         }
     }
@@ -315,13 +315,13 @@ static px_pose pose_at(double x, double y, double z) {
 
 static void test_bad_inputs(void) {
     long before = tu_fail_count;
-    tg_rng rng;
-    tg_seed(&rng, 6226);
+    pg_rng rng;
+    pg_seed(&rng, 6226);
     double xyz[3 * 32];
     shape box, hull;
-    tg_box(1, 1, 1, xyz);
+    pg_box(1, 1, 1, xyz);
     make_shape(&box, xyz, 8, "box");
-    tg_points_sphere(&rng, 24, 0.8, xyz);
+    pg_points_sphere(&rng, 24, 0.8, xyz);
     make_shape(&hull, xyz, 24, "hull");
     px_pose pa = pose_at(-5, 0.2, 0.1), pb = pose_at(0, 0, 0);
     px_translation_result r;
@@ -346,9 +346,9 @@ static void test_bad_inputs(void) {
      * same translation). */
     const double lens[] = {1e-200, 1e-100, 1e-3, 1.0, 7.5, 1e100, 1e200};
     for (int k = 0; k < 10; ++k) {
-        px_pose qa = tg_pose_random(&rng, 0), qb = tg_pose_random(&rng, 1.0);
-        qa.t = pxi_add(qb.t, pxi_scale(tg_unit(&rng), tg_range(&rng, 0, 4)));
-        px_vec3 u = pxi_add(pxi_sub(qb.t, qa.t), pxi_scale(tg_unit(&rng), 0.5));
+        px_pose qa = pg_pose_random(&rng, 0), qb = pg_pose_random(&rng, 1.0);
+        qa.t = pxi_add(qb.t, pxi_scale(pg_unit(&rng), pg_range(&rng, 0, 4)));
+        px_vec3 u = pxi_add(pxi_sub(qb.t, qa.t), pxi_scale(pg_unit(&rng), 0.5));
         u = pxi_scale(u, 1.0 / pxi_len(u));
         px_translation_result r1;
         check_query(&hull, &qa, &box, &qb, u, NULL, "unit direction", k, &r1);
@@ -384,9 +384,9 @@ static void test_bad_inputs(void) {
      * decide touching either way, but a hit must be at tau 3 and a miss must
      * have a rounding-sized gap. */
     for (int k = 0; k < 20; ++k) {
-        px_pose g = tg_pose_random(&rng, 3.0), qa = g0, qb = pb;
-        tg_mat_mul(g.r, g0.r, qa.r);
-        tg_mat_mul(g.r, pb.r, qb.r);
+        px_pose g = pg_pose_random(&rng, 3.0), qa = g0, qb = pb;
+        pg_mat_mul(g.r, g0.r, qa.r);
+        pg_mat_mul(g.r, pb.r, qb.r);
         qa.t = pxi_xform(&g, g0.t);
         qb.t = pxi_xform(&g, pb.t);
         px_vec3 d = pxi_rot(g.r, dx);
@@ -400,8 +400,8 @@ static void test_bad_inputs(void) {
     const shape *same[2] = {&box, &hull};
     for (int k = 0; k < 20; ++k) {
         const shape *S = same[k & 1];
-        px_pose p = tg_pose_random(&rng, 2.0);
-        check_query(S, &p, S, &p, scaled_dir(&rng, tg_unit(&rng)), NULL, "coincident", k, &r);
+        px_pose p = pg_pose_random(&rng, 2.0);
+        check_query(S, &p, S, &p, scaled_dir(&rng, pg_unit(&rng)), NULL, "coincident", k, &r);
         CHECK(r.hit && r.tau < 0, "coincident #%d: hit %d tau %.17g", k, r.hit, r.tau);
     }
     printf("  bad inputs: %ld failed checks\n", (long)(tu_fail_count - before));

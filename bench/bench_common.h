@@ -1,7 +1,8 @@
 // Helpers shared by the benchmark programs (bench_convex, bench_hybrid):
-// deterministic random numbers, small vector algebra, random rotations, the
-// monotonic clock, percentiles and list parsing. Header-only, internal to
-// bench/.
+// small vector algebra on px_vec3, poses, the monotonic clock, percentiles
+// and list parsing. Header-only, internal to bench/. The random streams,
+// shapes, rotations and motions are the shared generators of gen/px_gen.h
+// (pg_sm_*: the splitmix64 stream the benchmarks have always used).
 #ifndef PROXIMA_BENCH_COMMON_H
 #define PROXIMA_BENCH_COMMON_H
 
@@ -15,24 +16,14 @@
 #include <string>
 #include <vector>
 
+#include "proxima/proxima.h"
+#include "px_gen.h"
+
 namespace bench {
 
-// Deterministic random numbers (splitmix64; identical on every platform,
-// unlike the distributions of <random>).
-struct Rng {
-    uint64_t s;
-    uint64_t next() {
-        uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        return z ^ (z >> 31);
-    }
-    double uniform() { return (double)(next() >> 11) * (1.0 / 9007199254740992.0); } // [0, 1)
-};
-
-struct V3 {
-    double x, y, z;
-};
+// Vectors are proxima's px_vec3, so the generators' results are used as they
+// come.
+using V3 = px_vec3;
 inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 inline V3 operator-(V3 a) { return {-a.x, -a.y, -a.z}; }
@@ -41,24 +32,6 @@ inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline double norm(V3 a) { return std::sqrt(dot(a, a)); }
 inline V3 unit(V3 a) { return (1.0 / norm(a)) * a; }
-
-// Uniform random unit vector (normalised point of the unit ball, by rejection).
-inline V3 random_unit(Rng &rng) {
-    for (;;) {
-        V3 v = {2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1};
-        double n2 = dot(v, v);
-        if (n2 > 1e-6 && n2 <= 1.0) return (1.0 / std::sqrt(n2)) * v;
-    }
-}
-
-// A unit vector perpendicular to the unit vector u, uniformly at random.
-inline V3 random_perpendicular(Rng &rng, V3 u) {
-    for (;;) {
-        V3 w = random_unit(rng);
-        w = w - dot(w, u) * u;
-        if (norm(w) > 1e-3) return unit(w);
-    }
-}
 
 // A pose as the benchmarks store it: row-major rotation and translation.
 struct Pose {
@@ -80,39 +53,6 @@ inline void set_translation(Pose &p, V3 t) { p.t[0] = t.x, p.t[1] = t.y, p.t[2] 
 inline Pose translated(Pose p, V3 s) {
     set_translation(p, translation(p) + s);
     return p;
-}
-
-// Row-major rotation matrix of the unit quaternion (w, x, y, z).
-inline void quat_to_matrix(double w, double x, double y, double z, double r[9]) {
-    r[0] = 1 - 2 * (y * y + z * z), r[1] = 2 * (x * y - w * z), r[2] = 2 * (x * z + w * y);
-    r[3] = 2 * (x * y + w * z), r[4] = 1 - 2 * (x * x + z * z), r[5] = 2 * (y * z - w * x);
-    r[6] = 2 * (x * z - w * y), r[7] = 2 * (y * z + w * x), r[8] = 1 - 2 * (x * x + y * y);
-}
-
-// Uniformly distributed random rotation (Shoemake, "Uniform random rotations",
-// Graphics Gems III, 1992).
-inline void random_rotation(Rng &rng, double r[9]) {
-    const double u1 = rng.uniform(), u2 = 2 * M_PI * rng.uniform(), u3 = 2 * M_PI * rng.uniform();
-    const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    quat_to_matrix(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3), r);
-}
-
-// r = rot(axis, angle) * r (Rodrigues), axis a unit vector.
-inline void rotate_left(V3 k, double angle, double r[9]) {
-    const double c = std::cos(angle), s = std::sin(angle);
-    double q[9];
-    // Rodrigues: Q = c I + s [k]x + (1 - c) k k^T.
-    q[0] = c + (1 - c) * k.x * k.x, q[1] = (1 - c) * k.x * k.y - s * k.z,
-    q[2] = (1 - c) * k.x * k.z + s * k.y;
-    q[3] = (1 - c) * k.y * k.x + s * k.z, q[4] = c + (1 - c) * k.y * k.y,
-    q[5] = (1 - c) * k.y * k.z - s * k.x;
-    q[6] = (1 - c) * k.z * k.x - s * k.y, q[7] = (1 - c) * k.z * k.y + s * k.x,
-    q[8] = c + (1 - c) * k.z * k.z;
-    double out[9];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            out[3 * i + j] = q[3 * i] * r[j] + q[3 * i + 1] * r[3 + j] + q[3 * i + 2] * r[6 + j];
-    std::memcpy(r, out, sizeof out);
 }
 
 // R v (a body direction in the world frame), R v + t (a body point).

@@ -82,24 +82,6 @@ struct Shape {
 };
 const Shape kShapes[] = {{"balanced", {1, 1, 1}}, {"thin", {1, 8, 40}}};
 
-// n points of a golden-spiral (Fibonacci) lattice on the unit sphere, mapped
-// to the ellipsoid with the given semi-axes. Points on a strictly convex
-// surface are all extreme, so (up to rounding) every point is a hull vertex.
-// The faces of the "thin" ellipsoid are long thin triangles.
-std::vector<double> ellipsoid_points(size_t n, const double axes[3]) {
-    std::vector<double> xyz(3 * n);
-    const double golden = M_PI * (3.0 - std::sqrt(5.0));
-    for (size_t i = 0; i < n; ++i) {
-        const double z = 1.0 - (2.0 * (double)i + 1.0) / (double)n;
-        const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
-        const double phi = golden * (double)i;
-        xyz[3 * i] = axes[0] * rho * std::cos(phi);
-        xyz[3 * i + 1] = axes[1] * rho * std::sin(phi);
-        xyz[3 * i + 2] = axes[2] * z;
-    }
-    return xyz;
-}
-
 // An edge of the hull with its two adjacent faces (for the SAT oracle).
 struct Edge {
     uint32_t v0, v1, f0, f1;
@@ -145,7 +127,10 @@ void build_topology(Body &b) {
 
 std::unique_ptr<Body> make_body(const Shape &shape, size_t n) {
     std::unique_ptr<Body> b(new Body);
-    std::vector<double> xyz = ellipsoid_points(n, shape.axes);
+    // Golden-spiral (Fibonacci) lattice on the ellipsoid: every point is a hull
+    // vertex; the faces of the "thin" ellipsoid are long thin triangles.
+    std::vector<double> xyz(3 * n);
+    pg_points_fibonacci_ellipsoid(n, shape.axes[0], shape.axes[1], shape.axes[2], xyz.data());
     px_error err;
     double t0 = now_ns();
     b->cx = px_convex_from_points(xyz.data(), n, nullptr, &err);
@@ -344,15 +329,15 @@ void place(const Body &b, const Pose &pa, Pose &pb, V3 u, double gap) {
     }
 }
 
-Workload make_scratch(const Body &b, Rng &rng, size_t count) {
+Workload make_scratch(const Body &b, pg_sm &rng, size_t count) {
     Workload w;
     w.query = "distance";
     w.mode = "scratch";
     for (size_t i = 0; i < count; ++i) {
         Pose pa = pose_identity(), pb = pose_identity();
-        random_rotation(rng, pa.r);
-        random_rotation(rng, pb.r);
-        place(b, pa, pb, random_unit(rng), 0.1 * b.diameter);
+        pg_sm_rot_random(&rng, pa.r);
+        pg_sm_rot_random(&rng, pb.r);
+        place(b, pa, pb, pg_sm_unit(&rng), 0.1 * b.diameter);
         w.seq.push_back({make_q(pa, pb)});
     }
     return w;
@@ -364,7 +349,7 @@ Workload make_scratch(const Body &b, Rng &rng, size_t count) {
 // by delta * D. The translation slides along the tangent plane of the current
 // separation direction n (from FCL's witness points) with a radial component
 // that pulls the gap back towards 10 % of D, so the bodies never meet.
-Workload make_incremental(const Body &b, Rng &rng, double delta, size_t sequences, size_t steps) {
+Workload make_incremental(const Body &b, pg_sm &rng, double delta, size_t sequences, size_t steps) {
     Workload w;
     w.query = "distance";
     w.mode = "incremental";
@@ -375,11 +360,11 @@ Workload make_incremental(const Body &b, Rng &rng, double delta, size_t sequence
     const fcl::DistanceRequestd req = fcl_request(1e-9, false);
     for (size_t s = 0; s < sequences; ++s) {
         Pose pa = pose_identity(), pb = pose_identity();
-        random_rotation(rng, pa.r);
-        random_rotation(rng, pb.r);
-        place(b, pa, pb, random_unit(rng), gap);
-        const V3 axis = random_unit(rng);
-        const V3 slide = random_unit(rng);
+        pg_sm_rot_random(&rng, pa.r);
+        pg_sm_rot_random(&rng, pb.r);
+        place(b, pa, pb, pg_sm_unit(&rng), gap);
+        const V3 axis = pg_sm_unit(&rng);
+        const V3 slide = pg_sm_unit(&rng);
         const fcl::Transform3d ta = to_fcl(pa);
         std::vector<Q> seq{make_q(pa, pb)};
         for (size_t k = 0; k < steps; ++k) {
@@ -388,11 +373,11 @@ Workload make_incremental(const Body &b, Rng &rng, double delta, size_t sequence
             V3 n = wb - wa;
             n = norm(n) > 0 ? unit(n) : unit(translation(pb));
             V3 tang = slide - dot(slide, n) * n;
-            if (norm(tang) < 1e-3) tang = random_unit(rng); // slide direction ~ parallel to n
+            if (norm(tang) < 1e-3) tang = pg_sm_unit(&rng); // slide direction ~ parallel to n
             tang = unit(tang - dot(tang, n) * n);
             const double c = std::max(-1.0, std::min(1.0, (gap - d) / step));
             const V3 move = step * (c * n + std::sqrt(1 - c * c) * tang);
-            rotate_left(axis, angle, pb.r);
+            pg_rot_turn(axis, angle, pb.r);
             set_translation(pb, translation(pb) + move);
             seq.push_back(make_q(pa, pb));
         }
@@ -408,18 +393,18 @@ Workload make_incremental(const Body &b, Rng &rng, double delta, size_t sequence
 // retried with f shrunk by 15 % (at most 12 times, then a new setting),
 // checked with proxima's Lin-Canny (px_distance, validated in the distance
 // part of this benchmark).
-Workload make_penetration(const Body &b, Rng &rng, size_t count, size_t *retries) {
+Workload make_penetration(const Body &b, pg_sm &rng, size_t count, size_t *retries) {
     Workload w;
     w.query = "penetration";
     w.mode = "scratch";
     *retries = 0;
     while (w.seq.size() < count) {
         Pose pa = pose_identity(), pb = pose_identity();
-        random_rotation(rng, pa.r);
-        random_rotation(rng, pb.r);
-        const V3 u = random_unit(rng);
+        pg_sm_rot_random(&rng, pa.r);
+        pg_sm_rot_random(&rng, pb.r);
+        const V3 u = pg_sm_unit(&rng);
         const double extent = support(b, pa, u) + support(b, pb, -u);
-        double f = 0.6 + 0.3 * rng.uniform();
+        double f = 0.6 + 0.3 * pg_sm_uniform(&rng);
         for (int tries = 0; tries < 12; ++tries, f *= 0.85) {
             set_translation(pb, f * extent * u);
             const Q q = make_q(pa, pb);
@@ -438,20 +423,20 @@ Workload make_penetration(const Body &b, Rng &rng, size_t count, size_t *retries
 // 10 % of D apart), and d aimed from A's centre past B's centre at a lateral
 // offset of up to 1.5 times the sum of the two support extents across, so
 // that about two thirds of the queries hit.
-Workload make_translation_scratch(const Body &b, Rng &rng, size_t count) {
+Workload make_translation_scratch(const Body &b, pg_sm &rng, size_t count) {
     Workload w;
     w.query = "translation";
     w.mode = "scratch";
     for (size_t i = 0; i < count; ++i) {
         Pose pa = pose_identity(), pb = pose_identity();
-        random_rotation(rng, pa.r);
-        random_rotation(rng, pb.r);
-        const V3 u = random_unit(rng), x = random_perpendicular(rng, u);
+        pg_sm_rot_random(&rng, pa.r);
+        pg_sm_rot_random(&rng, pb.r);
+        const V3 u = pg_sm_unit(&rng), x = pg_sm_perpendicular(&rng, u);
         const double s = support(b, pa, u) + support(b, pb, -u) + 0.1 * b.diameter;
         const double across = support(b, pa, x) + support(b, pb, -x);
         set_translation(pb, s * u);
         Q q = make_q(pa, pb);
-        set_direction(b, q, s * u + 1.5 * rng.uniform() * across * x);
+        set_direction(b, q, s * u + 1.5 * pg_sm_uniform(&rng) * across * x);
         w.seq.push_back({q});
     }
     return w;
@@ -461,12 +446,13 @@ Workload make_translation_scratch(const Body &b, Rng &rng, size_t count) {
 // around A, rotating), with d aimed from A's centre at B's current centre
 // plus a lateral offset fixed per sequence (a random direction, 0 to 0.6 D
 // long), so d turns smoothly and some sequences miss.
-Workload make_translation_incremental(const Body &b, Rng &rng, double delta, size_t sequences, size_t steps) {
+Workload make_translation_incremental(const Body &b, pg_sm &rng, double delta, size_t sequences,
+                                      size_t steps) {
     Workload w = make_incremental(b, rng, delta, sequences, steps);
     w.query = "translation";
     for (auto &seq : w.seq) {
         const V3 c0 = translation(seq[0].b) - translation(seq[0].a);
-        const V3 off = 0.6 * b.diameter * rng.uniform() * random_perpendicular(rng, unit(c0));
+        const V3 off = 0.6 * b.diameter * pg_sm_uniform(&rng) * pg_sm_perpendicular(&rng, unit(c0));
         for (Q &q : seq) set_direction(b, q, translation(q.b) - translation(q.a) + off);
     }
     return w;
@@ -1078,13 +1064,13 @@ void run_size(const Shape &shape, size_t n, Context &ctx) {
     const size_t scratch = opt.scratch ? opt.scratch : opt.quick ? 50 : 1000;
     const size_t sequences = opt.sequences ? opt.sequences : opt.quick ? 2 : 10, steps = 100;
     if (opt.wants_query("distance")) {
-        Rng rng{opt.seed * 1000003u + salt};
+        pg_sm rng{opt.seed * 1000003u + salt};
         run_workload(b, shape, make_scratch(b, rng, scratch), kDistanceMethods, ctx);
         for (double d : {0.01, 0.005, 0.0025, 0.00125})
             run_workload(b, shape, make_incremental(b, rng, d, sequences, steps), kDistanceMethods, ctx);
     }
     if (opt.wants_query("penetration")) {
-        Rng rng{opt.seed * 1000033u + salt};
+        pg_sm rng{opt.seed * 1000033u + salt};
         size_t retries = 0;
         const Workload w = make_penetration(b, rng, count_for(opt.quick ? 30 : scratch / 2, n), &retries);
         std::printf("#   penetration settings: %zu (%zu retried with a smaller offset)\n", w.seq.size(),
@@ -1092,7 +1078,7 @@ void run_size(const Shape &shape, size_t n, Context &ctx) {
         run_workload(b, shape, w, kPenetrationMethods, ctx);
     }
     if (opt.wants_query("translation")) {
-        Rng rng{opt.seed * 1000037u + salt};
+        pg_sm rng{opt.seed * 1000037u + salt};
         run_workload(b, shape, make_translation_scratch(b, rng, count_for(scratch, n)), kTranslationMethods,
                      ctx);
         // FCL's conservative advancement costs ~7 ms per query at n = 200k.

@@ -53,12 +53,9 @@ struct Poly {
 };
 
 // n points uniformly at random on the unit sphere.
-std::unique_ptr<Poly> random_poly(Rng &rng, size_t n) {
+std::unique_ptr<Poly> random_poly(pg_sm &rng, size_t n) {
     std::vector<double> xyz(3 * n);
-    for (size_t i = 0; i < n; ++i) {
-        const V3 p = random_unit(rng);
-        xyz[3 * i] = p.x, xyz[3 * i + 1] = p.y, xyz[3 * i + 2] = p.z;
-    }
+    pg_sm_points_sphere(&rng, n, 1.0, xyz.data());
     std::unique_ptr<Poly> p(new Poly);
     px_error err;
     p->cx = px_convex_from_points(xyz.data(), n, nullptr, &err);
@@ -327,36 +324,35 @@ int main(int argc, char **argv) {
                 "total_ms", "mean_us", "max_err");
     const double radius = 3.0;
     for (size_t n : sizes) {
-        Rng rng{seed * 1000003u + n};
+        pg_sm rng{seed * 1000003u + n};
         std::unique_ptr<Poly> a = random_poly(rng, n), b = random_poly(rng, n);
         if (!a || !b) return 1;
         const px_pose pa = px_pose_identity();
         std::vector<px_pose> pb(steps);
         double r[9];
-        random_rotation(rng, r);
-        const V3 axis = random_unit(rng), u = random_perpendicular(rng, axis), v = cross(axis, u);
+        pg_sm_rot_random(&rng, r);
+        const V3 axis = pg_sm_unit(&rng), u = pg_sm_perpendicular(&rng, axis), v = cross(axis, u);
         for (size_t k = 0; k < steps; ++k) {
-            const double phi = 2 * M_PI * (double)k / (double)steps;
-            const V3 c = radius * (std::cos(phi) * u + std::sin(phi) * v);
+            const V3 c = pg_circle_point(u, v, radius, k, steps);
             const double t[3] = {c.x, c.y, c.z};
             pb[k] = px_pose_from_rt(r, t);
         }
         run_all(*a, *b, pa, pb, "translation", 0, true, repeat, rows);
     }
     {
-        Rng rng{seed * 1000033u};
+        pg_sm rng{seed * 1000033u};
         std::unique_ptr<Poly> a = random_poly(rng, 50), b = random_poly(rng, 50);
         if (!a || !b) return 1;
         const px_pose pa = px_pose_identity();
-        const V3 axis = random_unit(rng), c = radius * random_unit(rng);
+        const V3 axis = pg_sm_unit(&rng), c = radius * pg_sm_unit(&rng);
         const double t[3] = {c.x, c.y, c.z};
         for (double s : speeds) {
             double r[9];
-            random_rotation(rng, r);
+            pg_sm_rot_random(&rng, r);
             std::vector<px_pose> pb(steps);
             for (size_t k = 0; k < steps; ++k) {
                 pb[k] = px_pose_from_rt(r, t);
-                rotate_left(axis, s * M_PI / 180, r);
+                pg_rot_turn(axis, s * M_PI / 180, r);
             }
             run_all(*a, *b, pa, pb, "rotation", s, false, repeat, rows);
         }

@@ -36,7 +36,7 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	./$(BUILD)/src/cli/proxima_demo --models models
+	./$(BUILD)/examples/proxima_demo --models models
 
 test-release: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

@@ -32,7 +32,10 @@
  * row are compared with a brute-force minimum over all vertex-face and
  * edge-edge pairs. Any failure makes the program exit with status 1.
  *
- * Only the public API is used: proxima.h and proxima/io.h. */
+ * Only the public API is used: proxima.h and proxima/io.h. The shapes
+ * (polygonised spheres, frustums, boxes), the motions and the random stream
+ * come from the shared generators of gen/px_gen.h (also used by the tests
+ * and the benchmarks); the checks are the demo's own. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <errno.h>
@@ -46,12 +49,13 @@
 
 #include "proxima/proxima.h"
 #include "proxima/io.h"
+#include "px_gen.h"
 
 #define DEMO_PI 3.14159265358979323846
 
 /* ------------------------------------------------------------------------- */
 /* Small vector helpers (demo-local, so the checks share no code with the    */
-/* library).                                                                 */
+/* library or the generators).                                               */
 /* ------------------------------------------------------------------------- */
 
 static px_vec3 v3(double x, double y, double z) {
@@ -72,34 +76,14 @@ static px_vec3 rot_apply(const double r[9], px_vec3 p) {
               r[6] * p.x + r[7] * p.y + r[8] * p.z);
 }
 
-/* Rotation by `angle` about the unit axis u (Rodrigues), row-major. */
-static void rot_axis_angle(px_vec3 u, double angle, double r[9]) {
-    double c = cos(angle), s = sin(angle), k = 1.0 - c;
-    r[0] = c + u.x * u.x * k;
-    r[1] = u.x * u.y * k - u.z * s;
-    r[2] = u.x * u.z * k + u.y * s;
-    r[3] = u.y * u.x * k + u.z * s;
-    r[4] = c + u.y * u.y * k;
-    r[5] = u.y * u.z * k - u.x * s;
-    r[6] = u.z * u.x * k - u.y * s;
-    r[7] = u.z * u.y * k + u.x * s;
-    r[8] = c + u.z * u.z * k;
-}
-
 static double now_ns(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
 }
 
-/* Deterministic generator (SplitMix64) so every run does the same work. */
-static uint64_t g_rng = 0x9E3779B97F4A7C15ull;
-static uint64_t rng_next(void) {
-    uint64_t z = (g_rng += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
+/* Deterministic random stream (splitmix64) so every run does the same work. */
+static pg_sm g_rng = {0x9E3779B97F4A7C15ull};
 
 static int cmp_double(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
@@ -157,22 +141,13 @@ static px_convex *from_points_or_die(const char *what, const double *xyz, size_t
     return c;
 }
 
-/* Polygonised sphere: nlat latitude bands, nlon meridians; 2 + (nlat-1)*nlon vertices. */
+/* Hull of pg_sphere_latlong (polygonised sphere: nlat latitude bands, nlon
+ * meridians; 2 + (nlat-1)*nlon vertices). */
 static px_convex *make_sphere(int nlat, int nlon, double r) {
-    size_t n = 2 + (size_t)(nlat - 1) * nlon, k = 0;
+    size_t n = pg_sphere_latlong(nlat, nlon, r, NULL);
     double *p = malloc(3 * n * sizeof *p);
     if (!p) exit(2);
-    p[k++] = 0, p[k++] = 0, p[k++] = r;
-    p[k++] = 0, p[k++] = 0, p[k++] = -r;
-    for (int i = 1; i < nlat; ++i) {
-        double th = DEMO_PI * i / nlat;
-        for (int j = 0; j < nlon; ++j) {
-            double ph = 2.0 * DEMO_PI * j / nlon;
-            p[k++] = r * sin(th) * cos(ph);
-            p[k++] = r * sin(th) * sin(ph);
-            p[k++] = r * cos(th);
-        }
-    }
+    pg_sphere_latlong(nlat, nlon, r, p);
     char what[64];
     snprintf(what, sizeof what, "sphere %dx%d", nlat, nlon);
     px_convex *c = from_points_or_die(what, p, n);
@@ -180,24 +155,13 @@ static px_convex *make_sphere(int nlat, int nlon, double r) {
     return c;
 }
 
-/* Prism/cone/frustum family: an n-gon of radius r0 at z = -h/2 and one of
- * radius r1 at z = +h/2 (r1 = 0: a cone with its apex at the top). */
+/* Hull of pg_frustum (prism/cone/frustum family: an n-gon of radius r0 at
+ * z = -h/2 and one of radius r1 at z = +h/2; r1 = 0: a cone). */
 static px_convex *make_frustum(int n, double r0, double r1, double h) {
-    size_t cnt = (size_t)n + (r1 > 0 ? (size_t)n : 1), k = 0;
+    size_t cnt = pg_frustum(n, r0, r1, h, NULL);
     double *p = malloc(3 * cnt * sizeof *p);
     if (!p) exit(2);
-    for (int j = 0; j < n; ++j) {
-        double ph = 2.0 * DEMO_PI * j / n;
-        p[k++] = r0 * cos(ph), p[k++] = r0 * sin(ph), p[k++] = -0.5 * h;
-    }
-    if (r1 > 0) {
-        for (int j = 0; j < n; ++j) {
-            double ph = 2.0 * DEMO_PI * j / n;
-            p[k++] = r1 * cos(ph), p[k++] = r1 * sin(ph), p[k++] = 0.5 * h;
-        }
-    } else {
-        p[k++] = 0, p[k++] = 0, p[k++] = 0.5 * h;
-    }
+    pg_frustum(n, r0, r1, h, p);
     char what[64];
     snprintf(what, sizeof what, "frustum n=%d", n);
     px_convex *c = from_points_or_die(what, p, cnt);
@@ -205,13 +169,10 @@ static px_convex *make_frustum(int n, double r0, double r1, double h) {
     return c;
 }
 
+/* Box of side lengths sx, sy, sz centred at the origin. */
 static px_convex *make_box(double sx, double sy, double sz) {
     double p[24];
-    for (int i = 0; i < 8; ++i) {
-        p[3 * i + 0] = (i & 1 ? 0.5 : -0.5) * sx;
-        p[3 * i + 1] = (i & 2 ? 0.5 : -0.5) * sy;
-        p[3 * i + 2] = (i & 4 ? 0.5 : -0.5) * sz;
-    }
+    pg_box(0.5 * sx, 0.5 * sy, 0.5 * sz, p);
     return from_points_or_die("box", p, 8);
 }
 
@@ -219,34 +180,21 @@ static px_convex *make_box(double sx, double sy, double sz) {
 /* Motion: the relative rotation of the seed's experiments                   */
 /* ------------------------------------------------------------------------- */
 
-/* Both bodies spin about the same world axis u through their own centres,
- * A by +k*theta/2 and B by -k*theta/2, so the relative rotation R_B^T R_A
- * turns by exactly theta per step. A's centre sits at the origin, B's at
- * (D, 0, 0) + disp(k) with D = R_A + R_B + gap (bounding spheres stay
- * apart: the hulls are disjoint at every step). */
-typedef struct motion {
-    double theta;    /* relative rotation per step, radians */
-    double gap;      /* gap between the bounding spheres */
-    double disp_amp; /* displacement amplitude (< gap) */
-} motion;
-
+/* pg_spin (px_gen.h): both bodies spin about the same world axis through
+ * their own centres in opposite senses, so the relative rotation turns by
+ * exactly theta per step. A's centre sits at the origin, B's at (D, 0, 0) +
+ * a displacement, with D = R_A + R_B + gap (bounding spheres stay apart: the
+ * hulls are disjoint at every step) and a displacement amplitude < gap. */
 static const px_vec3 k_axis = {0.26726124191242438, 0.53452248382484879,
                                0.80178372573727319}; /* (1,2,3)/|.| */
 
-static void motion_poses(const motion *m, const body *a, const body *b, int k, px_pose *pa, px_pose *pb) {
-    double ra[9], rb[9];
-    rot_axis_angle(k_axis, 0.5 * k * m->theta, ra);
-    rot_axis_angle(k_axis, -0.5 * k * m->theta, rb);
-    px_vec3 ta = vscale(rot_apply(ra, a->center), -1.0);
-    double s = k * m->theta; /* displacement phase follows the rotation, so it scales with theta */
-    px_vec3 disp = vscale(v3(sin(1.3 * s), 0.5 * sin(0.7 * s + 1.0), 0.5 * sin(1.1 * s + 2.0)), m->disp_amp);
-    px_vec3 cb = vadd(v3(a->radius + b->radius + m->gap, 0, 0), disp);
-    px_vec3 tb = vsub(cb, rot_apply(rb, b->center));
-    double t[3];
-    t[0] = ta.x, t[1] = ta.y, t[2] = ta.z;
-    *pa = px_pose_from_rt(ra, t);
-    t[0] = tb.x, t[1] = tb.y, t[2] = tb.z;
-    *pb = px_pose_from_rt(rb, t);
+static pg_spin spin_motion(const body *a, const body *b, double theta, double gap, double disp_amp) {
+    pg_spin m;
+    m.axis = k_axis;
+    m.theta = theta;
+    m.separation = a->radius + b->radius + gap;
+    m.disp_amp = disp_amp;
+    return m;
 }
 
 /* ------------------------------------------------------------------------- */
@@ -453,7 +401,7 @@ typedef struct run_stats {
 
 static px_feature random_feature(const body *b) {
     px_feature f;
-    uint64_t x = rng_next();
+    uint64_t x = pg_sm_next(&g_rng);
     uint32_t type = 1 + (uint32_t)(x % 3);
     uint32_t n = type == PX_FEATURE_VERTEX ? b->nv : type == PX_FEATURE_EDGE ? b->ne : b->nf;
     f.type = type;
@@ -490,7 +438,7 @@ static int timed_query(const body *a, const px_pose *pa, const body *b, const px
     return timed_query_ex(a, pa, b, pb, NULL, cache, reps, us, res);
 }
 
-static run_stats run_pair(const body *a, const body *b, const motion *m, const run_opts *o,
+static run_stats run_pair(const body *a, const body *b, const pg_spin *m, const run_opts *o,
                           int brute_checks) {
     run_stats s;
     memset(&s, 0, sizeof s);
@@ -502,11 +450,11 @@ static run_stats run_pair(const body *a, const body *b, const motion *m, const r
     memset(&w, 0, sizeof w);
     px_distance_cache warm;
     memset(&warm, 0, sizeof warm);
-    double scale = a->radius + b->radius + (a->radius + b->radius + m->gap + m->disp_amp);
+    double scale = a->radius + b->radius + (m->separation + m->disp_amp);
     double sum_w = 0, sum_c = 0, sum_r = 0;
     for (int k = 0; k < n; ++k) {
         px_pose pa, pb;
-        motion_poses(m, a, b, k, &pa, &pb);
+        pg_spin_poses(m, a->center, b->center, k, &pa, &pb);
         world_fill(&w, a, &pa, b, &pb);
 
         px_distance_result rw, rc, rr;
@@ -626,19 +574,27 @@ static const char *okfail(int ok) { return ok ? "OK" : "FAIL"; }
 static const char *const k_method_names[N_METHODS] = {"Lin-Canny", "GJK", "hybrid"};
 static const uint32_t k_methods[N_METHODS] = {PX_METHOD_LIN_CANNY, PX_METHOD_GJK, PX_METHOD_HYBRID};
 
-static void mat_mul(const double a[9], const double b[9], double c[9]) {
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            c[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
-}
-
 static px_vec3 vunit(px_vec3 a) { return vscale(a, 1.0 / vlen(a)); }
+
+/* A random direction for the minimality check of (e), from the demo's stream:
+ * a point of the cube [-1, 1)^3 kept if 1e-4 <= |d|^2 <= 1, normalised. The
+ * coordinates are drawn z, y, x: the old code drew them as the three
+ * arguments of one call, in an unspecified order, and GCC's right-to-left is
+ * written down here so that the table of (e) stays as it was (and no longer
+ * depends on the compiler). pg_sm_unit draws x, y, z. */
+static px_vec3 random_direction(void) {
+    for (;;) {
+        double z = 2 * pg_sm_uniform(&g_rng) - 1;
+        double y = 2 * pg_sm_uniform(&g_rng) - 1;
+        double x = 2 * pg_sm_uniform(&g_rng) - 1;
+        px_vec3 d = v3(x, y, z);
+        if (vdot(d, d) <= 1.0 && vdot(d, d) >= 1e-4) return vunit(d);
+    }
+}
 
 /* Pose with rotation r that puts the body's centre at world point c. */
 static px_pose pose_centred(const body *b, const double r[9], px_vec3 c) {
-    px_vec3 t = vsub(c, rot_apply(r, b->center));
-    double tt[3] = {t.x, t.y, t.z};
-    return px_pose_from_rt(r, tt);
+    return pg_pose_centred(r, b->center, c);
 }
 
 static px_pose pose_shifted(const px_pose *p, px_vec3 d) {
@@ -669,23 +625,17 @@ typedef struct qpair {
     double r0[9];
 } qpair;
 
-/* Step angle of the tracked motion: 1 to 5 degrees, varying smoothly. */
-static double track_theta(int k) { return (3.0 + 2.0 * sin(0.37 * k + 0.5)) * DEMO_PI / 180.0; }
-
-/* Tracked motion, step k of n, phi = accumulated relative rotation: A turns
- * by +phi/2 and B by -phi/2 about (1,2,3)/sqrt(14) (so R_B^T R_A turns by the
- * step angle), A's centre stays at the origin, B's centre is f(k) * size along
- * x with f swinging twice from 1.15 (apart) to 0.35 (deep overlap) and back,
- * plus a sideways wobble of 8% of size. */
+/* Tracked motion (pg_swing, px_gen.h), step k of n, phi = accumulated
+ * relative rotation (the sum of pg_swing_step): A turns by +phi/2 and B by
+ * -phi/2 about (1,2,3)/sqrt(14), A's centre stays at the origin, B's centre
+ * is f(k) * size along x with f swinging twice from 1.15 (apart) to 0.35
+ * (deep overlap) and back, plus a sideways wobble of 8% of size. */
 static void track_poses(const qpair *p, int k, int n, double phi, px_pose *pa, px_pose *pb) {
-    double ra[9], rb1[9], rb[9];
-    rot_axis_angle(k_axis, 0.5 * phi, ra);
-    rot_axis_angle(k_axis, -0.5 * phi, rb1);
-    mat_mul(rb1, p->r0, rb);
-    double f = 0.75 + 0.4 * cos(4.0 * DEMO_PI * k / n);
-    px_vec3 cb = v3(f * p->size, 0.08 * p->size * sin(0.05 * k), 0.08 * p->size * cos(0.031 * k));
-    *pa = pose_centred(p->a, ra, v3(0, 0, 0));
-    *pb = pose_centred(p->b, rb, cb);
+    pg_swing m;
+    m.axis = k_axis;
+    m.size = p->size;
+    memcpy(m.r0, p->r0, sizeof m.r0);
+    pg_swing_poses(&m, p->a->center, p->b->center, k, n, phi, pa, pb);
 }
 
 /* World centre of a body at a pose. */
@@ -803,7 +753,7 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
     for (int k = 0; k < n; ++k) {
         px_pose pa, pb;
         track_poses(p, k, n, phi, &pa, &pb);
-        phi += track_theta(k);
+        phi += pg_swing_step(k);
         if (k % 50 == 25) {
             /* Touching: slide A along the line of centres until it touches B. */
             px_vec3 u = vunit(vsub(centre_at(p->b, &pb), centre_at(p->a, &pa)));
@@ -930,7 +880,7 @@ static void print_tracked(const qpair *p, const track_stats *s) {
 static void run_signed(const qpair *p, int reps) {
     /* Base configuration: the tracked motion's orientation at step 137, B apart along x. */
     double phi = 0.0;
-    for (int k = 0; k < 137; ++k) phi += track_theta(k);
+    for (int k = 0; k < 137; ++k) phi += pg_swing_step(k);
     px_pose pa, pb;
     track_poses(p, 0, 1000, phi, &pa, &pb);
     px_vec3 u = vunit(vsub(centre_at(p->b, &pb), centre_at(p->a, &pa)));
@@ -985,14 +935,8 @@ static void run_signed(const qpair *p, int reps) {
                 d = r[0].normal;
             else if (j == 1)
                 d = u;
-            else {
-                do {
-                    d = v3((double)(rng_next() >> 11) * 0x1p-52 - 1.0,
-                           (double)(rng_next() >> 11) * 0x1p-52 - 1.0,
-                           (double)(rng_next() >> 11) * 0x1p-52 - 1.0);
-                } while (vdot(d, d) > 1.0 || vdot(d, d) < 1e-4);
-                d = vunit(d);
-            }
+            else
+                d = random_direction();
             px_translation_result t;
             px_status s2 = px_translation(p->a->c, &pai, p->b->c, &pb, d, NULL, &t);
             if (!record(s2 == PX_OK && t.hit && t.tau <= 0)) {
@@ -1024,9 +968,9 @@ static void run_signed(const qpair *p, int reps) {
 static void run_translation_row(const qpair *p, const char *label, px_vec3 dir, double centre_dist,
                                 int expect, int reps) {
     double ra[9], rb1[9], rb[9];
-    rot_axis_angle(k_axis, 0.4, ra);
-    rot_axis_angle(k_axis, -0.4, rb1);
-    mat_mul(rb1, p->r0, rb);
+    pg_rot_rodrigues(k_axis, 0.4, ra);
+    pg_rot_rodrigues(k_axis, -0.4, rb1);
+    pg_mat_mul(rb1, p->r0, rb);
     px_pose pa = pose_centred(p->a, ra, v3(0, 0, 0));
     px_pose pb = pose_centred(p->b, rb, v3(centre_dist * p->size, 0, 0));
     dir = vunit(dir);
@@ -1082,8 +1026,8 @@ static void run_translation_row(const qpair *p, const char *label, px_vec3 dir, 
     unsigned long dis = 0;
     for (int j = 0; j < 100; ++j) {
         double rj[9], raj[9];
-        rot_axis_angle(v3(0.6, 0, 0.8), j * 0.5 * DEMO_PI / 180.0, rj);
-        mat_mul(rj, ra, raj);
+        pg_rot_rodrigues(v3(0.6, 0, 0.8), j * 0.5 * DEMO_PI / 180.0, rj);
+        pg_mat_mul(rj, ra, raj);
         px_pose pj = pose_centred(p->a, raj, v3(0, 0.002 * j * p->size, -0.001 * j * p->size));
         px_translation_result a1, a2;
         px_distance_cache cold;
@@ -1125,7 +1069,7 @@ static unsigned long run_new_sections(const char *models, body *tea, body *puma,
     };
     for (int i = 0; i < 4; ++i) {
         pairs[i].size = pairs[i].a->radius + pairs[i].b->radius;
-        rot_axis_angle(v3(0, 0.6, 0.8), 1.1 + 0.5 * i, pairs[i].r0);
+        pg_rot_rodrigues(v3(0, 0.6, 0.8), 1.1 + 0.5 * i, pairs[i].r0);
     }
     unsigned long before = g_check_failures;
 
@@ -1393,10 +1337,8 @@ int main(int argc, char **argv) {
     const int degs[4] = {1, 5, 10, 20};
     for (int t = 0; t < 2; ++t) {
         for (int d = 0; d < 4; ++d) {
-            motion m;
-            m.theta = degs[d] * DEMO_PI / 180.0;
-            m.gap = 0.05 * (tea[t].radius * 2);
-            m.disp_amp = 0.4 * m.gap;
+            double gap = 0.05 * (tea[t].radius * 2);
+            pg_spin m = spin_motion(&tea[t], &tea[t], degs[d] * DEMO_PI / 180.0, gap, 0.4 * gap);
             run_stats s = run_pair(&tea[t], &tea[t], &m, &opts, d == 0 ? 2 : 1);
             printf("    %-7s %-11d %9.3f %9.3f %9.3f %9.3f %8.2f %8.2f  ~%.0f us\n", t == 0 ? "obj" : "stl",
                    degs[d], s.warm_med, s.warm_mean, s.cold_med, s.cold_mean, s.warm_iter, s.cold_iter,
@@ -1429,10 +1371,7 @@ int main(int argc, char **argv) {
             }
             body bb;
             if (!body_init(&bb, name, c)) return 1;
-            motion m;
-            m.theta = DEMO_PI / 180.0;
-            m.gap = 0.1 * bb.radius;
-            m.disp_amp = 0.0;
+            pg_spin m = spin_motion(&bb, &bb, DEMO_PI / 180.0, 0.1 * bb.radius, 0.0);
             run_stats s = run_pair(&bb, &bb, &m, &opts, brute_budget(&bb, &bb));
             printf("    %-22s %7u %9.3f %9.3f %9.3f %9.3f %8.2f %8.2f\n", name, 2 * bb.nv, s.warm_med,
                    s.warm_mean, s.cold_med, s.cold_mean, s.warm_iter, s.cold_iter);
@@ -1511,10 +1450,7 @@ int main(int argc, char **argv) {
             }
             if (!body_init(&bd[j], names[j], made[j])) return 1;
         }
-        motion m;
-        m.theta = DEMO_PI / 180.0;
-        m.gap = 0.05 * (bd[0].radius + bd[1].radius);
-        m.disp_amp = 0.0;
+        pg_spin m = spin_motion(&bd[0], &bd[1], DEMO_PI / 180.0, 0.05 * (bd[0].radius + bd[1].radius), 0.0);
         run_stats s = run_pair(&bd[0], &bd[1], &m, &copts, brute_budget(&bd[0], &bd[1]));
         char pair[80], mn[40];
         snprintf(pair, sizeof pair, "%s / %s", rows[i].na, rows[i].nb);

@@ -269,13 +269,24 @@ size_t pg_shape(pg_rng *rng, pg_kind kind, size_t n, double size, double *xyz) {
         pg_points_ellipsoid(rng, n, h * a / m, h * b / m, h * c / m, xyz);
         return n;
     }
-    case PG_BOX:
-        pg_box(h * pg_range(rng, 0.05, 1), h * pg_range(rng, 0.05, 1), h * pg_range(rng, 0.05, 1), xyz);
+    case PG_BOX: {
+        /* The box's and the cylinder's sizes are drawn last argument first:
+         * tests/gen.c drew them as the arguments of one call, in an order C
+         * leaves unspecified, and GCC's right-to-left is written down here so
+         * that the stream stays as it was and no longer depends on the
+         * compiler. */
+        double hz = h * pg_range(rng, 0.05, 1);
+        double hy = h * pg_range(rng, 0.05, 1);
+        double hx = h * pg_range(rng, 0.05, 1);
+        pg_box(hx, hy, hz, xyz);
         return 8;
+    }
     case PG_TETRA: pg_random_tetrahedron(rng, h, xyz); return 4;
     case PG_CYLINDER: {
         size_t k = n / 2 < 3 ? 3 : n / 2;
-        pg_cylinder(k, h * pg_range(rng, 0.2, 1), h * pg_range(rng, 0.1, 1), xyz);
+        double half_height = h * pg_range(rng, 0.1, 1);
+        double radius = h * pg_range(rng, 0.2, 1);
+        pg_cylinder(k, radius, half_height, xyz);
         return 2 * k;
     }
     case PG_NEEDLE: pg_points_ellipsoid(rng, n, h / 100.0, h / 100.0, h, xyz); return n;

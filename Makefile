@@ -2,6 +2,7 @@
 # Debian 12 machine (as root), configures CMake and builds.
 #   make demo   runs the library's main job on the models it ships
 #   make test   builds and runs the whole test suite, then again under ASan+UBSan
+# Only these two and `make deps` install packages; `make build` never does.
 SHELL := /bin/bash
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD ?= build
@@ -29,45 +30,55 @@ deps:
 	  apt-get update -qq && apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
 
-configure: deps
+configure:
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPROXIMA_WERROR=ON
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+demo: deps
+	$(MAKE) build
 	./$(BUILD)/examples/proxima_demo --models models
 
 test-release: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-test-asan: deps
+test-asan:
 	cmake -S . -B $(BUILD_ASAN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPROXIMA_SANITIZE=ON -DPROXIMA_WERROR=ON \
 	  -DPROXIMA_BUILD_BENCH=OFF
 	cmake --build $(BUILD_ASAN) -j $(JOBS)
 	cd $(BUILD_ASAN) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --output-on-failure -j $(JOBS)
 
-# Install into a scratch prefix, then build an outside project against it,
-# once with find_package(proxima) and once with pkg-config.
+# Install into a scratch prefix, then build outside projects against it:
+# with find_package(proxima) (core and io), and with exactly the link lines
+# of the README (pkg-config proxima, pkg-config proxima-io).
+STAGE = $(ABS_BUILD)/stage
+CONSUMER = $(ABS_BUILD)/consumer
+TEAPOT = $(CURDIR)/models/teapot/trimesh_mit/teapot.stl
 test-install: build
-	rm -rf $(ABS_BUILD)/stage $(ABS_BUILD)/consumer
-	cmake --install $(BUILD) --prefix $(ABS_BUILD)/stage > /dev/null
-	cmake -S tests/consumer -B $(ABS_BUILD)/consumer -DCMAKE_PREFIX_PATH=$(ABS_BUILD)/stage > /dev/null
-	cmake --build $(ABS_BUILD)/consumer > /dev/null
-	$(ABS_BUILD)/consumer/consumer
-	cc -std=c11 tests/consumer/main.c -o $(ABS_BUILD)/consumer/consumer-pc \
-	  $$(PKG_CONFIG_PATH=$(ABS_BUILD)/stage/lib/pkgconfig pkg-config --cflags --libs --static proxima)
-	$(ABS_BUILD)/consumer/consumer-pc
+	rm -rf $(STAGE) $(CONSUMER)
+	cmake --install $(BUILD) --prefix $(STAGE) > /dev/null
+	cmake -S tests/consumer -B $(CONSUMER) -DCMAKE_PREFIX_PATH=$(STAGE) > /dev/null
+	cmake --build $(CONSUMER) > /dev/null
+	$(CONSUMER)/consumer
+	$(CONSUMER)/consumer_io $(TEAPOT)
+	cp tests/consumer/main.c $(CONSUMER)/app.c
+	cp tests/consumer/main_io.c $(CONSUMER)/app_io.c
+	cd $(CONSUMER) && export PKG_CONFIG_PATH=$(STAGE)/lib/pkgconfig && \
+	  cc app.c -o app $$(pkg-config --cflags --libs proxima) && ./app && \
+	  cc app_io.c -o app_io $$(pkg-config --cflags --libs proxima-io) && ./app_io $(TEAPOT)
+	@echo "test-install: find_package and the README's pkg-config lines build and run"
 
-format-check: deps
+format-check:
 	@files=$$(git ls-files '*.c' '*.h' '*.cpp' 2>/dev/null); \
 	if [ -n "$$files" ]; then clang-format --dry-run --Werror $$files; fi
 
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp')
 
-test: format-check test-release test-install test-asan
+test: deps
+	$(MAKE) format-check test-release test-install test-asan
 	@echo "make test: all suites passed (release, install, ASan+UBSan)"
 
 # The full benchmark (about 40 minutes on the 2-core machine; not part of

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "access.h" /* tests/: value-returning accessors, tu_both_ways */
 #include "proxima/proxima.h"
 #include "px_gen.h"
 

@@ -107,12 +107,11 @@ void build_topology(Body &b) {
     for (uint32_t f = 0; f < nf; ++f) {
         px_vec3 n;
         double d;
-        px_convex_face_plane(b.cx, f, &n, &d);
+        px_convex_face(b.cx, f, &n, &d, NULL);
         b.normals[f] = {n.x, n.y, n.z};
-        const uint32_t k = px_convex_face_size(b.cx, f);
+        const uint32_t k = ta_face_size(b.cx, f);
         for (uint32_t j = 0; j < k; ++j) {
-            const uint32_t u = px_convex_face_vertex(b.cx, f, j),
-                           v = px_convex_face_vertex(b.cx, f, (j + 1) % k);
+            const uint32_t u = ta_face_vertex(b.cx, f, j), v = ta_face_vertex(b.cx, f, (j + 1) % k);
             const uint64_t key = ((uint64_t)std::min(u, v) << 32) | std::max(u, v);
             auto it = index.find(key);
             if (it == index.end()) {
@@ -133,10 +132,10 @@ std::unique_ptr<Body> make_body(const Shape &shape, size_t n) {
     pg_points_fibonacci_ellipsoid(n, shape.axes[0], shape.axes[1], shape.axes[2], xyz.data());
     px_error err;
     double t0 = now_ns();
-    b->cx = px_convex_from_points(xyz.data(), n, nullptr, &err);
+    b->cx = px_convex_create(xyz.data(), n, nullptr, &err);
     b->build_px_ms = (now_ns() - t0) * 1e-6;
     if (!b->cx) {
-        std::fprintf(stderr, "bench_convex: px_convex_from_points(%s, %zu) failed: %s: %s\n", shape.name, n,
+        std::fprintf(stderr, "bench_convex: px_convex_create(%s, %zu) failed: %s: %s\n", shape.name, n,
                      px_status_string(err.code), err.message);
         return nullptr;
     }
@@ -144,7 +143,7 @@ std::unique_ptr<Body> make_body(const Shape &shape, size_t n) {
     b->verts.resize(nv);
     auto fv = std::make_shared<std::vector<fcl::Vector3d>>(nv);
     for (uint32_t i = 0; i < nv; ++i) {
-        px_vec3 p = px_convex_vertex(b->cx, i);
+        px_vec3 p = ta_vertex(b->cx, i);
         b->verts[i] = {p.x, p.y, p.z};
         b->radius = std::max(b->radius, norm(b->verts[i]));
         (*fv)[i] = fcl::Vector3d(p.x, p.y, p.z);
@@ -153,9 +152,9 @@ std::unique_ptr<Body> make_body(const Shape &shape, size_t n) {
     auto ff = std::make_shared<std::vector<int>>();
     ff->reserve(3 * (size_t)px_convex_edge_count(b->cx) + nf);
     for (uint32_t f = 0; f < nf; ++f) {
-        const uint32_t k = px_convex_face_size(b->cx, f);
+        const uint32_t k = ta_face_size(b->cx, f);
         ff->push_back((int)k);
-        for (uint32_t j = 0; j < k; ++j) ff->push_back((int)px_convex_face_vertex(b->cx, f, j));
+        for (uint32_t j = 0; j < k; ++j) ff->push_back((int)ta_face_vertex(b->cx, f, j));
     }
     t0 = now_ns();
     b->fcl = std::make_shared<fcl::Convexd>(fv, (int)nf, ff, false);
@@ -290,8 +289,8 @@ struct Workload {
 Q make_q(const Pose &a, const Pose &b) {
     Q q;
     q.a = a, q.b = b;
-    q.pa = px_pose_from_rt(a.r, a.t);
-    q.pb = px_pose_from_rt(b.r, b.t);
+    q.pa = ta_pose_rt(a.r, a.t);
+    q.pb = ta_pose_rt(b.r, b.t);
     q.ta = to_fcl(a);
     q.tb = to_fcl(b);
     q.ta0 = q.ta1 = q.ta;
@@ -409,7 +408,7 @@ Workload make_penetration(const Body &b, pg_sm &rng, size_t count, size_t *retri
             set_translation(pb, f * extent * u);
             const Q q = make_q(pa, pb);
             px_distance_result res;
-            if (px_distance(b.cx, &q.pa, b.cx, &q.pb, nullptr, &res) == PX_OK && res.intersecting) {
+            if (px_distance(b.cx, &q.pa, b.cx, &q.pb, NULL, nullptr, &res) == PX_OK && res.intersecting) {
                 w.seq.push_back({q});
                 break;
             }
@@ -494,13 +493,13 @@ template <class F> Run time_workload(const Workload &w, F query) {
     const size_t first = w.first();
     Answer a;
     for (size_t s = 0; s < std::min<size_t>(w.seq.size(), 50); ++s) {
-        px_distance_cache c;
+        px_pair_cache c;
         std::memset(&c, 0, sizeof c);
         query(w.seq[s][0], w.warm ? &c : nullptr, a);
     }
     double total = 0;
     for (const auto &seq : w.seq) {
-        px_distance_cache cache;
+        px_pair_cache cache;
         std::memset(&cache, 0, sizeof cache);
         if (w.warm) query(seq[0], &cache, a);
         const double t0 = now_ns();
@@ -510,12 +509,12 @@ template <class F> Run time_workload(const Workload &w, F query) {
     run.stream_ns = total / (double)w.counted();
     double est = run.stream_ns;
     for (const auto &seq : w.seq) {
-        px_distance_cache cache;
+        px_pair_cache cache;
         std::memset(&cache, 0, sizeof cache);
         if (w.warm) query(seq[0], &cache, a);
         for (size_t k = first; k < seq.size(); ++k) {
             const int reps = reps_for(est);
-            px_distance_cache c = cache;
+            px_pair_cache c = cache;
             const double t0 = now_ns();
             for (int r = 0; r < reps; ++r) {
                 c = cache;
@@ -547,14 +546,14 @@ Run run_px_distance(const Body &b, const Workload &w, const std::string &method,
     std::memset(&opt, 0, sizeof opt);
     opt.method = (uint32_t)px_method_of(method);
     opt.flags = signed_query ? (uint32_t)PX_QUERY_SIGNED : 0u;
-    return time_workload(w, [&](const Q &q, px_distance_cache *cache, Answer &a) {
+    return time_workload(w, [&](const Q &q, px_pair_cache *cache, Answer &a) {
         px_distance_result res;
-        const px_status st = px_distance_ex(b.cx, &q.pa, b.cx, &q.pb, &opt, cache, &res);
+        const px_status st = px_distance(b.cx, &q.pa, b.cx, &q.pb, &opt, cache, &res);
         a.ok = st == PX_OK;
         a.value = !a.ok ? NAN : signed_query ? -res.signed_distance : res.distance;
         a.flag = res.intersecting;
-        a.iterations = res.iterations;
-        a.fallbacks = res.fallbacks;
+        a.iterations = res.diag.iterations;
+        a.fallbacks = res.diag.fallbacks;
         a.normal = {res.normal.x, res.normal.y, res.normal.z};
     });
 }
@@ -563,7 +562,7 @@ Run run_px_distance(const Body &b, const Workload &w, const std::string &method,
 // two fcl::Convex (OT_GEOM) comes from libccd's GJK + EPA inside FCL.
 Run run_fcl_distance(const Body &b, const Workload &w, double tolerance, bool signed_query) {
     const fcl::DistanceRequestd req = fcl_request(tolerance, signed_query);
-    return time_workload(w, [&](const Q &q, px_distance_cache *, Answer &a) {
+    return time_workload(w, [&](const Q &q, px_pair_cache *, Answer &a) {
         fcl::DistanceResultd res;
         fcl::distance(b.fcl.get(), q.ta, b.fcl.get(), q.tb, req, res);
         a.ok = 1;
@@ -580,7 +579,7 @@ Run run_fcl_distance(const Body &b, const Workload &w, double tolerance, bool si
 // direction is the one in which obj2 (B) must move by depth to separate.
 Run run_ccd_penetration(const Body &b, const Workload &w, bool epa) {
     const ccd_t ccd = ccd_settings();
-    return time_workload(w, [&](const Q &q, px_distance_cache *, Answer &a) {
+    return time_workload(w, [&](const Q &q, px_pair_cache *, Answer &a) {
         const CcdBody oa = {&b, q.a}, ob = {&b, q.b};
         ccd_real_t depth = 0;
         ccd_vec3_t dir, pos;
@@ -596,13 +595,14 @@ Run run_ccd_penetration(const Body &b, const Workload &w, bool epa) {
 
 // proxima's px_translation (GJK ray cast cold; conservative advancement with Lin-Canny warm).
 Run run_px_translation(const Body &b, const Workload &w) {
-    return time_workload(w, [&](const Q &q, px_distance_cache *cache, Answer &a) {
-        px_translation_result res;
-        const px_status st = px_translation(b.cx, &q.pa, b.cx, &q.pb, {q.d.x, q.d.y, q.d.z}, cache, &res);
+    return time_workload(w, [&](const Q &q, px_pair_cache *cache, Answer &a) {
+        px_translate_result res;
+        const px_status st =
+            px_translate(b.cx, &q.pa, b.cx, &q.pb, {q.d.x, q.d.y, q.d.z}, &tu_both_ways, cache, &res);
         a.ok = st == PX_OK;
         a.flag = res.hit;
         a.value = a.ok && res.hit ? res.tau : NAN;
-        a.iterations = res.iterations;
+        a.iterations = res.diag.iterations;
         a.normal = {res.normal.x, res.normal.y, res.normal.z};
     });
 }
@@ -618,7 +618,7 @@ Run run_fcl_translation(const Body &b, const Workload &w) {
     req.ccd_motion_type = fcl::CCDM_TRANS;
     req.gjk_solver_type = fcl::GST_LIBCCD;
     req.ccd_solver_type = fcl::CCDC_CONSERVATIVE_ADVANCEMENT;
-    return time_workload(w, [&](const Q &q, px_distance_cache *, Answer &a) {
+    return time_workload(w, [&](const Q &q, px_pair_cache *, Answer &a) {
         fcl::ContinuousCollisionResultd res;
         const double t = fcl::continuousCollide(b.fcl.get(), q.ta0, q.ta1, b.fcl.get(), q.tb, q.tb, req, res);
         a.ok = t >= 0;
@@ -819,13 +819,13 @@ Reference bisect_translation_reference(const Body &b, const Workload &w, size_t 
     const double t0 = now_ns(), eps = 1e-13 * b.diameter;
     for (size_t i : spread(q.size(), count)) {
         const Q &x = *q[i];
-        px_distance_cache cache;
+        px_pair_cache cache;
         std::memset(&cache, 0, sizeof cache);
         auto g = [&](double tau) {
             const Pose a = translated(x.a, tau * x.d);
-            const px_pose p = px_pose_from_rt(a.r, a.t);
+            const px_pose p = ta_pose_rt(a.r, a.t);
             px_distance_result res;
-            px_distance(b.cx, &p, b.cx, &x.pb, &cache, &res);
+            px_distance(b.cx, &p, b.cx, &x.pb, NULL, &cache, &res);
             return res.intersecting ? 0.0 : res.distance;
         };
         const double phi = 0.5 * (std::sqrt(5.0) - 1);

@@ -58,23 +58,23 @@ std::unique_ptr<Poly> random_poly(pg_sm &rng, size_t n) {
     pg_sm_points_sphere(&rng, n, 1.0, xyz.data());
     std::unique_ptr<Poly> p(new Poly);
     px_error err;
-    p->cx = px_convex_from_points(xyz.data(), n, nullptr, &err);
+    p->cx = px_convex_create(xyz.data(), n, nullptr, &err);
     if (!p->cx) {
-        std::fprintf(stderr, "bench_hybrid: px_convex_from_points(%zu) failed: %s\n", n, err.message);
+        std::fprintf(stderr, "bench_hybrid: px_convex_create(%zu) failed: %s\n", n, err.message);
         return nullptr;
     }
     const uint32_t nv = px_convex_vertex_count(p->cx), nf = px_convex_face_count(p->cx);
     p->n = nv;
     auto fv = std::make_shared<std::vector<fcl::Vector3d>>(nv);
     for (uint32_t i = 0; i < nv; ++i) {
-        const px_vec3 v = px_convex_vertex(p->cx, i);
+        const px_vec3 v = ta_vertex(p->cx, i);
         (*fv)[i] = fcl::Vector3d(v.x, v.y, v.z);
     }
     auto ff = std::make_shared<std::vector<int>>();
     for (uint32_t f = 0; f < nf; ++f) {
-        const uint32_t k = px_convex_face_size(p->cx, f);
+        const uint32_t k = ta_face_size(p->cx, f);
         ff->push_back((int)k);
-        for (uint32_t j = 0; j < k; ++j) ff->push_back((int)px_convex_face_vertex(p->cx, f, j));
+        for (uint32_t j = 0; j < k; ++j) ff->push_back((int)ta_face_vertex(p->cx, f, j));
     }
     p->fcl = std::make_shared<fcl::Convexd>(fv, (int)nf, ff, false);
     p->fcl->computeLocalAABB();
@@ -117,9 +117,9 @@ Result run_path(const Poly &a, const Poly &b, const px_pose &pa, const std::vect
     std::memset(&opt, 0, sizeof opt);
     opt.method = m == 1 ? PX_METHOD_GJK : m == 2 ? PX_METHOD_HYBRID : PX_METHOD_LIN_CANNY;
     for (int rep = 0; rep < repeat; ++rep) {
-        px_distance_cache cache;
+        px_pair_cache cache;
         std::memset(&cache, 0, sizeof cache);
-        px_distance_cache *c = tracking ? &cache : nullptr;
+        px_pair_cache *c = tracking ? &cache : nullptr;
         px_distance_result res;
         const double t0 = now_ns();
         if (m == 3) {
@@ -130,7 +130,7 @@ Result run_path(const Poly &a, const Poly &b, const px_pose &pa, const std::vect
             }
         } else {
             for (size_t k = 0; k < pb.size(); ++k) {
-                const px_status st = px_distance_ex(a.cx, &pa, b.cx, &pb[k], &opt, c, &res);
+                const px_status st = px_distance(a.cx, &pa, b.cx, &pb[k], &opt, c, &res);
                 dist[k] = st == PX_OK ? res.distance : NAN;
             }
         }
@@ -335,7 +335,7 @@ int main(int argc, char **argv) {
         for (size_t k = 0; k < steps; ++k) {
             const V3 c = pg_circle_point(u, v, radius, k, steps);
             const double t[3] = {c.x, c.y, c.z};
-            pb[k] = px_pose_from_rt(r, t);
+            pb[k] = ta_pose_rt(r, t);
         }
         run_all(*a, *b, pa, pb, "translation", 0, true, repeat, rows);
     }
@@ -351,7 +351,7 @@ int main(int argc, char **argv) {
             pg_sm_rot_random(&rng, r);
             std::vector<px_pose> pb(steps);
             for (size_t k = 0; k < steps; ++k) {
-                pb[k] = px_pose_from_rt(r, t);
+                pb[k] = ta_pose_rt(r, t);
                 pg_rot_turn(axis, s * M_PI / 180, r);
             }
             run_all(*a, *b, pa, pb, "rotation", s, false, repeat, rows);

@@ -58,6 +58,27 @@
 /* library or the generators).                                               */
 /* ------------------------------------------------------------------------- */
 
+/* The accessors, read in expressions (the API returns a status and fills an
+ * output; indices here are always in range). */
+static px_vec3 vertex_of(const px_convex *c, uint32_t i) {
+    px_vec3 v;
+    px_convex_vertex(c, i, &v);
+    return v;
+}
+static uint32_t face_size(const px_convex *c, uint32_t f) {
+    uint32_t n;
+    px_convex_face(c, f, NULL, NULL, &n);
+    return n;
+}
+static uint32_t face_vertex(const px_convex *c, uint32_t f, uint32_t k) {
+    uint32_t v;
+    px_convex_face_vertex(c, f, k, &v);
+    return v;
+}
+/* The demo's translations are the collision translation of either sign
+ * (Carpin, Mirolo and Pagello): PX_QUERY_BOTH_WAYS. */
+static const px_query_options demo_both_ways = {0, PX_QUERY_BOTH_WAYS, {0, 0, 0, 0, 0, 0}};
+
 static px_vec3 v3(double x, double y, double z) {
     px_vec3 r = {x, y, z};
     return r;
@@ -116,10 +137,10 @@ static int body_init(body *b, const char *name, px_convex *c) {
     b->ne = px_convex_edge_count(c);
     b->nf = px_convex_face_count(c);
     px_vec3 s = v3(0, 0, 0);
-    for (uint32_t i = 0; i < b->nv; ++i) s = vadd(s, px_convex_vertex(c, i));
+    for (uint32_t i = 0; i < b->nv; ++i) s = vadd(s, vertex_of(c, i));
     b->center = vscale(s, 1.0 / b->nv);
     for (uint32_t i = 0; i < b->nv; ++i) {
-        double r = vlen(vsub(px_convex_vertex(c, i), b->center));
+        double r = vlen(vsub(vertex_of(c, i), b->center));
         if (r > b->radius) b->radius = r;
     }
     px_error err;
@@ -132,7 +153,7 @@ static int body_init(body *b, const char *name, px_convex *c) {
 
 static px_convex *from_points_or_die(const char *what, const double *xyz, size_t n) {
     px_error err;
-    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    px_convex *c = px_convex_create(xyz, n, NULL, &err);
     if (!c) {
         fprintf(stderr, "proxima_demo: cannot build %s: %s (%s)\n", what, err.message,
                 px_status_string(err.code));
@@ -236,8 +257,8 @@ static void world_fill(world *w, const body *a, const px_pose *pa, const body *b
         w->cap_b = b->nv;
     }
     if (!w->va || !w->vb) exit(2);
-    for (uint32_t i = 0; i < a->nv; ++i) w->va[i] = px_pose_apply(pa, px_convex_vertex(a->c, i));
-    for (uint32_t i = 0; i < b->nv; ++i) w->vb[i] = px_pose_apply(pb, px_convex_vertex(b->c, i));
+    for (uint32_t i = 0; i < a->nv; ++i) w->va[i] = px_pose_apply(pa, vertex_of(a->c, i));
+    for (uint32_t i = 0; i < b->nv; ++i) w->vb[i] = px_pose_apply(pb, vertex_of(b->c, i));
 }
 
 /* Largest signed distance of world point p above the face planes of body b. */
@@ -246,7 +267,7 @@ static double max_plane_excess(const body *b, const px_pose *pose, px_vec3 p) {
     for (uint32_t f = 0; f < b->nf; ++f) {
         px_vec3 n;
         double d;
-        px_convex_face_plane(b->c, f, &n, &d);
+        px_convex_face(b->c, f, &n, &d, NULL);
         px_vec3 nw = rot_apply(pose->r, n);
         double dw = d + vdot(nw, pose->t);
         double e = vdot(nw, p) - dw;
@@ -328,15 +349,15 @@ static double seg_seg(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1) {
 static double point_face(const body *b, const px_vec3 *wv, const px_pose *pose, uint32_t f, px_vec3 p) {
     px_vec3 n;
     double d;
-    px_convex_face_plane(b->c, f, &n, &d);
+    px_convex_face(b->c, f, &n, &d, NULL);
     px_vec3 nw = rot_apply(pose->r, n);
-    uint32_t m = px_convex_face_size(b->c, f);
-    px_vec3 v0 = wv[px_convex_face_vertex(b->c, f, 0)];
+    uint32_t m = face_size(b->c, f);
+    px_vec3 v0 = wv[face_vertex(b->c, f, 0)];
     double s = vdot(nw, vsub(p, v0));
     px_vec3 q = vsub(p, vscale(nw, s));
     for (uint32_t k = 0; k < m; ++k) {
-        px_vec3 x0 = wv[px_convex_face_vertex(b->c, f, k)];
-        px_vec3 x1 = wv[px_convex_face_vertex(b->c, f, (k + 1) % m)];
+        px_vec3 x0 = wv[face_vertex(b->c, f, k)];
+        px_vec3 x1 = wv[face_vertex(b->c, f, (k + 1) % m)];
         if (vdot(vcross(vsub(x1, x0), vsub(q, x0)), nw) < 0) return INFINITY;
     }
     return fabs(s);
@@ -355,10 +376,10 @@ static double brute_distance(const world *w, const body *a, const px_pose *pa, c
         for (uint32_t f = 0; f < a->nf; ++f) best = fmin(best, point_face(a, w->va, pa, f, w->vb[i]));
     for (uint32_t e = 0; e < a->ne; ++e) {
         uint32_t ea[2];
-        px_convex_edge_vertices(a->c, e, ea);
+        px_convex_edge(a->c, e, ea);
         for (uint32_t g = 0; g < b->ne; ++g) {
             uint32_t eb[2];
-            px_convex_edge_vertices(b->c, g, eb);
+            px_convex_edge(b->c, g, eb);
             best = fmin(best, seg_seg(w->va[ea[0]], w->va[ea[1]], w->vb[eb[0]], w->vb[eb[1]]));
         }
     }
@@ -411,15 +432,15 @@ static px_feature random_feature(const body *b) {
 
 /* Times one query (px_distance, or px_distance_ex when `opt` is not NULL). */
 static int timed_query_ex(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
-                          const px_query_options *opt, px_distance_cache *cache, int reps, double *us,
+                          const px_query_options *opt, px_pair_cache *cache, int reps, double *us,
                           px_distance_result *res) {
-    px_distance_cache start = *cache, c = start;
+    px_pair_cache start = *cache, c = start;
     px_status st = PX_OK;
     double t0 = now_ns();
     for (int r = 0; r < reps; ++r) {
         c = start;
-        st =
-            opt ? px_distance_ex(a->c, pa, b->c, pb, opt, &c, res) : px_distance(a->c, pa, b->c, pb, &c, res);
+        st = opt ? px_distance(a->c, pa, b->c, pb, opt, &c, res)
+                 : px_distance(a->c, pa, b->c, pb, NULL, &c, res);
     }
     double t1 = now_ns();
     *us = (t1 - t0) * 1e-3 / reps;
@@ -434,7 +455,7 @@ static int timed_query_ex(const body *a, const px_pose *pa, const body *b, const
 }
 
 static int timed_query(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
-                       px_distance_cache *cache, int reps, double *us, px_distance_result *res) {
+                       px_pair_cache *cache, int reps, double *us, px_distance_result *res) {
     return timed_query_ex(a, pa, b, pb, NULL, cache, reps, us, res);
 }
 
@@ -448,7 +469,7 @@ static run_stats run_pair(const body *a, const body *b, const pg_spin *m, const 
     if (!tw || !tc || !tr) exit(2);
     world w;
     memset(&w, 0, sizeof w);
-    px_distance_cache warm;
+    px_pair_cache warm;
     memset(&warm, 0, sizeof warm);
     double scale = a->radius + b->radius + (m->separation + m->disp_amp);
     double sum_w = 0, sum_c = 0, sum_r = 0;
@@ -459,18 +480,18 @@ static run_stats run_pair(const body *a, const body *b, const pg_spin *m, const 
 
         px_distance_result rw, rc, rr;
         timed_query(a, &pa, b, &pb, &warm, o->reps, &tw[k], &rw);
-        px_distance_cache cold;
+        px_pair_cache cold;
         memset(&cold, 0, sizeof cold);
         timed_query(a, &pa, b, &pb, &cold, o->reps, &tc[k], &rc);
         sum_w += tw[k];
         sum_c += tc[k];
-        s.warm_iter += rw.iterations;
-        s.cold_iter += rc.iterations;
-        s.fallbacks[0] += rw.fallbacks;
-        s.fallbacks[1] += rc.fallbacks;
-        if (g_verbose && (rw.fallbacks || rc.fallbacks)) {
+        s.warm_iter += rw.diag.iterations;
+        s.cold_iter += rc.diag.iterations;
+        s.fallbacks[0] += rw.diag.fallbacks;
+        s.fallbacks[1] += rc.diag.fallbacks;
+        if (g_verbose && (rw.diag.fallbacks || rc.diag.fallbacks)) {
             fprintf(stderr, "fallback: %s / %s step %d (tracking %u, cold %u), d = %.17g\n", a->name, b->name,
-                    k, rw.fallbacks, rc.fallbacks, rw.distance);
+                    k, rw.diag.fallbacks, rc.diag.fallbacks, rw.distance);
             print_pose_hex("pose_a", &pa);
             print_pose_hex("pose_b", &pb);
         }
@@ -482,13 +503,13 @@ static run_stats run_pair(const body *a, const body *b, const pg_spin *m, const 
                         b->name, k, rw.distance, rc.distance);
         }
         if (o->random_start) {
-            px_distance_cache rnd;
+            px_pair_cache rnd;
             rnd.feature_a = random_feature(a);
             rnd.feature_b = random_feature(b);
             timed_query(a, &pa, b, &pb, &rnd, o->reps, &tr[k], &rr);
             sum_r += tr[k];
-            s.rand_iter += rr.iterations;
-            s.fallbacks[2] += rr.fallbacks;
+            s.rand_iter += rr.diag.iterations;
+            s.fallbacks[2] += rr.diag.fallbacks;
             check_answer(&w, a, &pa, b, &pb, &rr, scale, "random start");
             if (fabs(rw.distance - rr.distance) > DEMO_REL_TOL * scale) {
                 if (g_sanity.agreement_failures++ < 5)
@@ -538,7 +559,8 @@ static void print_fallbacks(const run_stats *s) {
     unsigned long t = s->fallbacks[0] + s->fallbacks[1] + s->fallbacks[2];
     if (!t) return;
     g_fallbacks_total += t;
-    printf("      ^ safeguard fallbacks (px_distance_result.fallbacks, expected 0): tracking %lu, cold %lu, "
+    printf("      ^ safeguard fallbacks (px_distance_result.diag.fallbacks, expected 0): tracking %lu, cold "
+           "%lu, "
            "random start %lu\n",
            s->fallbacks[0], s->fallbacks[1], s->fallbacks[2]);
 }
@@ -608,7 +630,7 @@ static int make_scaled(const body *src, double f, const char *name, body *out) {
     double *p = malloc(3 * (size_t)src->nv * sizeof *p);
     if (!p) exit(2);
     for (uint32_t v = 0; v < src->nv; ++v) {
-        px_vec3 q = vscale(px_convex_vertex(src->c, v), f);
+        px_vec3 q = vscale(vertex_of(src->c, v), f);
         p[3 * v] = q.x, p[3 * v + 1] = q.y, p[3 * v + 2] = q.z;
     }
     px_convex *c = from_points_or_die(name, p, src->nv);
@@ -642,13 +664,15 @@ static void track_poses(const qpair *p, int k, int n, double phi, px_pose *pa, p
 static px_vec3 centre_at(const body *b, const px_pose *p) { return px_pose_apply(p, b->center); }
 
 static int timed_intersect(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
-                           px_distance_cache *cache, int reps, double *us, int *hit) {
-    px_distance_cache start = *cache, c = start;
+                           px_pair_cache *cache, int reps, double *us, int *hit) {
+    px_pair_cache start = *cache, c = start;
     px_status st = PX_OK;
     double t0 = now_ns();
     for (int r = 0; r < reps; ++r) {
         c = start;
-        st = px_intersect(a->c, pa, b->c, pb, &c, hit);
+        px_intersect_result ir;
+        st = px_intersect(a->c, pa, b->c, pb, NULL, &c, &ir);
+        *hit = ir.intersecting;
     }
     *us = (now_ns() - t0) * 1e-3 / reps;
     *cache = c;
@@ -658,13 +682,13 @@ static int timed_intersect(const body *a, const px_pose *pa, const body *b, cons
 }
 
 static int timed_translation(const body *a, const px_pose *pa, const body *b, const px_pose *pb, px_vec3 dir,
-                             px_distance_cache *cache, int reps, double *us, px_translation_result *res) {
-    px_distance_cache start = *cache, c = start;
+                             px_pair_cache *cache, int reps, double *us, px_translate_result *res) {
+    px_pair_cache start = *cache, c = start;
     px_status st = PX_OK;
     double t0 = now_ns();
     for (int r = 0; r < reps; ++r) {
         c = start;
-        st = px_translation(a->c, pa, b->c, pb, dir, &c, res);
+        st = px_translate(a->c, pa, b->c, pb, dir, &demo_both_ways, &c, res);
     }
     *us = (now_ns() - t0) * 1e-3 / reps;
     *cache = c;
@@ -681,9 +705,9 @@ static px_distance_result query(const qpair *p, const px_pose *pa, const px_pose
     o.method = method;
     o.flags = flags;
     px_distance_result r;
-    px_status st = px_distance_ex(p->a->c, pa, p->b->c, pb, &o, NULL, &r);
+    px_status st = px_distance(p->a->c, pa, p->b->c, pb, &o, NULL, &r);
     if (!record(st == PX_OK)) {
-        fprintf(stderr, "FAIL: px_distance_ex(%s, method %u, flags %u): %s\n", p->name, method, flags,
+        fprintf(stderr, "FAIL: px_distance(%s, method %u, flags %u): %s\n", p->name, method, flags,
                 px_status_string(st));
         memset(&r, 0, sizeof r);
         r.signed_distance = r.distance = NAN;
@@ -743,7 +767,7 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
         tc[m] = calloc(n, sizeof *tc[m]);
         if (!tw[m] || !tc[m]) exit(2);
     }
-    px_distance_cache warm[N_METHODS], xwarm, ref_cache;
+    px_pair_cache warm[N_METHODS], xwarm, ref_cache;
     memset(warm, 0, sizeof warm);
     memset(&xwarm, 0, sizeof xwarm);
     memset(&ref_cache, 0, sizeof ref_cache);
@@ -757,8 +781,8 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
         if (k % 50 == 25) {
             /* Touching: slide A along the line of centres until it touches B. */
             px_vec3 u = vunit(vsub(centre_at(p->b, &pb), centre_at(p->a, &pa)));
-            px_translation_result tr;
-            px_status st = px_translation(p->a->c, &pa, p->b->c, &pb, u, NULL, &tr);
+            px_translate_result tr;
+            px_status st = px_translate(p->a->c, &pa, p->b->c, &pb, u, &demo_both_ways, NULL, &tr);
             if (!record(st == PX_OK && tr.hit))
                 fprintf(stderr, "FAIL: %s step %d: px_translation along the line of centres: %s, hit %d\n",
                         p->name, k, px_status_string(st), tr.hit);
@@ -771,7 +795,7 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
         memset(&ro, 0, sizeof ro);
         ro.flags = PX_QUERY_SIGNED;
         px_distance_result ref;
-        px_status st = px_distance_ex(p->a->c, &pa, p->b->c, &pb, &ro, &ref_cache, &ref);
+        px_status st = px_distance(p->a->c, &pa, p->b->c, &pb, &ro, &ref_cache, &ref);
         record(st == PX_OK);
         int band = fabs(ref.signed_distance) <= TOUCH_BAND * p->size;
         s.band += band;
@@ -781,12 +805,12 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
             memset(&o, 0, sizeof o);
             o.method = k_methods[m];
             px_distance_result rc;
-            px_distance_cache cold;
+            px_pair_cache cold;
             memset(&cold, 0, sizeof cold);
             record(timed_query_ex(p->a, &pa, p->b, &pb, &o, &warm[m], reps, &tw[m][k], &rw[m]));
             record(timed_query_ex(p->a, &pa, p->b, &pb, &o, &cold, reps, &tc[m][k], &rc));
             method_stats *ms = &s.m[m];
-            ms->fallbacks += rw[m].fallbacks + rc.fallbacks;
+            ms->fallbacks += rw[m].diag.fallbacks + rc.diag.fallbacks;
             for (int j = 0; j < 2; ++j) {
                 double v = certify_n(&w, p->a, &pa, p->b, &pb, j ? &rc : &rw[m], p->size);
                 if (v > ms->worst_cert) ms->worst_cert = v;
@@ -828,7 +852,7 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
         }
         /* (g) px_intersect against the Lin-Canny flag. */
         int xw = -1, xc = -1;
-        px_distance_cache xcold;
+        px_pair_cache xcold;
         memset(&xcold, 0, sizeof xcold);
         timed_intersect(p->a, &pa, p->b, &pb, &xwarm, reps, &tw[N_METHODS][k], &xw);
         timed_intersect(p->a, &pa, p->b, &pb, &xcold, reps, &tc[N_METHODS][k], &xc);
@@ -884,8 +908,8 @@ static void run_signed(const qpair *p, int reps) {
     px_pose pa, pb;
     track_poses(p, 0, 1000, phi, &pa, &pb);
     px_vec3 u = vunit(vsub(centre_at(p->b, &pb), centre_at(p->a, &pa)));
-    px_translation_result tr;
-    px_status st = px_translation(p->a->c, &pa, p->b->c, &pb, u, NULL, &tr);
+    px_translate_result tr;
+    px_status st = px_translate(p->a->c, &pa, p->b->c, &pb, u, &demo_both_ways, NULL, &tr);
     if (!record(st == PX_OK && tr.hit)) {
         printf("      %-34s FAIL: px_translation along the line of centres: %s, hit %d\n", p->name,
                px_status_string(st), tr.hit);
@@ -905,7 +929,7 @@ static void run_signed(const qpair *p, int reps) {
             o.flags = PX_QUERY_SIGNED;
             double batch[7]; /* one query: the median of 7 timed batches, against interruptions */
             for (int b = 0; b < 7; ++b) {
-                px_distance_cache cold;
+                px_pair_cache cold;
                 memset(&cold, 0, sizeof cold);
                 record(timed_query_ex(p->a, &pai, p->b, &pb, &o, &cold, reps, &batch[b], &r[m]));
             }
@@ -937,8 +961,8 @@ static void run_signed(const qpair *p, int reps) {
                 d = u;
             else
                 d = random_direction();
-            px_translation_result t;
-            px_status s2 = px_translation(p->a->c, &pai, p->b->c, &pb, d, NULL, &t);
+            px_translate_result t;
+            px_status s2 = px_translate(p->a->c, &pai, p->b->c, &pb, d, &demo_both_ways, NULL, &t);
             if (!record(s2 == PX_OK && t.hit && t.tau <= 0)) {
                 min_tau = -INFINITY;
                 continue;
@@ -974,8 +998,8 @@ static void run_translation_row(const qpair *p, const char *label, px_vec3 dir, 
     px_pose pa = pose_centred(p->a, ra, v3(0, 0, 0));
     px_pose pb = pose_centred(p->b, rb, v3(centre_dist * p->size, 0, 0));
     dir = vunit(dir);
-    px_translation_result t;
-    px_status st = px_translation(p->a->c, &pa, p->b->c, &pb, dir, NULL, &t);
+    px_translate_result t;
+    px_status st = px_translate(p->a->c, &pa, p->b->c, &pb, dir, &demo_both_ways, NULL, &t);
     if (!record(st == PX_OK)) {
         printf("      %-26s FAIL: %s\n", label, px_status_string(st));
         return;
@@ -1021,7 +1045,7 @@ static void run_translation_row(const qpair *p, const char *label, px_vec3 dir, 
     /* Timing: 100 small moves of A (0.5 degree and 0.2% of size per step), with a warm cache and cold;
      * the two answers must agree. */
     double tw[100], tc[100];
-    px_distance_cache warm;
+    px_pair_cache warm;
     memset(&warm, 0, sizeof warm);
     unsigned long dis = 0;
     for (int j = 0; j < 100; ++j) {
@@ -1029,8 +1053,8 @@ static void run_translation_row(const qpair *p, const char *label, px_vec3 dir, 
         pg_rot_rodrigues(v3(0.6, 0, 0.8), j * 0.5 * DEMO_PI / 180.0, rj);
         pg_mat_mul(rj, ra, raj);
         px_pose pj = pose_centred(p->a, raj, v3(0, 0.002 * j * p->size, -0.001 * j * p->size));
-        px_translation_result a1, a2;
-        px_distance_cache cold;
+        px_translate_result a1, a2;
+        px_pair_cache cold;
         memset(&cold, 0, sizeof cold);
         timed_translation(p->a, &pj, p->b, &pb, dir, &warm, reps, &tw[j], &a1);
         timed_translation(p->a, &pj, p->b, &pb, dir, &cold, reps, &tc[j], &a2);
@@ -1249,7 +1273,7 @@ static px_convex *load_or_die(const char *dir, const char *rel) {
     char path[1024];
     snprintf(path, sizeof path, "%s/%s", dir, rel);
     px_error err;
-    px_convex *c = px_convex_from_file(path, NULL, &err);
+    px_convex *c = px_convex_create_from_file(path, NULL, &err);
     if (!c) {
         fprintf(stderr, "proxima_demo: %s (%s)\n", err.message, px_status_string(err.code));
         exit(2);
@@ -1346,7 +1370,7 @@ int main(int argc, char **argv) {
             print_fallbacks(&s);
         }
     }
-    printf("    'chg' = mean feature-pair changes per query (px_distance_result.iterations); med/avg = "
+    printf("    'chg' = mean feature-pair changes per query (px_distance_result.diag.iterations); med/avg = "
            "median/mean.\n");
 
     /* ---------------------------------------------------------------- (b) */
@@ -1432,7 +1456,7 @@ int main(int argc, char **argv) {
                     double *p = malloc(3 * (size_t)nv * sizeof *p);
                     if (!p) return 2;
                     for (uint32_t v = 0; v < nv; ++v) {
-                        px_vec3 q = vscale(px_convex_vertex(bd[j].c, v), f);
+                        px_vec3 q = vscale(vertex_of(bd[j].c, v), f);
                         p[3 * v] = q.x, p[3 * v + 1] = q.y, p[3 * v + 2] = q.z;
                     }
                     made[j] = from_points_or_die(names[j], p, nv);

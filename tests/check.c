@@ -1,4 +1,5 @@
 /* One px_distance query checked against the brute-force oracle; see check.h. */
+#include "access.h"
 #include "check.h"
 
 #include <float.h>
@@ -37,7 +38,7 @@ static double body_radius(const px_convex *c) {
     double r = 0;
     uint32_t n = px_convex_vertex_count(c);
     for (uint32_t i = 0; i < n; ++i) {
-        double l = pxi_len(px_convex_vertex(c, i));
+        double l = pxi_len(ta_vertex(c, i));
         if (l > r) r = l;
     }
     return r;
@@ -52,7 +53,7 @@ void tc_vertices_in_b(const px_convex *a, const px_pose *pa, const px_pose *pb, 
     px_pose t = pxi_relative(pa, pb);
     uint32_t n = px_convex_vertex_count(a);
     for (uint32_t i = 0; i < n; ++i) {
-        px_vec3 p = pxi_xform(&t, px_convex_vertex(a, i));
+        px_vec3 p = pxi_xform(&t, ta_vertex(a, i));
         xyz[3 * i] = p.x, xyz[3 * i + 1] = p.y, xyz[3 * i + 2] = p.z;
     }
 }
@@ -60,7 +61,7 @@ void tc_vertices_in_b(const px_convex *a, const px_pose *pa, const px_pose *pb, 
 void tc_vertices(const px_convex *c, double *xyz) {
     uint32_t n = px_convex_vertex_count(c);
     for (uint32_t i = 0; i < n; ++i) {
-        px_vec3 p = px_convex_vertex(c, i);
+        px_vec3 p = ta_vertex(c, i);
         xyz[3 * i] = p.x, xyz[3 * i + 1] = p.y, xyz[3 * i + 2] = p.z;
     }
 }
@@ -90,9 +91,9 @@ static int feature_valid(const px_convex *c, px_feature f) {
 }
 
 int tc_query_and_check(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
-                       px_distance_cache *cache, tc_report *rep) {
+                       px_pair_cache *cache, tc_report *rep) {
     memset(rep, 0, sizeof *rep);
-    rep->status = px_distance_ex(a, pa, b, pb, &tc_options, cache, &rep->res);
+    rep->status = px_distance(a, pa, b, pb, &tc_options, cache, &rep->res);
     const px_distance_result *r = &rep->res;
     if (rep->status != PX_OK) {
         add_msg(rep, TC_STATUS, "px_distance returned %s", px_status_string(rep->status));

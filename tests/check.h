@@ -40,10 +40,10 @@ extern double tc_rel_tol;
 extern px_query_options tc_options;
 const char *tc_method_from_env(void);
 
-/* Runs px_distance_ex(a, pa, b, pb, &tc_options, cache, ...) and checks it against the
+/* Runs px_distance(a, pa, b, pb, &tc_options, cache, ...) and checks it against the
  * oracle. Returns rep->fail (0 = all properties hold). */
 int tc_query_and_check(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
-                       px_distance_cache *cache, tc_report *rep);
+                       px_pair_cache *cache, tc_report *rep);
 
 /* |t_AB| + R_A + R_B for the pair (R = max |vertex| in the body frame). */
 double tc_scale(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb);

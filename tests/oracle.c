@@ -1,6 +1,7 @@
 /* Brute-force distance and intersection oracle; see oracle.h.
  * Written independently of src/narrow (it shares no code with the library's
  * queries; only px_vec3 and the public accessors). */
+#include "access.h"
 #include "oracle.h"
 
 #include <math.h>
@@ -130,7 +131,7 @@ int or_poly_init(or_poly *p, const px_convex *c, const px_pose *T) {
     px_vec3 *vb = xcalloc(p->nv, sizeof *vb);
     p->body_radius = 0;
     for (uint32_t i = 0; i < p->nv; ++i) {
-        px_vec3 q = px_convex_vertex(c, i);
+        px_vec3 q = ta_vertex(c, i);
         vb[i] = q;
         double r = len(q);
         if (r > p->body_radius) p->body_radius = r;
@@ -145,7 +146,7 @@ int or_poly_init(or_poly *p, const px_convex *c, const px_pose *T) {
     p->ev = xcalloc(2 * (size_t)p->ne, sizeof *p->ev);
     for (uint32_t e = 0; e < p->ne; ++e) {
         uint32_t ab[2];
-        if (!px_convex_edge_vertices(c, e, ab) || ab[0] >= p->nv || ab[1] >= p->nv) {
+        if (!(px_convex_edge(c, e, ab) == PX_OK) || ab[0] >= p->nv || ab[1] >= p->nv) {
             fprintf(stderr, "oracle: bad edge %u\n", e);
             free(vb);
             return -1;
@@ -155,14 +156,14 @@ int or_poly_init(or_poly *p, const px_convex *c, const px_pose *T) {
     }
     p->f_first = xcalloc(p->nf + 1, sizeof *p->f_first);
     size_t total = 0;
-    for (uint32_t f = 0; f < p->nf; ++f) total += px_convex_face_size(c, f);
+    for (uint32_t f = 0; f < p->nf; ++f) total += ta_face_size(c, f);
     p->f_vert = xcalloc(total, sizeof *p->f_vert);
     uint32_t k = 0;
     for (uint32_t f = 0; f < p->nf; ++f) {
         p->f_first[f] = k;
-        uint32_t n = px_convex_face_size(c, f);
+        uint32_t n = ta_face_size(c, f);
         for (uint32_t j = 0; j < n; ++j) {
-            uint32_t vi = px_convex_face_vertex(c, f, j);
+            uint32_t vi = ta_face_vertex(c, f, j);
             if (vi >= p->nv) {
                 fprintf(stderr, "oracle: bad face vertex %u of face %u\n", vi, f);
                 free(vb);
@@ -476,7 +477,7 @@ int or_intersect(const or_poly *A, const or_poly *B, double *margin) {
 /* ---------------------------------------------------------------- distance */
 
 static px_feature feat(uint32_t type, uint32_t index) {
-    px_feature f = {type, index};
+    px_feature f = {type, index, 0};
     return f;
 }
 

@@ -1,6 +1,7 @@
 /* Separating-axis oracles for penetration depth and collision translation;
  * see oracle_sat.h. Written independently of src/: only px_vec3, px_pose and
  * the public px_convex accessors. */
+#include "access.h"
 #include "oracle_sat.h"
 
 #include <float.h>
@@ -45,18 +46,18 @@ int os_shape_init(os_shape *s, const px_convex *c) {
     s->fd = xcalloc(s->nf, sizeof *s->fd);
     px_vec3 mean = v3(0, 0, 0);
     for (uint32_t i = 0; i < s->nv; ++i) {
-        s->v[i] = px_convex_vertex(c, i);
+        s->v[i] = ta_vertex(c, i);
         mean = add(mean, s->v[i]);
         double l = len(s->v[i]);
         if (l > s->radius) s->radius = l;
     }
     s->mean = mul(mean, 1.0 / (double)(s->nv ? s->nv : 1));
     size_t nh = 0;
-    for (uint32_t f = 0; f < s->nf; ++f) nh += px_convex_face_size(c, f);
+    for (uint32_t f = 0; f < s->nf; ++f) nh += ta_face_size(c, f);
     half_edge *h = xcalloc(nh, sizeof *h);
     size_t k = 0;
     for (uint32_t f = 0; f < s->nf; ++f) {
-        uint32_t n = px_convex_face_size(c, f);
+        uint32_t n = ta_face_size(c, f);
         if (n < 3) {
             fprintf(stderr, "oracle_sat: face %u has %u vertices\n", f, n);
             free(h);
@@ -65,11 +66,11 @@ int os_shape_init(os_shape *s, const px_convex *c) {
         /* Newell's method about the face centroid, in the body frame, where
          * the coordinates are the exact hull vertices. */
         px_vec3 cen = v3(0, 0, 0);
-        for (uint32_t q = 0; q < n; ++q) cen = add(cen, s->v[px_convex_face_vertex(c, f, q)]);
+        for (uint32_t q = 0; q < n; ++q) cen = add(cen, s->v[ta_face_vertex(c, f, q)]);
         cen = mul(cen, 1.0 / (double)n);
         px_vec3 nn = v3(0, 0, 0);
         for (uint32_t q = 0; q < n; ++q) {
-            uint32_t u = px_convex_face_vertex(c, f, q), w = px_convex_face_vertex(c, f, (q + 1) % n);
+            uint32_t u = ta_face_vertex(c, f, q), w = ta_face_vertex(c, f, (q + 1) % n);
             nn = add(nn, cross(sub(s->v[u], cen), sub(s->v[w], cen)));
             h[k].lo = u < w ? u : w;
             h[k].hi = u < w ? w : u;
@@ -88,7 +89,7 @@ int os_shape_init(os_shape *s, const px_convex *c) {
         if (dot(nn, sub(cen, s->mean)) < 0) nn = mul(nn, -1.0);
         s->fn[f] = nn;
         double off = 0;
-        for (uint32_t q = 0; q < n; ++q) off += dot(nn, s->v[px_convex_face_vertex(c, f, q)]);
+        for (uint32_t q = 0; q < n; ++q) off += dot(nn, s->v[ta_face_vertex(c, f, q)]);
         s->fd[f] = off / (double)n;
     }
     /* Every edge is the shared side of exactly two face loops. */

@@ -4,6 +4,7 @@
  * brute-force oracle (check.c) and, where it matters, CGAL's exact distance. */
 #include <float.h>
 
+#include "access.h"
 #include "check.h"
 #include "math/vec3.h"
 #include "px_gen.h"
@@ -14,7 +15,7 @@
 static px_convex *build(const double *xyz, size_t n, const char *what) {
     px_error err;
     memset(&err, 0, sizeof err);
-    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    px_convex *c = px_convex_create(xyz, n, NULL, &err);
     CHECK(c != NULL, "%s: %s", what, err.message);
     if (c) CHECK(px_convex_validate(c, &err) == PX_OK, "%s: validate: %s", what, err.message);
     return c;
@@ -22,7 +23,7 @@ static px_convex *build(const double *xyz, size_t n, const char *what) {
 
 static px_status build_status(const double *xyz, size_t n, px_error *err) {
     memset(err, 0, sizeof *err);
-    px_convex *c = px_convex_from_points(xyz, n, NULL, err);
+    px_convex *c = px_convex_create(xyz, n, NULL, err);
     if (c) {
         px_status st = px_convex_validate(c, err);
         px_convex_destroy(c);
@@ -40,7 +41,7 @@ static px_pose pose_t(double x, double y, double z) {
 static int result_zero(const px_distance_result *r) {
     px_distance_result z;
     memset(&z, 0, sizeof z);
-    return r->distance == 0 && !r->intersecting && r->iterations == 0 && r->fallbacks == 0 &&
+    return r->distance == 0 && !r->intersecting && r->diag.iterations == 0 && r->diag.fallbacks == 0 &&
            memcmp(&r->point_a, &z.point_a, sizeof z.point_a) == 0 &&
            memcmp(&r->point_b, &z.point_b, sizeof z.point_b) == 0 && r->feature_a.type == 0 &&
            r->feature_b.type == 0;
@@ -48,11 +49,11 @@ static int result_zero(const px_distance_result *r) {
 
 /* Query checked by the oracle at relative tolerance `rel`; returns fail bits. */
 static int checked(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
-                   px_distance_cache *cache, double rel, const char *what, tc_report *rep) {
+                   px_pair_cache *cache, double rel, const char *what, tc_report *rep) {
     tc_rel_tol = rel;
     tc_query_and_check(a, pa, b, pb, cache, rep);
     CHECK(rep->fail == 0, "%s: %s", what, rep->msg);
-    CHECK(rep->res.fallbacks == 0, "%s: %u fallbacks", what, rep->res.fallbacks);
+    CHECK(rep->res.diag.fallbacks == 0, "%s: %u fallbacks", what, rep->res.diag.fallbacks);
     return rep->fail;
 }
 
@@ -104,26 +105,28 @@ static void bad_input_01_nan_inf_in_setters(void) {
         p = pose_t(0, bad[b], 0);
         CHECK(px_pose_check(&p, NULL) == PX_ERR_NON_FINITE, "pose_check t = %g", bad[b]);
         double q[4] = {1, 0, bad[b], 0}, t[3] = {0, 0, 0};
-        p = px_pose_from_quat(q, t);
-        CHECK(px_pose_check(&p, NULL) != PX_OK, "pose from quaternion with %g accepted", bad[b]);
+        CHECK(px_pose_from_quat(q, t, &p) == PX_ERR_NON_FINITE && px_pose_check(&p, NULL) == PX_OK,
+              "pose from quaternion with %g accepted (or not left as the identity)", bad[b]);
+        double tb[3] = {0, bad[b], 0}, r[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        CHECK(px_pose_from_rt(r, tb, &p) == PX_ERR_NON_FINITE, "pose from translation %g accepted", bad[b]);
     }
-    double q0[4] = {0, 0, 0, 0};
-    px_pose pz = px_pose_from_quat(q0, NULL);
-    CHECK(px_pose_check(&pz, NULL) != PX_OK, "pose from a zero quaternion accepted");
+    double q0[4] = {0, 0, 0, 0}, t0[3] = {0, 0, 0};
+    px_pose pz;
+    CHECK(px_pose_from_quat(q0, t0, &pz) == PX_ERR_INVALID_ARGUMENT, "pose from a zero quaternion accepted");
     /* px_distance leaves the cache unchanged and zeroes the result. */
     px_convex *c = unit_cube(1);
     if (!c) return;
     px_pose a = px_pose_identity(), far = pose_t(4, 0, 0);
-    px_distance_cache cache;
+    px_pair_cache cache;
     memset(&cache, 0, sizeof cache);
     px_distance_result r;
-    px_distance(c, &a, c, &far, &cache, &r);
-    px_distance_cache saved = cache;
+    px_distance(c, &a, c, &far, NULL, &cache, &r);
+    px_pair_cache saved = cache;
     for (int b = 0; b < 3; ++b) {
         px_pose bad_pose = pose_t(4, bad[b], 0);
         memset(&r, 0x5a, sizeof r);
-        CHECK(px_distance(c, &a, c, &bad_pose, &cache, &r) == PX_ERR_NON_FINITE, "px_distance with t.y = %g",
-              bad[b]);
+        CHECK(px_distance(c, &a, c, &bad_pose, NULL, &cache, &r) == PX_ERR_NON_FINITE,
+              "px_distance with t.y = %g", bad[b]);
         CHECK(result_zero(&r) && memcmp(&cache, &saved, sizeof cache) == 0, "result zeroed, cache unchanged");
     }
     px_convex_destroy(c);
@@ -138,10 +141,13 @@ static void bad_input_02_nan_no_infinite_loop(void) {
     if (!c) return;
     px_pose a = px_pose_identity();
     px_distance_result r;
-    /* A quaternion with a NaN gives a NaN rotation: rejected, no loop. */
+    /* A quaternion with a NaN is refused, and a NaN rotation built by hand
+     * is rejected by the query: no loop. */
     double q[4] = {NAN, 0, 0, 1}, t[3] = {3, 0, 0};
-    px_pose pq = px_pose_from_quat(q, t);
-    CHECK(px_distance(c, &a, c, &pq, NULL, &r) != PX_OK, "NaN quaternion pose accepted");
+    px_pose pq;
+    CHECK(px_pose_from_quat(q, t, &pq) == PX_ERR_NON_FINITE, "NaN quaternion accepted");
+    for (int i = 0; i < 9; ++i) pq.r[i] = NAN;
+    CHECK(px_distance(c, &a, c, &pq, NULL, NULL, &r) != PX_OK, "NaN rotation accepted");
     /* Far but finite: 1e150 apart (squares stay finite): answered. */
     px_pose far = pose_t(1e150, 0, 0);
     tc_report rep;
@@ -213,14 +219,14 @@ static void bad_input_05_unbounded_iterations(void) {
         const px_convex *a = shapes[i & 1], *b = shapes[(i >> 1) & 1];
         px_pose pa = pg_pose_random(&rng, 0.3 + 2 * (i % 7) / 7.0), pb = pg_pose_random(&rng, 0.3);
         px_distance_result r;
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
-        CHECK(px_distance(a, &pa, b, &pb, &cache, &r) == PX_OK, "query %d", i);
+        CHECK(px_distance(a, &pa, b, &pb, NULL, &cache, &r) == PX_OK, "query %d", i);
         uint32_t cap = 2 * (px_convex_vertex_count(a) + px_convex_edge_count(a) + px_convex_face_count(a) +
                             px_convex_vertex_count(b) + px_convex_edge_count(b) + px_convex_face_count(b));
-        CHECK(r.iterations <= cap && r.fallbacks == 0, "query %d: %u iterations (cap %u), %u fallbacks", i,
-              r.iterations, cap, r.fallbacks);
-        if (r.iterations > worst) worst = r.iterations;
+        CHECK(r.diag.iterations <= cap && r.diag.fallbacks == 0,
+              "query %d: %u iterations (cap %u), %u fallbacks", i, r.diag.iterations, cap, r.diag.fallbacks);
+        if (r.diag.iterations > worst) worst = r.diag.iterations;
     }
     printf("  5: 2000 box/sphere queries, max iterations %u\n", worst);
     px_convex_destroy(B);
@@ -445,7 +451,7 @@ static void bad_input_12_coplanar_faces_merged(void) {
     for (int i = 0; i < 500; ++i) {
         px_pose pa = pg_pose_random(&rng, 0), pb = pg_pose_random(&rng, 3);
         px_distance_result rp, rr;
-        px_distance(P, &pa, T, &pb, NULL, &rp);
+        px_distance(P, &pa, T, &pb, NULL, NULL, &rp);
         tc_report rep;
         checked(R, &pa, T, &pb, NULL, 1e-12, "merged cube", &rep);
         rr = rep.res;

@@ -7,6 +7,7 @@
  * allocator: leak count and failure injection at every allocation. */
 #include <stdint.h>
 
+#include "access.h"
 #include "check.h"
 #include "oracle.h"
 #include "proxima/proxima.h"
@@ -51,10 +52,13 @@ static void c_free(void *user, void *ptr, size_t size) {
 }
 
 static counting g_count;
-
-static void install_counting(void) {
-    px_allocator al = {c_alloc, c_free, &g_count};
-    px_set_allocator(&al);
+static px_allocator g_counting = {c_alloc, c_free, &g_count};
+/* Options that route a polytope's allocations through the counter. */
+static px_convex_options counting_options(void) {
+    px_convex_options o;
+    memset(&o, 0, sizeof o);
+    o.allocator = &g_counting;
+    return o;
 }
 
 /* ------------------------------------------------------- structure checks */
@@ -111,7 +115,7 @@ static void check_polytope(const px_convex *c, const double *xyz, size_t n, cons
     for (uint32_t f = 0; f < F; ++f) {
         px_vec3 nrm;
         double d;
-        if (!px_convex_face_plane(c, f, &nrm, &d)) {
+        if (!(px_convex_face(c, f, &nrm, &d, NULL) == PX_OK)) {
             bad_plane++;
             continue;
         }
@@ -128,11 +132,11 @@ static void check_polytope(const px_convex *c, const double *xyz, size_t n, cons
     CHECK(bad_plane == 0, "%s: %d face planes disagree with the face polygons", what, bad_plane);
     CHECK(bad_winding == 0, "%s: %d faces listed clockwise (seen from outside)", what, bad_winding);
     CHECK(nonconvex == 0, "%s: %d vertex/face pairs violate convexity", what, nonconvex);
-    CHECK(px_convex_face_plane(c, F, NULL, NULL) == 0 && px_convex_face_size(c, F) == 0,
+    CHECK((px_convex_face(c, F, NULL, NULL, NULL) == PX_OK) == 0 && ta_face_size(c, F) == 0,
           "%s: out of range face", what);
     {
         uint32_t ab[2];
-        CHECK(px_convex_edge_vertices(c, E, ab) == 0, "%s: out of range edge", what);
+        CHECK((px_convex_edge(c, E, ab) == PX_OK) == 0, "%s: out of range edge", what);
     }
     /* Directed edge use: +1 for tail->head, +2 for head->tail in a face.
      * Edges are looked up through per-vertex incidence lists. */
@@ -143,9 +147,9 @@ static void check_polytope(const px_convex *c, const double *xyz, size_t n, cons
     uint32_t *fill = calloc(V, sizeof *fill);
     for (uint32_t e = 0; e < 2 * E; ++e) vlist[vfirst[P.ev[e]] + fill[P.ev[e]]++] = e / 2;
     for (uint32_t f = 0; f < F; ++f) {
-        uint32_t k = px_convex_face_size(c, f);
+        uint32_t k = ta_face_size(c, f);
         for (uint32_t j = 0; j < k; ++j) {
-            uint32_t a = px_convex_face_vertex(c, f, j), b = px_convex_face_vertex(c, f, (j + 1) % k);
+            uint32_t a = ta_face_vertex(c, f, j), b = ta_face_vertex(c, f, (j + 1) % k);
             int found = 0;
             for (uint32_t q = vfirst[a]; q < vfirst[a + 1]; ++q) {
                 uint32_t e = vlist[q];
@@ -174,7 +178,7 @@ static void check_polytope(const px_convex *c, const double *xyz, size_t n, cons
 static px_convex *build_checked(const double *xyz, size_t n, const char *what) {
     px_error err;
     memset(&err, 0, sizeof err);
-    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    px_convex *c = px_convex_create(xyz, n, NULL, &err);
     CHECK(c != NULL, "%s: px_convex_from_points failed: %s", what, err.message);
     if (c) check_polytope(c, xyz, n, what);
     return c;
@@ -228,8 +232,7 @@ static void test_coplanar_merging(void) {
               "cube with face centres: V=%u E=%u F=%u", px_convex_vertex_count(c), px_convex_edge_count(c),
               px_convex_face_count(c));
         for (uint32_t f = 0; f < px_convex_face_count(c); ++f)
-            CHECK(px_convex_face_size(c, f) == 4, "cube face %u has %u vertices", f,
-                  px_convex_face_size(c, f));
+            CHECK(ta_face_size(c, f) == 4, "cube face %u has %u vertices", f, ta_face_size(c, f));
     }
     px_convex_destroy(c);
     /* Cylinder: the caps are single k-gons; k rectangles around. */
@@ -271,7 +274,7 @@ static int contains_ci(const char *s, const char *w) {
 static void expect_status(const double *xyz, size_t n, px_status want, const char *word, const char *what) {
     px_error err;
     memset(&err, 0, sizeof err);
-    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    px_convex *c = px_convex_create(xyz, n, NULL, &err);
     CHECK(c == NULL, "%s: expected failure", what);
     CHECK(err.code == want, "%s: status %s, expected %s (%s)", what, px_status_string(err.code),
           px_status_string(want), err.message);
@@ -281,7 +284,7 @@ static void expect_status(const double *xyz, size_t n, px_status want, const cha
               word);
     px_convex_destroy(c);
     /* err may be NULL */
-    c = px_convex_from_points(xyz, n, NULL, NULL);
+    c = px_convex_create(xyz, n, NULL, NULL);
     CHECK(c == NULL, "%s: expected failure with err NULL", what);
     px_convex_destroy(c);
 }
@@ -339,10 +342,10 @@ static void test_allocator(void) {
     pg_box(0.5, 0.25, 2, box);
 
     memset(&g_count, 0, sizeof g_count);
-    install_counting();
-    px_convex *a = px_convex_from_points(xyz, 300, NULL, NULL);
+    px_convex_options opt = counting_options();
+    px_convex *a = px_convex_create(xyz, 300, &opt, NULL);
     long long calls_a = g_count.calls;
-    px_convex *b = px_convex_from_points(box, 8, NULL, NULL);
+    px_convex *b = px_convex_create(box, 8, &opt, NULL);
     long long calls_b = g_count.calls - calls_a;
     CHECK(a && b, "builds under the counting allocator");
     CHECK(g_count.live > 0 && g_count.bytes > 0, "allocations went through the hook (%lld live)",
@@ -353,12 +356,12 @@ static void test_allocator(void) {
     }
     /* Queries do not allocate. */
     long long before = g_count.calls;
-    px_distance_cache cache;
+    px_pair_cache cache;
     memset(&cache, 0, sizeof cache);
     for (int i = 0; i < 50 && a && b; ++i) {
         px_pose pa = pg_pose_random(&rng, 2), pb = pg_pose_random(&rng, 2);
         px_distance_result res;
-        px_distance(a, &pa, b, &pb, &cache, &res);
+        px_distance(a, &pa, b, &pb, NULL, &cache, &res);
     }
     CHECK(g_count.calls == before, "px_distance allocated %lld times", g_count.calls - before);
     px_convex_destroy(a);
@@ -379,7 +382,7 @@ static void test_allocator(void) {
             g_count.fail_at = k;
             px_error err;
             memset(&err, 0, sizeof err);
-            px_convex *c = px_convex_from_points(p, n, NULL, &err);
+            px_convex *c = px_convex_create(p, n, &opt, &err);
             CHECK(c == NULL && err.code == PX_ERR_OUT_OF_MEMORY,
                   "failing allocation %lld of %lld: got %s (%s)", k, total,
                   c ? "a polytope" : px_status_string(err.code), err.message);
@@ -391,7 +394,6 @@ static void test_allocator(void) {
         }
     }
     printf("  failure injection: %d builds with one failing allocation\n", injected);
-    px_set_allocator(NULL);
 }
 
 int main(void) {

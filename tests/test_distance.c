@@ -43,7 +43,7 @@ static void build_pool(void) {
         it->size = pg_range(&rng, 0.3, 3.0);
         it->n = pg_shape(&rng, it->kind, n, it->size, xyz);
         px_error err;
-        it->c = px_convex_from_points(xyz, it->n, NULL, &err);
+        it->c = px_convex_create(xyz, it->n, NULL, &err);
         CHECK(it->c != NULL, "pool hull %d failed: %s", i, err.message);
     }
     free(xyz);
@@ -65,8 +65,8 @@ static void record(const tc_report *rep, const char *what, long idx) {
     g_st.queries++;
     if (rep->band) g_st.band++;
     if (rep->res.intersecting) g_st.intersecting++;
-    g_st.fallbacks += rep->res.fallbacks;
-    g_st.iterations += rep->res.iterations;
+    g_st.fallbacks += rep->res.diag.fallbacks;
+    g_st.iterations += rep->res.diag.iterations;
     if (!rep->res.intersecting && rep->scale > 0) {
         double rel = fabs(rep->res.distance - rep->orc.distance) / rep->scale;
         if (rel > g_st.worst_rel) g_st.worst_rel = rel;
@@ -106,7 +106,7 @@ static void test_cold(int count, int exact_every) {
         px_pose pb = pg_pose_random(&rng, 5.0);
         double factor = pg_range(&rng, 0.05, 1.5);
         px_pose pa = place_near(&rng, &pb, 0.5 * (A->size + B->size), factor);
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         tc_report rep;
         tc_query_and_check(A->c, &pa, B->c, &pb, (i & 1) ? &cache : NULL, &rep);
@@ -140,7 +140,7 @@ static void test_motion(int sequences, int steps) {
         double ra[9], rb[9];
         pg_rot_axis_angle(axis_a, ang_a, ra);
         pg_rot_axis_angle(axis_b, ang_b, rb);
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int k = 0; k < steps; ++k, ++idx) {
             tc_report rep;
@@ -148,14 +148,14 @@ static void test_motion(int sequences, int steps) {
             record(&rep, "motion", idx);
             if (k > 0) {
                 g_st.warm_queries++;
-                g_st.warm_iterations += rep.res.iterations;
+                g_st.warm_iterations += rep.res.diag.iterations;
             }
             if (rep.fail && g_st.failed <= 5)
                 fprintf(stderr, "  repro: motion seq %d step %d A=%s n=%zu B=%s n=%zu\n", s, k,
                         pg_kind_name(A->kind), A->n, pg_kind_name(B->kind), B->n);
             /* Cold query on the same poses: same distance. */
             px_distance_result cold;
-            px_status st = px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, NULL, &cold);
+            px_status st = px_distance(A->c, &pa, B->c, &pb, &tc_options, NULL, &cold);
             CHECK(st == PX_OK && fabs(cold.distance - rep.res.distance) <= rep.tol &&
                       (rep.band || cold.intersecting == rep.res.intersecting),
                   "motion #%ld: warm d=%.17g (int %d), cold d=%.17g (int %d)", idx, rep.res.distance,
@@ -187,18 +187,18 @@ static void test_frame_invariance_and_foreign_cache(int count) {
         pa2.t = pxi_xform(&g, pa.t);
         pb2.t = pxi_xform(&g, pb.t);
         px_distance_result r1, r2, r3;
-        px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, NULL, &r1);
-        px_distance_ex(A->c, &pa2, B->c, &pb2, &tc_options, NULL, &r2);
+        px_distance(A->c, &pa, B->c, &pb, &tc_options, NULL, &r1);
+        px_distance(A->c, &pa2, B->c, &pb2, &tc_options, NULL, &r2);
         double tol = 1e-12 * (tc_scale(A->c, &pa, B->c, &pb) + 100.0);
         CHECK(fabs(r1.distance - r2.distance) <= tol, "frame invariance #%d: %.17g vs %.17g", i, r1.distance,
               r2.distance);
-        px_distance_cache foreign;
+        px_pair_cache foreign;
         memset(&foreign, 0, sizeof foreign);
         foreign.feature_a.type = (uint32_t)(1 + i % 3);
         foreign.feature_a.index = 100000u + (uint32_t)i;
         foreign.feature_b.type = (i % 5 == 0) ? 9u : PX_FEATURE_VERTEX;
         foreign.feature_b.index = (uint32_t)i;
-        px_status st = px_distance_ex(A->c, &pa, B->c, &pb, &tc_options, &foreign, &r3);
+        px_status st = px_distance(A->c, &pa, B->c, &pb, &tc_options, &foreign, &r3);
         CHECK(st == PX_OK && fabs(r3.distance - r1.distance) <= tol && r3.intersecting == r1.intersecting,
               "foreign cache #%d: st %d d %.17g vs %.17g", i, st, r3.distance, r1.distance);
     }

@@ -22,6 +22,7 @@
  *     and sliver triangles, nearly parallel edges. */
 #include <float.h>
 
+#include "access.h"
 #include "check.h"
 #include "math/vec3.h"
 #include "px_gen.h"
@@ -34,7 +35,7 @@ static long g_queries, g_fallbacks;
 
 static px_convex *build(const double *xyz, size_t n, const char *what) {
     px_error err;
-    px_convex *c = px_convex_from_points(xyz, n, NULL, &err);
+    px_convex *c = px_convex_create(xyz, n, NULL, &err);
     CHECK(c != NULL, "%s: %s", what, err.message);
     return c;
 }
@@ -64,8 +65,8 @@ static int exact_memo(const px_convex *a, const px_pose *pa, const px_convex *b,
     memset(&k, 0, sizeof k);
     k.pa = *pa, k.pb = *pb;
     k.na = px_convex_vertex_count(a), k.nb = px_convex_vertex_count(b);
-    k.a0 = px_convex_vertex(a, 0), k.a1 = px_convex_vertex(a, k.na - 1);
-    k.b0 = px_convex_vertex(b, 0), k.b1 = px_convex_vertex(b, k.nb - 1);
+    k.a0 = ta_vertex(a, 0), k.a1 = ta_vertex(a, k.na - 1);
+    k.b0 = ta_vertex(b, 0), k.b1 = ta_vertex(b, k.nb - 1);
     if (valid && memcmp(&k, &last, sizeof k) == 0) {
         *d = kd, *zero = kz;
         return 0;
@@ -79,7 +80,7 @@ static int exact_memo(const px_convex *a, const px_pose *pa, const px_convex *b,
 /* Query checked against the oracle at tolerance c eps and against the exact
  * distance; returns the report. `rel` > 0 also demands a relative bound. */
 static void hard_query(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
-                       px_distance_cache *cache, double rel, const char *what, long idx, tc_report *rep) {
+                       px_pair_cache *cache, double rel, const char *what, long idx, tc_report *rep) {
     /* GJK-based methods solve simplices of A - B: where faces are within
      * ~1e-12 rad of parallel they may stop on a neighbouring facet of A - B,
      * an error of the dihedral angle times the size (measured up to 1,230
@@ -87,24 +88,24 @@ static void hard_query(const px_convex *a, const px_pose *pa, const px_convex *b
      * times the scale, the random suites' tolerance); Lin-Canny's is C_EPS. */
     double c_eps = tc_options.method == PX_METHOD_LIN_CANNY ? C_EPS : 4096.0;
     tc_rel_tol = c_eps * DBL_EPSILON;
-    px_distance_cache cache_in;
+    px_pair_cache cache_in;
     memset(&cache_in, 0, sizeof cache_in);
     if (cache) cache_in = *cache;
     tc_query_and_check(a, pa, b, pb, cache, rep);
     g_queries++;
-    g_fallbacks += rep->res.fallbacks;
+    g_fallbacks += rep->res.diag.fallbacks;
     CHECK(rep->fail == 0, "%s #%ld: %s", what, idx, rep->msg);
     static int printed = 0, fb_printed = 0;
-    if (rep->res.fallbacks && !rep->fail && fb_printed++ < 10)
+    if (rep->res.diag.fallbacks && !rep->fail && fb_printed++ < 10)
         fprintf(stderr, "  note: %s #%ld needed %u fallbacks (d=%.17g, %u iterations)\n", what, idx,
-                rep->res.fallbacks, rep->res.distance, rep->res.iterations);
-    if ((rep->fail || (rep->res.fallbacks && fb_printed <= 3)) &&
+                rep->res.diag.fallbacks, rep->res.distance, rep->res.diag.iterations);
+    if ((rep->fail || (rep->res.diag.fallbacks && fb_printed <= 3)) &&
         printed++ < 8) { /* reproduction: the exact poses */
         fprintf(stderr, "  repro %s #%ld: cache in %s A(%u,%u) B(%u,%u)\n", what, idx,
                 cache ? "warm" : "NULL", cache_in.feature_a.type, cache_in.feature_a.index,
                 cache_in.feature_b.type, cache_in.feature_b.index);
         fprintf(stderr, "  repro %s #%ld: d=%.17g int=%d it=%u fallbacks=%u A(%u,%u) B(%u,%u)\n", what, idx,
-                rep->res.distance, rep->res.intersecting, rep->res.iterations, rep->res.fallbacks,
+                rep->res.distance, rep->res.intersecting, rep->res.diag.iterations, rep->res.diag.fallbacks,
                 rep->res.feature_a.type, rep->res.feature_a.index, rep->res.feature_b.type,
                 rep->res.feature_b.index);
         const px_pose *ps[2] = {pa, pb};
@@ -160,7 +161,7 @@ static void test_tiny_tetrahedra(int velocities, int steps) {
         double ra0[9], rb0[9];
         pg_rot_random(&rng, ra0);
         pg_rot_random(&rng, rb0);
-        px_distance_cache cache[3];
+        px_pair_cache cache[3];
         memset(cache, 0, sizeof cache);
         for (int k = 0; k < steps; ++k, ++idx) {
             double rka[9], rkb[9], ra[9], rb[9];
@@ -197,15 +198,16 @@ static void test_tiny_tetrahedra(int velocities, int steps) {
                             x[m]->feature_a.index == u[m]->feature_a.index &&
                             x[m]->feature_b.type == u[m]->feature_b.type &&
                             x[m]->feature_b.index == u[m]->feature_b.index &&
-                            x[m]->iterations == u[m]->iterations && x[m]->intersecting == u[m]->intersecting;
+                            x[m]->diag.iterations == u[m]->diag.iterations &&
+                            x[m]->intersecting == u[m]->intersecting;
                 if (!same) walk_mismatch++;
                 CHECK(same,
                       "tetra #%ld: walk at scale %g differs from unit scale: A(%u,%u) B(%u,%u) it %u vs "
                       "A(%u,%u) B(%u,%u) it %u",
                       idx, scales[s], warm[s].feature_a.type, warm[s].feature_a.index, warm[s].feature_b.type,
-                      warm[s].feature_b.index, warm[s].iterations, warm[0].feature_a.type,
+                      warm[s].feature_b.index, warm[s].diag.iterations, warm[0].feature_a.type,
                       warm[0].feature_a.index, warm[0].feature_b.type, warm[0].feature_b.index,
-                      warm[0].iterations);
+                      warm[0].diag.iterations);
             }
             /* 2^-76 is exact: every output is the unit-scale output times 2^-76. */
             int bits = warm[2].distance == ldexp(warm[0].distance, -76) &&
@@ -246,7 +248,7 @@ static void test_cubes_2000_vs_1e15(int velocities, int steps) {
             /* B's centre 1e-10 + half its diagonal beyond A's +x face, near the face centre. */
             px_vec3 c_local = pxi_v((1000 + 1e-10 + 0.87e-15) * s, pg_range(&rng, -500, 500) * s,
                                     pg_range(&rng, -500, 500) * s);
-            px_distance_cache cache;
+            px_pair_cache cache;
             memset(&cache, 0, sizeof cache);
             for (int k = 0; k < steps; ++k, ++idx) {
                 double rx[9], rb[9], ra[9], rbw[9];
@@ -374,7 +376,7 @@ static void test_parallel_faces(int velocities, int steps) {
         double gap = pow(10.0, pg_range(&rng, -12, 0));
         double ang = pg_range(&rng, 0.0, 2 * PI);
         px_vec3 vel = pxi_v(0.05 * cos(ang), 0.05 * sin(ang), 0);
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         px_vec3 c = pxi_v(pg_range(&rng, -1, 1), pg_range(&rng, -1, 1), 1 + 0.75 + gap);
         for (int k = 0; k < steps; ++k, ++idx) {
@@ -382,13 +384,13 @@ static void test_parallel_faces(int velocities, int steps) {
             px_pose pa = pose_rt(g, pxi_v(0, 0, 0)), pb = pose_rt(g, pxi_rot(g, ck));
             tc_report rep;
             hard_query(B, &pb, A, &pa, &cache, 0, "parallel faces warm", idx, &rep);
-            if (rep.res.iterations > max_it) max_it = rep.res.iterations;
+            if (rep.res.diag.iterations > max_it) max_it = rep.res.diag.iterations;
             /* When the faces overlap (|x| < 1.5, |y| < 1.25) the distance is the gap. */
             if (fabs(ck.x) < 1.4 && fabs(ck.y) < 1.15)
                 CHECK(fabs(rep.res.distance - gap) <= C_EPS * DBL_EPSILON * rep.scale,
                       "parallel faces #%ld: d=%.17g gap %.17g", idx, rep.res.distance, gap);
-            CHECK(rep.res.iterations <= 16, "parallel faces #%ld: %u iterations (cycling?)", idx,
-                  rep.res.iterations);
+            CHECK(rep.res.diag.iterations <= 16, "parallel faces #%ld: %u iterations (cycling?)", idx,
+                  rep.res.diag.iterations);
         }
     }
     printf("  (c) parallel faces: %ld sliding steps, max iterations %u\n", idx, max_it);
@@ -408,18 +410,18 @@ static void test_identical_and_inside(int velocities) {
         if (!c) continue;
         px_pose p = pg_pose_random(&rng, 10);
         px_distance_result r;
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int w = 0; w < 2; ++w) {
-            px_status st = px_distance_ex(c, &p, c, &p, &tc_options, &cache, &r);
+            px_status st = px_distance(c, &p, c, &p, &tc_options, &cache, &r);
             CHECK(st == PX_OK && r.intersecting && r.distance == 0,
                   "identical %s bodies, same pose: st %d int %d d %.3g", pg_kind_name(kind), st,
                   r.intersecting, r.distance);
-            g_fallbacks += r.fallbacks;
-            if (r.fallbacks)
+            g_fallbacks += r.diag.fallbacks;
+            if (r.diag.fallbacks)
                 fprintf(stderr,
                         "  note: identical %s bodies (n=%zu), same pose, %s: %u fallbacks, %u iterations\n",
-                        pg_kind_name(kind), n, w ? "warm" : "cold", r.fallbacks, r.iterations);
+                        pg_kind_name(kind), n, w ? "warm" : "cold", r.diag.fallbacks, r.diag.iterations);
         }
         /* One inside the other: a copy shrunk to 10 % about an interior point. */
         uint32_t nv = px_convex_vertex_count(c);
@@ -454,7 +456,7 @@ static int result_is_zero(const px_distance_result *r) {
     return r->distance == 0 && r->point_a.x == 0 && r->point_a.y == 0 && r->point_a.z == 0 &&
            r->point_b.x == 0 && r->point_b.y == 0 && r->point_b.z == 0 && r->feature_a.type == 0 &&
            r->feature_a.index == 0 && r->feature_b.type == 0 && r->feature_b.index == 0 &&
-           r->intersecting == 0 && r->iterations == 0 && r->fallbacks == 0;
+           r->intersecting == 0 && r->diag.iterations == 0 && r->diag.fallbacks == 0;
 }
 
 static void test_bad_poses(void) {
@@ -465,11 +467,11 @@ static void test_bad_poses(void) {
     const double bad[3] = {NAN, INFINITY, -INFINITY};
     px_pose good = px_pose_identity(), far = px_pose_identity();
     far.t.x = 5;
-    px_distance_cache cache;
+    px_pair_cache cache;
     memset(&cache, 0, sizeof cache);
     px_distance_result r;
-    CHECK(px_distance(C, &good, C, &far, &cache, &r) == PX_OK && r.distance == 3, "setup query");
-    px_distance_cache saved = cache;
+    CHECK(px_distance(C, &good, C, &far, NULL, &cache, &r) == PX_OK && r.distance == 3, "setup query");
+    px_pair_cache saved = cache;
     int n = 0;
     for (int b = 0; b < 3; ++b)
         for (int slot = 0; slot < 12; ++slot)
@@ -480,8 +482,8 @@ static void test_bad_poses(void) {
                 if (slot == 10) p.t.y = bad[b];
                 if (slot == 11) p.t.z = bad[b];
                 memset(&r, 0xab, sizeof r);
-                px_status st = which ? px_distance(C, &good, C, &p, &cache, &r)
-                                     : px_distance(C, &p, C, &good, &cache, &r);
+                px_status st = which ? px_distance(C, &good, C, &p, NULL, &cache, &r)
+                                     : px_distance(C, &p, C, &good, NULL, &cache, &r);
                 CHECK(st == PX_ERR_NON_FINITE, "non-finite pose entry %d (value %g): status %s", slot, bad[b],
                       px_status_string(st));
                 CHECK(result_is_zero(&r), "bad pose: result not zeroed");
@@ -493,10 +495,14 @@ static void test_bad_poses(void) {
            slightly[9] = {1 + 1e-9, 0, 0, 0, 1, 0, 0, 0, 1};
     const double *mats[4] = {scaled, shear, mirror, zero};
     for (int m = 0; m < 4; ++m) {
-        px_pose p = px_pose_from_rt(mats[m], NULL);
+        px_pose p = ta_pose_rt(mats[m], NULL);
         p.t.x = 5;
+        double t5[3] = {5, 0, 0};
+        px_pose checked;
+        CHECK(px_pose_from_rt(mats[m], t5, &checked) == PX_ERR_INVALID_POSE,
+              "px_pose_from_rt non-rotation %d", m);
         memset(&r, 0xab, sizeof r);
-        px_status st = px_distance(C, &good, C, &p, &cache, &r);
+        px_status st = px_distance(C, &good, C, &p, NULL, &cache, &r);
         CHECK(st == PX_ERR_INVALID_POSE, "non-rotation %d: status %s", m, px_status_string(st));
         CHECK(result_is_zero(&r), "non-rotation: result not zeroed");
         CHECK(memcmp(&cache, &saved, sizeof cache) == 0, "non-rotation: cache modified");
@@ -506,13 +512,13 @@ static void test_bad_poses(void) {
               "px_pose_check on non-rotation");
     }
     /* Within the documented 1e-6: accepted. */
-    px_pose p = px_pose_from_rt(slightly, NULL);
+    px_pose p = ta_pose_rt(slightly, NULL);
     p.t.x = 5;
-    CHECK(px_distance(C, &good, C, &p, &cache, &r) == PX_OK, "rotation within 1e-6 accepted");
+    CHECK(px_distance(C, &good, C, &p, NULL, &cache, &r) == PX_OK, "rotation within 1e-6 accepted");
     /* NULL arguments */
-    CHECK(px_distance(NULL, &good, C, &p, &cache, &r) == PX_ERR_INVALID_ARGUMENT, "NULL a");
-    CHECK(px_distance(C, NULL, C, &p, &cache, &r) == PX_ERR_INVALID_ARGUMENT, "NULL pose");
-    CHECK(px_distance(C, &good, C, &p, &cache, NULL) == PX_ERR_INVALID_ARGUMENT, "NULL result");
+    CHECK(px_distance(NULL, &good, C, &p, NULL, &cache, &r) == PX_ERR_INVALID_ARGUMENT, "NULL a");
+    CHECK(px_distance(C, NULL, C, &p, NULL, &cache, &r) == PX_ERR_INVALID_ARGUMENT, "NULL pose");
+    CHECK(px_distance(C, &good, C, &p, NULL, &cache, NULL) == PX_ERR_INVALID_ARGUMENT, "NULL result");
     printf("  (c) bad poses: %d non-finite entries, 4 non-rotations rejected\n", n);
     px_convex_destroy(C);
 }
@@ -549,7 +555,7 @@ static void test_near_degenerate(int velocities) {
         double g[9];
         pg_rot_random(&rng, g);
         /* 1. small box hovering above the pyramid top, sliding across the ridge lines */
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         double h = pow(10.0, pg_range(&rng, -6, -1));
         for (int k = 0; k < 20; ++k, ++idx) {
@@ -750,7 +756,7 @@ static void regression_near_coplanar(void) {
     px_pose pa = pose_hex(ra, -0x1.95cfdbc6b74cp-4, 0x1.2efebadc770e8p+1, 0x1.9d1ebd3cebcd8p+1);
     px_pose pb = pose_hex(rb, 1, 2, 3);
     /* warm: the cache the motion sequence had at that step */
-    px_distance_cache cache;
+    px_pair_cache cache;
     memset(&cache, 0, sizeof cache);
     cache.feature_a.type = PX_FEATURE_VERTEX, cache.feature_a.index = 3;
     cache.feature_b.type = PX_FEATURE_FACE, cache.feature_b.index = 5;

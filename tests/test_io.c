@@ -40,6 +40,10 @@ static void count_free(void *user, void *ptr, size_t size) {
     free(ptr);
 }
 
+/* Every polytope and point array the test makes goes through the counter. */
+static px_allocator g_counting = {count_alloc, count_free, NULL};
+static const px_convex_options *g_opt;
+
 static char g_dir[256];
 
 static const char *write_file(const char *name, const char *text) {
@@ -71,12 +75,12 @@ static void test_cube_obj(void) {
     double *xyz = NULL;
     size_t n = 0;
     px_error err;
-    CHECK(px_mesh_points_from_file(path, &xyz, &n, &err) == PX_OK);
+    CHECK(px_load_points(path, &g_counting, &xyz, &n, &err) == PX_OK);
     CHECK(n == 8); /* duplicates removed exactly */
     for (int i = 0; i < 8; ++i) CHECK(has_point(xyz, n, i & 1, (i >> 1) & 1, (i >> 2) & 1));
-    px_mesh_points_free(xyz, n);
+    px_free_points(xyz, n, &g_counting);
 
-    px_convex *c = px_convex_from_file(path, NULL, &err);
+    px_convex *c = px_convex_create_from_file(path, g_opt, &err);
     CHECK(c != NULL);
     if (c) {
         CHECK(px_convex_vertex_count(c) == 8);
@@ -117,7 +121,7 @@ static void test_node_transforms(void) {
     double *xyz = NULL;
     size_t n = 0;
     px_error err;
-    px_status st = px_mesh_points_from_file(path, &xyz, &n, &err);
+    px_status st = px_load_points(path, &g_counting, &xyz, &n, &err);
     CHECK(st == PX_OK);
     if (st != PX_OK) {
         fprintf(stderr, "  %s\n", err.message);
@@ -134,13 +138,13 @@ static void test_node_transforms(void) {
     CHECK(has_point(xyz, n, 0, 6, 0));
     CHECK(has_point(xyz, n, -1, 5, 0));
     CHECK(has_point(xyz, n, 0, 5, 1));
-    px_mesh_points_free(xyz, n);
+    px_free_points(xyz, n, &g_counting);
 }
 
 static void expect_io_error(const char *path, const char *needle) {
     px_error err;
     memset(&err, 0, sizeof err);
-    px_convex *c = px_convex_from_file(path, NULL, &err);
+    px_convex *c = px_convex_create_from_file(path, g_opt, &err);
     CHECK(c == NULL);
     CHECK(err.code == PX_ERR_IO);
     CHECK(strstr(err.message, path) != NULL || strstr(err.message, "mesh file") != NULL);
@@ -150,7 +154,7 @@ static void expect_io_error(const char *path, const char *needle) {
     }
     double *xyz = (double *)&err; /* must be reset to NULL */
     size_t n = 99;
-    CHECK(px_mesh_points_from_file(path, &xyz, &n, NULL) == PX_ERR_IO);
+    CHECK(px_load_points(path, &g_counting, &xyz, &n, NULL) == PX_ERR_IO);
     CHECK(xyz == NULL && n == 0);
     px_convex_destroy(c);
 }
@@ -170,24 +174,24 @@ static void test_errors(void) {
     /* Flat input: a degenerate hull, reported with the file name. */
     const char *flat = write_file("flat.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n");
     px_error err;
-    CHECK(px_convex_from_file(flat, NULL, &err) == NULL);
+    CHECK(px_convex_create_from_file(flat, NULL, &err) == NULL);
     CHECK(err.code == PX_ERR_DEGENERATE);
     CHECK(strstr(err.message, "flat.obj") != NULL);
 
-    CHECK(px_convex_from_file(NULL, NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT);
-    CHECK(px_convex_from_file("", NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT);
+    CHECK(px_convex_create_from_file(NULL, NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT);
+    CHECK(px_convex_create_from_file("", NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT);
     double *xyz;
     size_t n;
-    CHECK(px_mesh_points_from_file(flat, NULL, &n, &err) == PX_ERR_INVALID_ARGUMENT);
-    CHECK(px_mesh_points_from_file(flat, &xyz, NULL, &err) == PX_ERR_INVALID_ARGUMENT);
-    px_mesh_points_free(NULL, 0);
+    CHECK(px_load_points(flat, NULL, NULL, &n, &err) == PX_ERR_INVALID_ARGUMENT);
+    CHECK(px_load_points(flat, NULL, &xyz, NULL, &err) == PX_ERR_INVALID_ARGUMENT);
+    px_free_points(NULL, 0, NULL);
 }
 
 /* Point clouds (OBJ with only `v` lines) are valid hull input. */
 static void test_point_cloud(void) {
     const char *path = write_file("cloud.obj", "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 0 0 2\nv 0.25 0.25 0.25\n");
     px_error err;
-    px_convex *c = px_convex_from_file(path, NULL, &err);
+    px_convex *c = px_convex_create_from_file(path, g_opt, &err);
     CHECK(c != NULL);
     if (c) {
         CHECK(px_convex_vertex_count(c) == 4); /* the interior point is not a vertex */
@@ -200,8 +204,10 @@ int main(void) {
     char cmd[300];
     snprintf(cmd, sizeof cmd, "mkdir -p '%s'", g_dir);
     if (system(cmd) != 0) return 2;
-    px_allocator a = {count_alloc, count_free, NULL};
-    px_set_allocator(&a);
+    px_convex_options counted;
+    memset(&counted, 0, sizeof counted);
+    counted.allocator = &g_counting;
+    g_opt = &counted;
 
     test_cube_obj();
     test_node_transforms();
@@ -209,7 +215,6 @@ int main(void) {
     test_point_cloud();
 
     CHECK(g_live_bytes == 0 && g_live_blocks == 0);
-    px_set_allocator(NULL);
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_dir);
     if (g_failures) {

@@ -22,6 +22,7 @@
  * The oracle itself is cross-checked on a subset: pruned vs unpruned axes,
  * and its classification and depth against the brute-force distance oracle
  * (oracle.h). */
+#include "access.h"
 #include "math/vec3.h"
 #include "oracle.h"
 #include "oracle_sat.h"
@@ -49,7 +50,7 @@ typedef struct shape {
 
 static int make_shape(shape *out, const double *xyz, size_t n) {
     px_error err;
-    out->c = px_convex_from_points(xyz, n, NULL, &err);
+    out->c = px_convex_create(xyz, n, NULL, &err);
     CHECK(out->c != NULL, "hull failed: %s", err.message);
     if (!out->c) return -1;
     int r = os_shape_init(&out->s, out->c);
@@ -84,10 +85,10 @@ static int check_signed(const shape *A, const px_pose *pa, const shape *B, const
     opt.flags = PX_QUERY_SIGNED;
     px_distance_result r;
     double t0 = tu_now();
-    px_status st = px_distance_ex(A->c, pa, B->c, pb, &opt, NULL, &r);
+    px_status st = px_distance(A->c, pa, B->c, pb, &opt, NULL, &r);
     g_st.time[method] += tu_now() - t0;
     g_st.queries++;
-    g_st.fallbacks[method] += r.fallbacks;
+    g_st.fallbacks[method] += r.diag.fallbacks;
     const char *mn = method_names[method];
     CHECK(st == PX_OK, "%s #%ld %s: status %s", what, idx, mn, px_status_string(st));
     int fin = isfinite(r.distance) && isfinite(r.signed_distance) && pxi_is_finite3(r.point_a) &&
@@ -123,7 +124,7 @@ static int check_signed(const shape *A, const px_pose *pa, const shape *B, const
         if (d > 0) {
             px_pose pb2 = moved(pb, r.normal, -0.5 * d);
             px_distance_result r2;
-            px_distance(A->c, pa, B->c, &pb2, NULL, &r2);
+            px_distance(A->c, pa, B->c, &pb2, NULL, NULL, &r2);
             double e = fabs(r2.distance - 0.5 * d);
             if (e / size > g_st.worst_sep) g_st.worst_sep = e / size;
             CHECK(e <= tol, "%s #%ld %s: B moved by -d/2 normal: d %.17g, expected %.17g", what, idx, mn,
@@ -149,7 +150,7 @@ static int check_signed(const shape *A, const px_pose *pa, const shape *B, const
     /* Pushed out along the normal by the depth: touching. */
     px_pose pb_out = moved(pb, r.normal, depth * (1 + 1e-9) + 1e-12 * size);
     px_distance_result r2;
-    px_distance(A->c, pa, B->c, &pb_out, NULL, &r2);
+    px_distance(A->c, pa, B->c, &pb_out, NULL, NULL, &r2);
     if (r2.distance / size > g_st.worst_touch) g_st.worst_touch = r2.distance / size;
     os_pen_result o2;
     os_penetration(&A->s, pa, &B->s, &pb_out, &o2);
@@ -159,7 +160,7 @@ static int check_signed(const shape *A, const px_pose *pa, const shape *B, const
           mn, depth, r2.distance, o2.depth, size);
     if (depth * 1e-6 > 1e-10 * size) {
         px_pose pb_in = moved(pb, r.normal, depth * (1 - 1e-6));
-        px_distance(A->c, pa, B->c, &pb_in, NULL, &r2);
+        px_distance(A->c, pa, B->c, &pb_in, NULL, NULL, &r2);
         CHECK(r2.intersecting, "%s #%ld %s: pushed by depth (1 - 1e-6) no longer intersects: d %.3g", what,
               idx, mn, r2.distance);
     }
@@ -181,8 +182,9 @@ static void check_pose(const shape *A, const px_pose *pa, const shape *B, const 
         g_st.overlapping++;
     int fails = 0;
     for (int m = 0; m < 3; ++m) fails += check_signed(A, pa, B, pb, &o, m, what, idx);
-    int inter = -1;
-    px_status st = px_intersect(A->c, pa, B->c, pb, NULL, &inter);
+    px_intersect_result ir;
+    px_status st = px_intersect(A->c, pa, B->c, pb, NULL, NULL, &ir);
+    int inter = ir.intersecting;
     CHECK(st == PX_OK, "%s #%ld: px_intersect status %s", what, idx, px_status_string(st));
     if (fabs(o.depth) > tol) {
         g_st.intersect_checked++;
@@ -332,7 +334,7 @@ static void test_random(pair_def *pairs, int want) {
 
 static px_pose pose_rt(const double r[9], double x, double y, double z) {
     double t[3] = {x, y, z};
-    return px_pose_from_rt(r, t);
+    return ta_pose_rt(r, t);
 }
 
 /* Touching configurations: |signed| within rounding of 0, finite, PX_OK; the
@@ -346,7 +348,7 @@ static void check_touching(const shape *A, const px_pose *pa, const shape *B, co
     for (int m = 0; m < 3; ++m) {
         px_query_options opt = {(uint32_t)m, PX_QUERY_SIGNED, {0}};
         px_distance_result r;
-        px_status st = px_distance_ex(A->c, pa, B->c, pb, &opt, NULL, &r);
+        px_status st = px_distance(A->c, pa, B->c, pb, &opt, NULL, &r);
         CHECK(st == PX_OK && isfinite(r.signed_distance) && pxi_is_finite3(r.point_a) &&
                   pxi_is_finite3(r.point_b) && pxi_is_finite3(r.normal) && fabs(r.signed_distance) <= tol,
               "%s %s: status %s signed %.17g", what, method_names[m], px_status_string(st),
@@ -356,8 +358,9 @@ static void check_touching(const shape *A, const px_pose *pa, const shape *B, co
                   "%s %s: exact contact, intersecting %d signed %.17g", what, method_names[m], r.intersecting,
                   r.signed_distance);
     }
-    int inter = 0;
-    px_status st = px_intersect(A->c, pa, B->c, pb, NULL, &inter);
+    px_intersect_result ir;
+    px_status st = px_intersect(A->c, pa, B->c, pb, NULL, NULL, &ir);
+    int inter = ir.intersecting;
     CHECK(st == PX_OK && (!exact || inter), "%s: px_intersect %d (exact contact %d)", what, inter, exact);
 }
 

@@ -13,6 +13,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "access.h"
 #include "math/vec3.h"
 #include "oracle_sat.h"
 #include "proxima/proxima.h"
@@ -23,7 +24,7 @@ static px_convex *box_at(double cx, double cy, double cz, double hx, double hy, 
     double p[24];
     pg_box(hx, hy, hz, p);
     for (int i = 0; i < 8; ++i) p[3 * i] += cx, p[3 * i + 1] += cy, p[3 * i + 2] += cz;
-    return px_convex_from_points(p, 8, NULL, NULL);
+    return px_convex_create(p, 8, NULL, NULL);
 }
 
 static px_pose at(double x, double y, double z) {
@@ -39,12 +40,12 @@ static void test_warm_translation_hint(void) {
     px_pose pa = px_pose_identity(), pb = at(1.9623438693421853, 0.18832055771810283, 3.0350363747229396);
     px_vec3 d0 = {-0.35896571893865292, 0.62651439771320938, -0.6918260779161991};
     px_vec3 d1 = {-0.99359547034384488, 0.039608627144730291, -0.10582626312926095};
-    px_distance_cache c;
+    px_pair_cache c;
     memset(&c, 0, sizeof c);
-    px_translation_result r0, rw, rc;
-    px_translation(a, &pa, b, &pb, d0, &c, &r0);
-    px_translation(a, &pa, b, &pb, d1, &c, &rw);
-    px_translation(a, &pa, b, &pb, d1, NULL, &rc);
+    px_translate_result r0, rw, rc;
+    px_translate(a, &pa, b, &pb, d0, &tu_both_ways, &c, &r0);
+    px_translate(a, &pa, b, &pb, d1, &tu_both_ways, &c, &rw);
+    px_translate(a, &pa, b, &pb, d1, &tu_both_ways, NULL, &rc);
     CHECK(r0.hit && !rc.hit && !rw.hit && fabs(rw.gap - rc.gap) <= 1e-12,
           "reviewer's pair: first hit %d, warm hit %d gap %.17g, cold hit %d gap %.17g", r0.hit, rw.hit,
           rw.gap, rc.hit, rc.gap);
@@ -55,17 +56,17 @@ static void test_warm_translation_hint(void) {
     int bad = 0, n = 0;
     for (int pair = 0; pair < 20; ++pair) {
         pg_points_ball(&rng, 12 + pair, 1.0, xyz);
-        px_convex *p = px_convex_from_points(xyz, (size_t)(12 + pair), NULL, NULL);
+        px_convex *p = px_convex_create(xyz, (size_t)(12 + pair), NULL, NULL);
         pg_points_ball(&rng, 30 - pair, 0.7, xyz);
-        px_convex *q = px_convex_from_points(xyz, (size_t)(30 - pair), NULL, NULL);
+        px_convex *q = px_convex_create(xyz, (size_t)(30 - pair), NULL, NULL);
         if (!p || !q) continue;
         px_pose pp = pg_pose_random(&rng, 0.0), pq = pg_pose_random(&rng, 3.0);
         memset(&c, 0, sizeof c);
         for (int k = 0; k < tu_scaled(100); ++k, ++n) {
             px_vec3 d = pg_unit(&rng);
-            px_translation_result w, cold;
-            px_translation(p, &pp, q, &pq, d, &c, &w);
-            px_translation(p, &pp, q, &pq, d, NULL, &cold);
+            px_translate_result w, cold;
+            px_translate(p, &pp, q, &pq, d, &tu_both_ways, &c, &w);
+            px_translate(p, &pp, q, &pq, d, &tu_both_ways, NULL, &cold);
             double size = pxi_len(pxi_sub(pp.t, pq.t)) + 2.0;
             int same = w.hit == cold.hit && (!w.hit || fabs(w.tau - cold.tau) <= 1e-9 * size) &&
                        (w.hit || fabs(w.gap - cold.gap) <= 1e-9 * size);
@@ -94,11 +95,12 @@ static void test_intersect_near_contact(void) {
                 pg_rot_axis_angle(pxi_v(0.6, 0.8, 0), ang, pb.r);
                 pb.t = pxi_v(0.3, 0.2, 2.0);
                 px_distance_result r;
-                px_distance(a, &pa, b, &pb, NULL, &r);
+                px_distance(a, &pa, b, &pb, NULL, NULL, &r);
                 pb.t.z += gap - r.distance;
-                px_distance(a, &pa, b, &pb, NULL, &r);
-                int in = -1;
-                px_intersect(a, &pa, b, &pb, NULL, &in);
+                px_distance(a, &pa, b, &pb, NULL, NULL, &r);
+                px_intersect_result ir;
+                px_intersect(a, &pa, b, &pb, NULL, NULL, &ir);
+                int in = ir.intersecting;
                 if (r.distance > 1e-12 && in != 0 && wrong++ < 5)
                     CHECK(0, "tilt %g gap %g: distance %.3g but px_intersect says %d", ang, gap, r.distance,
                           in);
@@ -118,7 +120,7 @@ static void test_epa_deep_round(void) {
     static double xyz[3 * 1000];
     for (int n = 500; n <= 1000; n += 500) {
         pg_points_sphere(&rng, (size_t)n, 1.0, xyz);
-        px_convex *s = px_convex_from_points(xyz, (size_t)n, NULL, NULL);
+        px_convex *s = px_convex_create(xyz, (size_t)n, NULL, NULL);
         os_shape sh;
         if (!s || os_shape_init(&sh, s) != 0) continue;
         for (int off = 0; off < 3; ++off) {
@@ -131,18 +133,18 @@ static void test_epa_deep_round(void) {
                 o.method = (uint32_t)m;
                 o.flags = PX_QUERY_SIGNED;
                 px_distance_result r;
-                px_status st = px_distance_ex(s, &pa, s, &pb, &o, NULL, &r);
+                px_status st = px_distance(s, &pa, s, &pb, &o, NULL, &r);
                 double depth = -r.signed_distance;
                 px_pose moved = pb;
                 moved.t = pxi_madd(pb.t, r.normal, depth * (1.0 + 1e-12));
                 px_distance_result after;
-                px_distance(s, &pa, s, &moved, NULL, &after);
+                px_distance(s, &pa, s, &moved, NULL, NULL, &after);
                 CHECK(
                     st == PX_OK && isfinite(depth) && fabs(depth - orc.depth) <= 1e-2 * orc.depth &&
                         after.distance <= 1e-9 && fabs(pxi_len(r.normal) - 1.0) <= 1e-12,
                     "sphere %d method %d offset %d: depth %.17g oracle %.17g (fallbacks %u), distance after "
                     "the move %.3g",
-                    n, m, off, depth, orc.depth, r.fallbacks, after.distance);
+                    n, m, off, depth, orc.depth, r.diag.fallbacks, after.distance);
             }
         }
         os_shape_free(&sh);
@@ -162,7 +164,7 @@ static void test_flat_difference(void) {
         o.method = (uint32_t)m;
         o.flags = PX_QUERY_SIGNED;
         px_distance_result r;
-        px_status st = px_distance_ex(a, &id, b, &id, &o, NULL, &r);
+        px_status st = px_distance(a, &id, b, &id, &o, NULL, &r);
         px_vec3 resid = pxi_sub(pxi_sub(r.point_b, r.point_a), pxi_scale(r.normal, r.signed_distance));
         CHECK(st == PX_OK && r.intersecting && fabs(r.point_a.x - 1e6) < 2.0 &&
                   fabs(r.point_b.z - 1e6) < 1.0 && pxi_max_abs(resid) <= 1e-9,
@@ -178,16 +180,16 @@ static void test_flat_difference(void) {
 static void test_extreme_numbers(void) {
     px_convex *a = box_at(0, 0, 0, 1, 1, 1), *b = box_at(0, 0, 0, 1, 1, 1);
     px_pose pa = px_pose_identity(), pb = at(5, 0, 0), far = at(1e10, 0, 0);
-    px_translation_result t;
+    px_translate_result t;
     px_pose near = at(2.01, 0, 0); /* gap 0.01: tau = 1e308 along a direction of 1e-310 */
-    px_status st = px_translation(a, &pa, b, &near, pxi_v(1e-310, 0, 0), NULL, &t);
+    px_status st = px_translate(a, &pa, b, &near, pxi_v(1e-310, 0, 0), &tu_both_ways, NULL, &t);
     CHECK(st == PX_OK && t.hit && isfinite(t.tau) && fabs(t.tau * 1e-310 - 0.01) <= 1e-12 &&
               pxi_is_finite3(t.point_a),
           "subnormal direction: status %d hit %d tau %g", st, t.hit, t.tau);
-    st = px_translation(a, &pa, b, &pb, pxi_v(4.9e-324, 0, 0), NULL, &t);
+    st = px_translate(a, &pa, b, &pb, pxi_v(4.9e-324, 0, 0), &tu_both_ways, NULL, &t);
     CHECK(st == PX_ERR_NON_FINITE && t.hit == 0 && t.tau == 0.0,
           "smallest subnormal direction: tau overflows, status %d tau %g", st, t.tau);
-    st = px_translation(a, &pa, b, &far, pxi_v(1e-300, 0, 0), NULL, &t);
+    st = px_translate(a, &pa, b, &far, pxi_v(1e-300, 0, 0), &tu_both_ways, NULL, &t);
     CHECK(st == PX_ERR_NON_FINITE, "tau = 1e310: status %d tau %g", st, t.tau);
     px_pose p1 = at(1.5e308, 0, 0), p2 = at(-1.5e308, 0, 0);
     px_distance_result r;
@@ -195,13 +197,14 @@ static void test_extreme_numbers(void) {
         px_query_options o;
         memset(&o, 0, sizeof o);
         o.method = m;
-        CHECK(px_distance_ex(a, &p1, b, &p2, &o, NULL, &r) == PX_ERR_NON_FINITE && r.distance == 0.0,
+        CHECK(px_distance(a, &p1, b, &p2, &o, NULL, &r) == PX_ERR_NON_FINITE && r.distance == 0.0,
               "poses +-1.5e308, method %u: T_AB overflows", m);
     }
-    int in = 7;
-    CHECK(px_intersect(a, &p1, b, &p2, NULL, &in) == PX_ERR_NON_FINITE && in == 0,
+    px_intersect_result ir;
+    memset(&ir, 0x5a, sizeof ir);
+    CHECK(px_intersect(a, &p1, b, &p2, NULL, NULL, &ir) == PX_ERR_NON_FINITE && ir.intersecting == 0,
           "px_intersect at +-1.5e308");
-    CHECK(px_translation(a, &p1, b, &p2, pxi_v(1, 0, 0), NULL, &t) == PX_ERR_NON_FINITE,
+    CHECK(px_translate(a, &p1, b, &p2, pxi_v(1, 0, 0), &tu_both_ways, NULL, &t) == PX_ERR_NON_FINITE,
           "px_translation at +-1.5e308");
     px_convex_destroy(a);
     px_convex_destroy(b);

@@ -19,6 +19,7 @@
  * answers as cold queries. Bad inputs: zero, NaN and infinite directions,
  * lengths 1e-200 and 1e200 (tau scales), directions grazing faces of both
  * bodies, coincident bodies. */
+#include "access.h"
 #include "math/vec3.h"
 #include "oracle_sat.h"
 #include "px_gen.h"
@@ -51,7 +52,7 @@ static double safe_len(px_vec3 v) {
 static int make_shape(shape *out, const double *xyz, size_t n, const char *kind) {
     px_error err;
     out->kind = kind;
-    out->c = px_convex_from_points(xyz, n, NULL, &err);
+    out->c = px_convex_create(xyz, n, NULL, &err);
     CHECK(out->c != NULL, "hull failed: %s", err.message);
     if (!out->c) return -1;
     int r = os_shape_init(&out->s, out->c);
@@ -117,13 +118,13 @@ static px_pose moved(const px_pose *p, px_vec3 d, double tau) {
 /* One query checked against the oracle and by the distance test. Returns
  * the number of failed checks; *out receives the result. */
 static int check_query(const shape *A, const px_pose *pa, const shape *B, const px_pose *pb, px_vec3 d,
-                       px_distance_cache *cache, const char *what, long idx, px_translation_result *out) {
+                       px_pair_cache *cache, const char *what, long idx, px_translate_result *out) {
     int before = tu_fail_count;
     double size = pxi_len(pxi_sub(pa->t, pb->t)) + A->s.radius + B->s.radius, tol = 1e-9 * size;
     double dl = safe_len(d);
-    px_translation_result r;
+    px_translate_result r;
     double t0 = tu_now();
-    px_status st = px_translation(A->c, pa, B->c, pb, d, cache, &r);
+    px_status st = px_translate(A->c, pa, B->c, pb, d, &tu_both_ways, cache, &r);
     g_st.time += tu_now() - t0;
     g_st.queries++;
     if (out) *out = r;
@@ -161,13 +162,13 @@ static int check_query(const shape *A, const px_pose *pa, const shape *B, const 
         /* Independent of the oracle: touching at tau, separated just before. */
         px_pose pt = moved(pa, d, r.tau);
         px_distance_result dr;
-        px_distance(A->c, &pt, B->c, pb, NULL, &dr);
+        px_distance(A->c, &pt, B->c, pb, NULL, NULL, &dr);
         if (dr.distance / size > g_st.worst_touch) g_st.worst_touch = dr.distance / size;
         CHECK(dr.distance <= tol, "%s #%ld: A at tau %.17g is at distance %.3g (size %.3g)", what, idx, r.tau,
               dr.distance, size);
         if (decided) {
             px_pose pe = moved(pa, d, r.tau - 1e-6 * size / dl);
-            px_distance(A->c, &pe, B->c, pb, NULL, &dr);
+            px_distance(A->c, &pe, B->c, pb, NULL, NULL, &dr);
             CHECK(dr.distance > 0 && !dr.intersecting,
                   "%s #%ld: A at tau - 1e-6 size/|d| intersects: tau %.17g", what, idx, r.tau);
         }
@@ -243,7 +244,7 @@ static void test_random(int count) {
         /* From deep overlap (f < 0.5) to well separated (f up to 2.5). */
         pa.t = pxi_add(pb.t, pxi_scale(pg_unit(&rng), pg_range(&rng, 0, 2.5) * reach));
         px_vec3 d = pick_direction(&rng, &pa, &pb, reach);
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         check_query(A, &pa, B, &pb, d, (i & 1) ? &cache : NULL, "random", i, NULL);
     }
@@ -268,19 +269,19 @@ static void test_incremental(int sequences) {
         pg_rot_axis_angle(pg_unit(&rng), pg_range(&rng, 0.001, 0.05), ra);
         pg_rot_axis_angle(pg_unit(&rng), pg_range(&rng, 0.0, 0.02), rb);
         pg_rot_axis_angle(pg_unit(&rng), pg_range(&rng, 0.0, 0.02), rd);
-        px_distance_cache cache;
+        px_pair_cache cache;
         memset(&cache, 0, sizeof cache);
         for (int k = 0; k < 100; ++k, ++idx) {
             double size = pxi_len(pxi_sub(pa.t, pb.t)) + reach, tol = 1e-9 * size;
-            px_translation_result warm, cold;
+            px_translate_result warm, cold;
             if (k % 5 == 0) {
                 check_query(A, &pa, B, &pb, d, &cache, "incremental", idx, &warm);
             } else {
-                px_status st = px_translation(A->c, &pa, B->c, &pb, d, &cache, &warm);
+                px_status st = px_translate(A->c, &pa, B->c, &pb, d, &tu_both_ways, &cache, &warm);
                 g_st.queries++;
                 CHECK(st == PX_OK, "incremental #%ld: status %s", idx, px_status_string(st));
             }
-            px_status st = px_translation(A->c, &pa, B->c, &pb, d, NULL, &cold);
+            px_status st = px_translate(A->c, &pa, B->c, &pb, d, &tu_both_ways, NULL, &cold);
             g_st.queries++;
             g_st.warm++;
             CHECK(st == PX_OK, "incremental cold #%ld: status %s", idx, px_status_string(st));
@@ -324,21 +325,21 @@ static void test_bad_inputs(void) {
     pg_points_sphere(&rng, 24, 0.8, xyz);
     make_shape(&hull, xyz, 24, "hull");
     px_pose pa = pose_at(-5, 0.2, 0.1), pb = pose_at(0, 0, 0);
-    px_translation_result r;
-    px_distance_cache cache;
+    px_translate_result r;
+    px_pair_cache cache;
     memset(&cache, 0, sizeof cache);
 
     /* Invalid directions: status, and the cache untouched. */
-    px_distance_cache c0 = cache;
-    px_status st = px_translation(box.c, &pa, box.c, &pb, pxi_v(0, 0, 0), &cache, &r);
+    px_pair_cache c0 = cache;
+    px_status st = px_translate(box.c, &pa, box.c, &pb, pxi_v(0, 0, 0), &tu_both_ways, &cache, &r);
     CHECK(st == PX_ERR_INVALID_ARGUMENT, "zero direction: %s", px_status_string(st));
-    st = px_translation(box.c, &pa, box.c, &pb, pxi_v(-0.0, 0.0, -0.0), &cache, &r);
+    st = px_translate(box.c, &pa, box.c, &pb, pxi_v(-0.0, 0.0, -0.0), &tu_both_ways, &cache, &r);
     CHECK(st == PX_ERR_INVALID_ARGUMENT, "negative zero direction: %s", px_status_string(st));
-    st = px_translation(box.c, &pa, box.c, &pb, pxi_v(1, NAN, 0), &cache, &r);
+    st = px_translate(box.c, &pa, box.c, &pb, pxi_v(1, NAN, 0), &tu_both_ways, &cache, &r);
     CHECK(st == PX_ERR_NON_FINITE, "NaN direction: %s", px_status_string(st));
-    st = px_translation(box.c, &pa, box.c, &pb, pxi_v(INFINITY, 0, 0), &cache, &r);
+    st = px_translate(box.c, &pa, box.c, &pb, pxi_v(INFINITY, 0, 0), &tu_both_ways, &cache, &r);
     CHECK(st == PX_ERR_NON_FINITE, "infinite direction: %s", px_status_string(st));
-    st = px_translation(box.c, &pa, box.c, &pb, pxi_v(1, 0, 0), &cache, NULL);
+    st = px_translate(box.c, &pa, box.c, &pb, pxi_v(1, 0, 0), &tu_both_ways, &cache, NULL);
     CHECK(st == PX_ERR_INVALID_ARGUMENT, "NULL result: %s", px_status_string(st));
     CHECK(memcmp(&c0, &cache, sizeof cache) == 0, "a failed query changed the cache");
 
@@ -350,12 +351,12 @@ static void test_bad_inputs(void) {
         qa.t = pxi_add(qb.t, pxi_scale(pg_unit(&rng), pg_range(&rng, 0, 4)));
         px_vec3 u = pxi_add(pxi_sub(qb.t, qa.t), pxi_scale(pg_unit(&rng), 0.5));
         u = pxi_scale(u, 1.0 / pxi_len(u));
-        px_translation_result r1;
+        px_translate_result r1;
         check_query(&hull, &qa, &box, &qb, u, NULL, "unit direction", k, &r1);
         double size = pxi_len(pxi_sub(qa.t, qb.t)) + hull.s.radius + box.s.radius;
         for (size_t j = 0; j < sizeof lens / sizeof lens[0]; ++j) {
             px_vec3 d = pxi_scale(u, lens[j]);
-            px_translation_result rk;
+            px_translate_result rk;
             check_query(&hull, &qa, &box, &qb, d, NULL, "scaled direction", (long)(10 * k + (int)j), &rk);
             CHECK(rk.hit == r1.hit && (!r1.hit || fabs(rk.tau * lens[j] - r1.tau) <= 1e-9 * size),
                   "length %.0e: hit %d tau*|d| %.17g, unit: hit %d tau %.17g", lens[j], rk.hit,

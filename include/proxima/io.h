@@ -1,4 +1,7 @@
-/// proxima/io.h: building polytopes from mesh files (Assimp).
+/// proxima/io.h: building polytopes from mesh files (Assimp). These
+/// functions live in the separate library proxima-io (CMake target
+/// proxima::io, pkg-config proxima-io), the only part of proxima that links
+/// Assimp.
 ///
 /// Any format Assimp 5 reads (OBJ, STL, PLY, OFF, COLLADA, glTF, FBX, ...)
 /// can be turned into a convex polytope: the convex hull of every vertex of
@@ -14,14 +17,14 @@
 ///
 /// Thread safety: imports are serialised internally (Assimp's last-error
 /// string is process-global); the functions may be called from any thread.
-///
-/// Include this header after (or instead of) `proxima/proxima.h`.
+/// The lock is the library's only global state.
 #ifndef PROXIMA_IO_H
 #define PROXIMA_IO_H
 
 #include <stddef.h>
 
-#include "proxima/proxima.h"
+#include "proxima/base.h"
+#include "proxima/convex.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -31,7 +34,7 @@ extern "C" {
 /// node transforms applied (the file's root frame; see the header comment for
 /// units). A mesh referenced by several nodes contributes one copy per node.
 /// Points, lines and faces all count; vertices no face uses count too.
-/// `options` (may be NULL) is passed to `px_convex_from_points`.
+/// `options` (may be NULL) is passed to `px_convex_create`.
 ///
 /// Returns NULL and fills `err` (may be NULL) on:
 /// - PX_ERR_INVALID_ARGUMENT: `path` NULL or empty;
@@ -42,21 +45,25 @@ extern "C" {
 /// - PX_ERR_DEGENERATE: the vertices have no 3-D hull (flat, collinear, one
 ///   point): the message names the file;
 /// - PX_ERR_OUT_OF_MEMORY.
-px_convex *px_convex_from_file(const char *path, const px_convex_options *options, px_error *err);
+PX_API px_convex *px_convex_create_from_file(const char *path, const px_convex_options *options,
+                                             px_error *err);
 
 /// The distinct vertex positions of all meshes in the file at `path`, node
-/// transforms applied (the frame `px_convex_from_file` uses). On PX_OK,
-/// `*xyz` holds `3 * *count` doubles (x, y, z per point, exact duplicates
-/// removed, order unspecified but deterministic), allocated with the proxima
-/// allocator: release it with `px_mesh_points_free(*xyz, *count)`.
+/// transforms applied (the frame `px_convex_create_from_file` uses). On
+/// PX_OK, `*xyz` holds `3 * *count` doubles (x, y, z per point, exact
+/// duplicates removed, order unspecified but deterministic), allocated with
+/// `allocator` (NULL: malloc): release it with
+/// `px_free_points(*xyz, *count, allocator)`, the same allocator.
 /// On error `*xyz` is NULL, `*count` is 0, and the status is returned with
-/// `err` (may be NULL) filled as for `px_convex_from_file` (PX_ERR_IO,
-/// PX_ERR_INVALID_ARGUMENT for a NULL argument, PX_ERR_OUT_OF_MEMORY).
-px_status px_mesh_points_from_file(const char *path, double **xyz, size_t *count, px_error *err);
+/// `err` (may be NULL) filled as for `px_convex_create_from_file` (PX_ERR_IO,
+/// PX_ERR_INVALID_ARGUMENT for a NULL argument or an allocator without both
+/// functions, PX_ERR_OUT_OF_MEMORY).
+PX_API px_status px_load_points(const char *path, const px_allocator *allocator, double **xyz, size_t *count,
+                                px_error *err);
 
-/// Frees an array returned by `px_mesh_points_from_file`; `count` must be the
-/// count it returned. NULL is a no-op.
-void px_mesh_points_free(double *xyz, size_t count);
+/// Frees an array returned by `px_load_points`; `count` and `allocator`
+/// must be the ones it was returned with. NULL is a no-op.
+PX_API void px_free_points(double *xyz, size_t count, const px_allocator *allocator);
 
 #ifdef __cplusplus
 }

@@ -14,6 +14,14 @@
 #include "pxcd.h"
 
 #define PXI_MAX_POINTS (1u << 26)
+/* Accepted hull sizes (largest |stored coordinate|, about the body's
+ * half-extent): every computation then runs at full relative precision
+ * (bit-identical under power-of-two scaling of the input). Below, eps times
+ * the size is subnormal and answers lose relative precision; above, sums of
+ * a pair's sizes and distance approach overflow. Where the body sits does
+ * not matter (it is stored relative to its own middle). */
+#define PXI_MIN_SIZE 0x1p-1000
+#define PXI_MAX_SIZE 0x1p1000
 
 /* One directed boundary edge of a face, for pairing into undirected edges. */
 typedef struct half {
@@ -31,7 +39,7 @@ static int half_cmp(const void *pa, const void *pb) {
 }
 
 static void *take(px_convex *c, size_t count, size_t size, int *ok) {
-    void *p = pxi_alloc_array(count, size);
+    void *p = pxi_alloc_array(&c->alloc, count, size);
     if (!p)
         *ok = 0;
     else
@@ -41,25 +49,36 @@ static void *take(px_convex *c, size_t count, size_t size, int *ok) {
 
 void px_convex_destroy(px_convex *c) {
     if (!c) return;
+    px_allocator a = c->alloc; /* c itself is freed last, with a copy */
     size_t h = 2 * (size_t)c->ne;
-    pxi_free(c->v, c->nv * sizeof *c->v);
-    pxi_free(c->v_first, (c->nv + 1) * sizeof *c->v_first);
-    pxi_free(c->v_edges, h * sizeof *c->v_edges);
-    pxi_free(c->v_adj, h * sizeof *c->v_adj);
-    pxi_free(c->e, c->ne * sizeof *c->e);
-    pxi_free(c->f, c->nf * sizeof *c->f);
-    pxi_free(c->f_verts, h * sizeof *c->f_verts);
-    pxi_free(c->f_edges, h * sizeof *c->f_edges);
+    pxi_free(&a, c->v, c->nv * sizeof *c->v);
+    pxi_free(&a, c->v_first, (c->nv + 1) * sizeof *c->v_first);
+    pxi_free(&a, c->v_edges, h * sizeof *c->v_edges);
+    pxi_free(&a, c->v_adj, h * sizeof *c->v_adj);
+    pxi_free(&a, c->e, c->ne * sizeof *c->e);
+    pxi_free(&a, c->f, c->nf * sizeof *c->f);
+    pxi_free(&a, c->f_verts, h * sizeof *c->f_verts);
+    pxi_free(&a, c->f_edges, h * sizeof *c->f_edges);
     pxi_lut_destroy(c);
-    pxi_free(c, sizeof *c);
+    pxi_free(&a, c, sizeof *c);
 }
 
 /* Newell's method on coordinates relative to the first vertex: a robust
  * normal for a planar polygon (exact coplanarity came from CGAL). */
 static px_vec3 polygon_normal(const px_vec3 *v, const uint32_t *ids, uint32_t n) {
     px_vec3 o = v[ids[0]], s = {0, 0, 0};
+    /* The sums are products of two coordinate differences: outside the safe
+     * range (faces below 1e-150 or above 1e150) they would underflow or
+     * overflow, so they are formed at unit scale there (a power of two: the
+     * direction is exact, and unit() below removes the length). */
+    double m = 0.0;
+    for (uint32_t k = 1; k < n; ++k) {
+        double q = pxi_max_abs(pxi_sub(v[ids[k]], o));
+        if (q > m) m = q;
+    }
+    int e = pxi_len_ok(m) || !(m > 0.0) || !isfinite(m) ? 0 : -ilogb(m);
     for (uint32_t k = 0; k < n; ++k) {
-        px_vec3 a = pxi_sub(v[ids[k]], o), b = pxi_sub(v[ids[(k + 1) % n]], o);
+        px_vec3 a = pxi_ldexp3(pxi_sub(v[ids[k]], o), e), b = pxi_ldexp3(pxi_sub(v[ids[(k + 1) % n]], o), e);
         s.x += (a.y - b.y) * (a.z + b.z);
         s.y += (a.z - b.z) * (a.x + b.x);
         s.z += (a.x - b.x) * (a.y + b.y);
@@ -72,7 +91,8 @@ static px_vec3 unit(px_vec3 a) {
      * without underflow or overflow of the squared length. */
     double m = pxi_max_abs(a);
     if (!(m > 0.0)) return a;
-    a = pxi_scale(a, 1.0 / m);
+    /* 1 / m overflows for subnormal m: scale by a power of two there. */
+    a = isfinite(1.0 / m) ? pxi_scale(a, 1.0 / m) : pxi_ldexp3(a, -ilogb(m));
     return pxi_scale(a, 1.0 / pxi_len(a));
 }
 
@@ -93,14 +113,35 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     c->v_first = take(c, (size_t)c->nv + 1, sizeof *c->v_first, &ok);
     c->v_edges = take(c, nhalf, sizeof *c->v_edges, &ok);
     c->v_adj = take(c, nhalf, sizeof *c->v_adj, &ok);
-    half *hs = pxi_alloc_array(nhalf, sizeof *hs);
+    half *hs = pxi_alloc_array(&c->alloc, nhalf, sizeof *hs);
     if (!ok || !hs) {
-        pxi_free(hs, nhalf * sizeof *hs);
+        pxi_free(&c->alloc, hs, nhalf * sizeof *hs);
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory building a polytope of %u vertices",
                          c->nv);
     }
     for (uint32_t i = 0; i < c->nv; ++i)
         c->v[i] = pxi_v(h->vertices[3 * i], h->vertices[3 * i + 1], h->vertices[3 * i + 2]);
+    /* The stored origin (convex.h): per coordinate, the middle of the body's
+     * range when the range lies on one side of 0 at least its own width
+     * away (then lo/2 <= v, mid <= 2 lo for every v, so v - mid is exact,
+     * Sterbenz); else 0, and the coordinate is stored as given (ordinary
+     * bodies, near their frame's origin, keep their bits). Every tolerance is
+     * then relative to the body's size, not to where its coordinates sit:
+     * unit boxes at 1e14 get a contact band of 1e-14, not 1e-2. */
+    double blo[3] = {INFINITY, INFINITY, INFINITY}, bhi[3] = {-INFINITY, -INFINITY, -INFINITY}, org[3];
+    for (uint32_t i = 0; i < c->nv; ++i) {
+        double p[3] = {c->v[i].x, c->v[i].y, c->v[i].z};
+        for (int k = 0; k < 3; ++k) {
+            if (p[k] < blo[k]) blo[k] = p[k];
+            if (p[k] > bhi[k]) bhi[k] = p[k];
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        double w = bhi[k] - blo[k];
+        org[k] = (blo[k] >= w && blo[k] > 0.0) || (bhi[k] <= -w && bhi[k] < 0.0) ? blo[k] + 0.5 * w : 0.0;
+    }
+    c->origin = pxi_v(org[0], org[1], org[2]);
+    for (uint32_t i = 0; i < c->nv; ++i) c->v[i] = pxi_sub(c->v[i], c->origin);
     memcpy(c->f_verts, h->face_indices, nhalf * sizeof(uint32_t));
 
     /* Outward orientation is the contract of pxcd.h, but it costs O(F) to
@@ -180,7 +221,7 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
         E->wl = unit(pxi_cross(c->f[E->left].n, E->u));
         E->wr = unit(pxi_cross(E->u, c->f[E->right].n));
     }
-    pxi_free(hs, nhalf * sizeof *hs);
+    pxi_free(&c->alloc, hs, nhalf * sizeof *hs);
     if (st != PX_OK) return st;
 
     /* Vertex -> incident edges (CSR). */
@@ -190,7 +231,7 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
         c->v_first[c->e[i].head + 1]++;
     }
     for (uint32_t i = 0; i < c->nv; ++i) c->v_first[i + 1] += c->v_first[i];
-    uint32_t *fill = pxi_alloc_array(c->nv, sizeof *fill);
+    uint32_t *fill = pxi_alloc_array(&c->alloc, c->nv, sizeof *fill);
     if (!fill) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory building vertex adjacency");
     memcpy(fill, c->v_first, c->nv * sizeof *fill);
     for (uint32_t i = 0; i < c->ne; ++i) {
@@ -200,20 +241,24 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
         c->v_edges[fill[hd]] = i;
         c->v_adj[fill[hd]++] = t;
     }
-    pxi_free(fill, c->nv * sizeof *fill);
+    pxi_free(&c->alloc, fill, c->nv * sizeof *fill);
 
-    /* Centre, radius and coordinate scale. */
+    /* Centre (the mean of the vertices), radius about it, coordinate scale. */
     px_vec3 s = {0, 0, 0};
     double scale = 0.0;
     for (uint32_t i = 0; i < c->nv; ++i) {
-        s = pxi_add(s, pxi_scale(c->v[i], 1.0 / c->nv));
         double m = pxi_max_abs(c->v[i]);
         if (m > scale) scale = m;
     }
+    /* The mean of v / n: below about n DBL_MIN (bodies of 1e-306) the terms
+     * are subnormal and lose bits, so there it is taken at unit scale. */
+    int ce = pxi_len_ok(scale) || !(scale > 0.0) ? 0 : -ilogb(scale);
+    for (uint32_t i = 0; i < c->nv; ++i) s = pxi_add(s, pxi_scale(pxi_ldexp3(c->v[i], ce), 1.0 / c->nv));
+    s = pxi_ldexp3(s, -ce);
     c->center = s;
     double r2 = 0.0;
     for (uint32_t i = 0; i < c->nv; ++i) {
-        double q = pxi_len(pxi_sub(c->v[i], s));
+        double q = pxi_len_safe(pxi_sub(c->v[i], s));
         if (q > r2) r2 = q;
     }
     c->radius = r2;
@@ -252,30 +297,43 @@ static uint32_t default_lut_resolution(uint32_t nv) {
     return r;
 }
 
-px_convex *px_convex_from_points(const double *xyz, size_t count, const px_convex_options *options,
-                                 px_error *err) {
-    if (err) {
-        err->code = PX_OK;
-        err->message[0] = 0;
-    }
+/* Checks the options; fills the allocator. */
+static px_status check_options(const px_convex_options *o, px_allocator *alloc, px_error *err) {
+    if (!o) return pxi_allocator_resolve(NULL, alloc, err);
+    for (size_t i = 0; i < sizeof o->reserved / sizeof o->reserved[0]; ++i)
+        if (o->reserved[i] != 0)
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                             "px_convex_create: options.reserved[%zu] is %u, must be zero", i,
+                             o->reserved[i]);
+    if (o->lut_resolution > 256)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_convex_create: options.lut_resolution %u is above 256", o->lut_resolution);
+    return pxi_allocator_resolve(o->allocator, alloc, err);
+}
+
+px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,
+                            px_error *err) {
+    pxi_error_clear(err);
+    px_allocator alloc;
+    if (check_options(options, &alloc, err) != PX_OK) return NULL;
     if (!xyz) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_from_points: points array is NULL");
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_create: points array is NULL");
         return NULL;
     }
     if (count == 0 || count > PXI_MAX_POINTS) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_from_points: point count %zu is outside 1..%u",
-                  count, PXI_MAX_POINTS);
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_create: point count %zu is outside 1..%u", count,
+                  PXI_MAX_POINTS);
         return NULL;
     }
     for (size_t i = 0; i < 3 * count; ++i)
         if (!isfinite(xyz[i])) {
-            pxi_error(err, PX_ERR_NON_FINITE,
-                      "px_convex_from_points: point %zu has a non-finite coordinate %c", i / 3, "xyz"[i % 3]);
+            pxi_error(err, PX_ERR_NON_FINITE, "px_convex_create: point %zu has a non-finite coordinate %c",
+                      i / 3, "xyz"[i % 3]);
             return NULL;
         }
     if (count < 4) {
         pxi_error(err, PX_ERR_DEGENERATE,
-                  "px_convex_from_points: %zu points cannot span a solid (at least 4 are needed)", count);
+                  "px_convex_create: %zu points cannot span a solid (at least 4 are needed)", count);
         return NULL;
     }
     pxcd_hull *hull = NULL;
@@ -285,32 +343,36 @@ px_convex *px_convex_from_points(const double *xyz, size_t count, const px_conve
     if (hs == PXCD_DEGENERATE) {
         static const char *what[] = {"all points coincide", "all points are collinear",
                                      "all points are coplanar"};
-        pxi_error(err, PX_ERR_DEGENERATE,
-                  "px_convex_from_points: %s, so the hull is not a solid (dimension %d)",
+        pxi_error(err, PX_ERR_DEGENERATE, "px_convex_create: %s, so the hull is not a solid (dimension %d)",
                   what[dim >= 0 && dim <= 2 ? dim : 2], dim);
         return NULL;
     }
     if (hs != PXCD_OK || !hull) {
         pxi_error(err, strstr(msg, "memory") ? PX_ERR_OUT_OF_MEMORY : PX_ERR_INTERNAL,
-                  "px_convex_from_points: hull computation failed: %s", msg);
+                  "px_convex_create: hull computation failed: %s", msg);
         return NULL;
     }
-    px_convex *c = pxi_alloc(sizeof *c);
+    px_convex *c = pxi_alloc(&alloc, sizeof *c);
     if (!c) {
         pxcd_hull_free(hull);
-        pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_convex_from_points: out of memory");
+        pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_convex_create: out of memory");
         return NULL;
     }
     memset(c, 0, sizeof *c);
+    c->alloc = alloc;
     c->bytes = sizeof *c;
     px_status st = build_from_hull(c, hull, err);
     pxcd_hull_free(hull);
+    if (st == PX_OK && !(c->scale >= PXI_MIN_SIZE && c->scale <= PXI_MAX_SIZE))
+        st = pxi_error(err, PX_ERR_RANGE,
+                       "px_convex_create: the hull's size %.3g is outside the supported range [%.3g, %.3g] "
+                       "(2^-1000 .. 2^1000; where the points sit in the double range does not matter)",
+                       c->scale, PXI_MIN_SIZE, PXI_MAX_SIZE);
     if (st == PX_OK) {
         uint32_t res =
             options && options->lut_resolution ? options->lut_resolution : default_lut_resolution(c->nv);
-        if (res > 256) res = 256;
         st = pxi_lut_build(c, res);
-        if (st != PX_OK) pxi_error(err, st, "px_convex_from_points: out of memory for the direction table");
+        if (st != PX_OK) pxi_error(err, st, "px_convex_create: out of memory for the direction table");
     }
     if (st != PX_OK) {
         px_convex_destroy(c);
@@ -324,30 +386,67 @@ uint32_t px_convex_edge_count(const px_convex *c) { return c ? c->ne : 0; }
 uint32_t px_convex_face_count(const px_convex *c) { return c ? c->nf : 0; }
 size_t px_convex_memory_bytes(const px_convex *c) { return c ? c->bytes : 0; }
 
-px_vec3 px_convex_vertex(const px_convex *c, uint32_t i) {
-    if (!c || i >= c->nv) return pxi_v(0, 0, 0);
-    return c->v[i];
+px_status px_convex_vertex(const px_convex *c, uint32_t i, px_vec3 *out) {
+    if (out) *out = pxi_v(0, 0, 0);
+    if (!c || !out || i >= c->nv) return PX_ERR_INVALID_ARGUMENT;
+    *out = pxi_add(c->v[i], c->origin);
+    return PX_OK;
 }
 
-int px_convex_edge_vertices(const px_convex *c, uint32_t e, uint32_t out[2]) {
-    if (!c || e >= c->ne || !out) return 0;
+px_status px_convex_edge(const px_convex *c, uint32_t e, uint32_t out[2]) {
+    if (out) out[0] = out[1] = 0;
+    if (!c || !out || e >= c->ne) return PX_ERR_INVALID_ARGUMENT;
     out[0] = c->e[e].tail;
     out[1] = c->e[e].head;
-    return 1;
+    return PX_OK;
 }
 
-uint32_t px_convex_face_size(const px_convex *c, uint32_t f) { return c && f < c->nf ? c->f[f].count : 0; }
-
-uint32_t px_convex_face_vertex(const px_convex *c, uint32_t f, uint32_t k) {
-    if (!c || f >= c->nf || k >= c->f[f].count) return UINT32_MAX;
-    return c->f_verts[c->f[f].first + k];
+px_status px_convex_face(const px_convex *c, uint32_t f, px_vec3 *normal, double *offset,
+                         uint32_t *vertex_count) {
+    if (normal) *normal = pxi_v(0, 0, 0);
+    if (offset) *offset = 0.0;
+    if (vertex_count) *vertex_count = 0;
+    if (!c || f >= c->nf) return PX_ERR_INVALID_ARGUMENT;
+    if (normal) *normal = c->f[f].n;
+    if (offset) *offset = c->f[f].d + pxi_dot(c->f[f].n, c->origin); /* the body frame's plane */
+    if (vertex_count) *vertex_count = c->f[f].count;
+    return PX_OK;
 }
 
-int px_convex_face_plane(const px_convex *c, uint32_t f, px_vec3 *n, double *d) {
-    if (!c || f >= c->nf) return 0;
-    if (n) *n = c->f[f].n;
-    if (d) *d = c->f[f].d;
-    return 1;
+px_status px_convex_face_vertex(const px_convex *c, uint32_t f, uint32_t k, uint32_t *vertex) {
+    if (vertex) *vertex = 0;
+    if (!c || !vertex || f >= c->nf || k >= c->f[f].count) return PX_ERR_INVALID_ARGUMENT;
+    *vertex = c->f_verts[c->f[f].first + k];
+    return PX_OK;
+}
+
+px_status px_convex_bounds(const px_convex *c, const px_pose *pose, px_bounds *out) {
+    if (out) memset(out, 0, sizeof *out);
+    if (!c || !out) return PX_ERR_INVALID_ARGUMENT;
+    px_pose id = px_pose_identity();
+    if (!pose) pose = &id;
+    px_status st = px_pose_check(pose, NULL);
+    if (st != PX_OK) return st;
+    /* The box is exact: along each world axis, the extreme vertex (a support
+     * query in the body frame along that axis's row of R). */
+    double lo[3], hi[3], t[3] = {pose->t.x, pose->t.y, pose->t.z};
+    for (int i = 0; i < 3; ++i) {
+        px_vec3 axis = pxi_v(pose->r[3 * i], pose->r[3 * i + 1], pose->r[3 * i + 2]);
+        uint32_t vmax = pxi_support(c, axis, UINT32_MAX), vmin = pxi_support(c, pxi_neg(axis), UINT32_MAX);
+        /* world coordinate i of a body point p: row i of R times p, plus t_i */
+        double at = pxi_dot(axis, c->origin) + t[i]; /* world coordinate i of the stored origin */
+        hi[i] = pxi_dot(axis, c->v[vmax]) + at;
+        lo[i] = pxi_dot(axis, c->v[vmin]) + at;
+    }
+    out->min = pxi_v(lo[0], lo[1], lo[2]);
+    out->max = pxi_v(hi[0], hi[1], hi[2]);
+    out->center = pxi_xform(pose, pxi_add(c->center, c->origin));
+    out->radius = c->radius;
+    if (!pxi_is_finite3(out->min) || !pxi_is_finite3(out->max) || !pxi_is_finite3(out->center)) {
+        memset(out, 0, sizeof *out);
+        return PX_ERR_NON_FINITE; /* a pose so far out that the world coordinates overflow */
+    }
+    return PX_OK;
 }
 
 /* Structural validation. Convexity is checked locally at every edge (the
@@ -355,6 +454,7 @@ int px_convex_face_plane(const px_convex *c, uint32_t f, px_vec3 *n, double *d) 
  * polyhedral surface bounds a convex body (van Heijenoort 1952). The global
  * vertex-below-every-plane test runs too when V*F is small enough. */
 px_status px_convex_validate(const px_convex *c, px_error *err) {
+    pxi_error_clear(err);
     if (!c) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "polytope is NULL");
     if ((int64_t)c->nv - (int64_t)c->ne + (int64_t)c->nf != 2)
         return pxi_error(err, PX_ERR_INTERNAL, "Euler's formula fails: V=%u E=%u F=%u", c->nv, c->ne, c->nf);

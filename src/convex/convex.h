@@ -17,7 +17,8 @@
 
 #include <stdint.h>
 
-#include "proxima/proxima.h"
+#include "proxima/convex.h"
+#include "proxima/query.h"
 
 typedef struct pxi_edge {
     uint32_t tail, head;  /* vertex ids */
@@ -50,7 +51,7 @@ typedef struct pxi_lut {
 
 struct px_convex {
     uint32_t nv, ne, nf;
-    px_vec3 *v;        /* nv vertex positions, body frame */
+    px_vec3 *v;        /* nv vertex positions, body frame minus origin */
     uint32_t *v_first; /* nv + 1: incident edges of v are v_edges[v_first[v] .. v_first[v+1]) */
     uint32_t *v_edges; /* 2 * ne incident edge ids */
     uint32_t *v_adj;   /* 2 * ne: v_adj[k] = the other end of v_edges[k] */
@@ -59,12 +60,21 @@ struct px_convex {
     uint32_t *f_verts; /* 2 * ne: face boundary vertices, CCW */
     uint32_t *f_edges; /* 2 * ne: f_edges[first + k] joins f_verts[first + k] -> f_verts[first + k + 1 (mod
                           count)] */
-    px_vec3 center;    /* mean of the vertices (an interior point) */
-    double radius;     /* max |v - center| */
-    double scale;      /* max |coordinate| over all vertices (>= radius scale), for relative tolerances */
-    double roundness;  /* least / greatest width over 13 directions, in (0, 1]: 1 for a ball-like body */
+    /* Everything is stored relative to `origin`, a point of the body frame:
+     * body-frame point = stored point + origin. origin is 0 for a body near
+     * its frame's origin; for a body far from it (coordinates at 1e14 times
+     * its size) it is the body's middle, chosen so that every stored
+     * coordinate v - origin is exact (Sterbenz). Then all rounding, and every
+     * tolerance derived from coordinates, is relative to the body's size and
+     * the distance between the bodies, not to where the point set sits. */
+    px_vec3 origin;
+    px_vec3 center;   /* mean of the vertices (an interior point), stored frame */
+    double radius;    /* max |v - center| */
+    double scale;     /* max |coordinate| of v, for relative tolerances */
+    double roundness; /* least / greatest width over 13 directions, in (0, 1]: 1 for a ball-like body */
     pxi_lut lut;
-    size_t bytes; /* everything allocated for this polytope */
+    size_t bytes;       /* everything allocated for this polytope */
+    px_allocator alloc; /* what allocated it, and frees it */
 };
 
 /* Vertex of `c` extreme along direction `d` (body frame): argmax v . d.

@@ -86,8 +86,12 @@ uint32_t pxi_lut_lookup(const px_convex *c, px_vec3 d) {
  * the lookup map diag(w) Q^T and its inverse Q diag(1/w) for the build. */
 static void lut_map(const px_convex *c, double map[9], double inv[9]) {
     double a[3][3] = {{0}}, q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    /* Second moments are squares of coordinates: formed at unit scale (a
+     * power of two) outside the safe range, where they would overflow or
+     * underflow (the axes do not depend on the scale). */
+    int e = pxi_len_ok(c->radius) || !(c->radius > 0.0) || !isfinite(c->radius) ? 0 : -ilogb(c->radius);
     for (uint32_t i = 0; i < c->nv; ++i) {
-        px_vec3 p = pxi_sub(c->v[i], c->center);
+        px_vec3 p = pxi_ldexp3(pxi_sub(c->v[i], c->center), e);
         double x[3] = {p.x, p.y, p.z};
         for (int r = 0; r < 3; ++r)
             for (int k = 0; k < 3; ++k) a[r][k] += x[r] * x[k];
@@ -138,6 +142,14 @@ static void lut_map(const px_convex *c, double map[9], double inv[9]) {
 }
 
 uint32_t pxi_support(const px_convex *c, px_vec3 d, uint32_t start) {
+    /* The climb compares v . d. Callers pass unit-scale directions and raw
+     * ones (centre differences, as large as the bodies): for bodies below
+     * 1e-154 or above 1e154 the products of raw ones would underflow to 0 or
+     * overflow to inf, every vertex tie and the climb stop where it started.
+     * A power of two changes no comparison otherwise, so d is brought to
+     * max-abs [1, 2) when it is far from unit size. */
+    double m = pxi_max_abs(d);
+    if (!(m >= 0x1p-16 && m <= 0x1p16) && m > 0.0 && isfinite(m)) d = pxi_ldexp3(d, -ilogb(m));
     if (start >= c->nv) start = pxi_lut_lookup(c, d);
     return climb(c, d, start);
 }
@@ -147,7 +159,7 @@ px_status pxi_lut_build(px_convex *c, uint32_t res) {
     c->lut.cell = NULL;
     if (res == 0) return PX_OK;
     size_t n = 6 * (size_t)res * res;
-    uint32_t *cell = pxi_alloc_array(n, sizeof *cell);
+    uint32_t *cell = pxi_alloc_array(&c->alloc, n, sizeof *cell);
     if (!cell) return PX_ERR_OUT_OF_MEMORY;
     c->bytes += n * sizeof *cell;
     /* Neighbouring cells have neighbouring answers: start each climb from
@@ -168,6 +180,7 @@ px_status pxi_lut_build(px_convex *c, uint32_t res) {
 }
 
 void pxi_lut_destroy(px_convex *c) {
-    if (c->lut.cell) pxi_free(c->lut.cell, 6 * (size_t)c->lut.res * c->lut.res * sizeof *c->lut.cell);
+    if (c->lut.cell)
+        pxi_free(&c->alloc, c->lut.cell, 6 * (size_t)c->lut.res * c->lut.res * sizeof *c->lut.cell);
     c->lut.cell = NULL;
 }

@@ -1,4 +1,5 @@
-/* Allocator hook and error helpers. */
+/* Allocators and errors (internal helpers; compiled into each shared
+ * library that needs them, hidden there). */
 #include "core/core.h"
 
 #include <stdarg.h>
@@ -17,31 +18,28 @@ static void default_free(void *user, void *ptr, size_t size) {
     free(ptr);
 }
 
-/* The one piece of global state: the allocation hooks (documented in proxima.h). */
-static px_allocator g_allocator = {default_alloc, default_free, NULL};
-
-void px_set_allocator(const px_allocator *allocator) {
-    if (allocator && allocator->alloc && allocator->free) {
-        g_allocator = *allocator;
-    } else {
-        g_allocator.alloc = default_alloc;
-        g_allocator.free = default_free;
-        g_allocator.user = NULL;
+px_status pxi_allocator_resolve(const px_allocator *user, px_allocator *out, px_error *err) {
+    if (!user) {
+        out->alloc = default_alloc;
+        out->free = default_free;
+        out->user = NULL;
+        return PX_OK;
     }
+    if (!user->alloc || !user->free)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "allocator: both alloc and free must be set");
+    *out = *user;
+    return PX_OK;
 }
 
-void *pxi_alloc(size_t size) {
-    if (size == 0) size = 1;
-    return g_allocator.alloc(g_allocator.user, size);
-}
+void *pxi_alloc(const px_allocator *a, size_t size) { return a->alloc(a->user, size == 0 ? 1 : size); }
 
-void *pxi_alloc_array(size_t count, size_t size) {
+void *pxi_alloc_array(const px_allocator *a, size_t count, size_t size) {
     if (size != 0 && count > SIZE_MAX / size) return NULL;
-    return pxi_alloc(count * size);
+    return pxi_alloc(a, count * size);
 }
 
-void pxi_free(void *ptr, size_t size) {
-    if (ptr) g_allocator.free(g_allocator.user, ptr, size == 0 ? 1 : size);
+void pxi_free(const px_allocator *a, void *ptr, size_t size) {
+    if (ptr) a->free(a->user, ptr, size == 0 ? 1 : size);
 }
 
 px_status pxi_error(px_error *err, px_status code, const char *fmt, ...) {
@@ -55,16 +53,8 @@ px_status pxi_error(px_error *err, px_status code, const char *fmt, ...) {
     return code;
 }
 
-const char *px_status_string(px_status status) {
-    switch (status) {
-    case PX_OK: return "PX_OK";
-    case PX_ERR_INVALID_ARGUMENT: return "PX_ERR_INVALID_ARGUMENT";
-    case PX_ERR_NON_FINITE: return "PX_ERR_NON_FINITE";
-    case PX_ERR_DEGENERATE: return "PX_ERR_DEGENERATE";
-    case PX_ERR_INVALID_POSE: return "PX_ERR_INVALID_POSE";
-    case PX_ERR_OUT_OF_MEMORY: return "PX_ERR_OUT_OF_MEMORY";
-    case PX_ERR_IO: return "PX_ERR_IO";
-    case PX_ERR_INTERNAL: return "PX_ERR_INTERNAL";
-    }
-    return "PX_ERR_UNKNOWN";
+void pxi_error_clear(px_error *err) {
+    if (!err) return;
+    err->code = PX_OK;
+    err->message[0] = '\0';
 }

@@ -163,8 +163,8 @@ static size_t unique_points(double *xyz, size_t n) {
 
 /* Imports the file and collects all transformed vertices (with duplicates)
  * into a pxi_alloc'ed array of `*cap` points. Called with the io lock held. */
-static px_status import_points_locked(const char *path, double **out, size_t *count, size_t *cap,
-                                      px_error *err) {
+static px_status import_points_locked(const char *path, const px_allocator *alloc, double **out,
+                                      size_t *count, size_t *cap, px_error *err) {
     const struct aiScene *scene = aiImportFile(path, 0);
     if (!scene) {
         char msg[160];
@@ -207,7 +207,7 @@ static px_status import_points_locked(const char *path, double **out, size_t *co
     }
 
     size_t total = w.count;
-    double *xyz = pxi_alloc_array(total, 3 * sizeof(double));
+    double *xyz = pxi_alloc_array(alloc, total, 3 * sizeof(double));
     if (!xyz) {
         aiReleaseImport(scene);
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s' (%zu vertices)",
@@ -225,7 +225,7 @@ static px_status import_points_locked(const char *path, double **out, size_t *co
     }
     aiReleaseImport(scene);
     if (st != PX_OK) {
-        pxi_free(xyz, total * 3 * sizeof(double));
+        pxi_free(alloc, xyz, total * 3 * sizeof(double));
         return st;
     }
     *out = xyz;
@@ -234,14 +234,18 @@ static px_status import_points_locked(const char *path, double **out, size_t *co
     return PX_OK;
 }
 
-px_status px_mesh_points_from_file(const char *path, double **xyz, size_t *count, px_error *err) {
+px_status px_load_points(const char *path, const px_allocator *allocator, double **xyz, size_t *count,
+                         px_error *err) {
+    pxi_error_clear(err);
     if (xyz) *xyz = NULL;
     if (count) *count = 0;
     if (!path || !path[0] || !xyz || !count) {
-        return pxi_error(
-            err, PX_ERR_INVALID_ARGUMENT,
-            "px_mesh_points_from_file: path, xyz and count must be non-NULL (and path non-empty)");
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_load_points: path, xyz and count must be non-NULL (and path non-empty)");
     }
+    px_allocator alloc;
+    px_status ast = pxi_allocator_resolve(allocator, &alloc, err);
+    if (ast != PX_OK) return ast;
     /* Check readability first: Assimp's message for a missing file omits why. */
     FILE *f = fopen(path, "rb");
     if (!f) {
@@ -260,20 +264,20 @@ px_status px_mesh_points_from_file(const char *path, double **xyz, size_t *count
     double *pts = NULL;
     size_t n = 0, cap = 0;
     io_lock();
-    px_status st = import_points_locked(path, &pts, &n, &cap, err);
+    px_status st = import_points_locked(path, &alloc, &pts, &n, &cap, err);
     io_unlock();
     if (st != PX_OK) return st;
 
     size_t m = unique_points(pts, n);
     if (m != cap) {
-        /* Shrink to the exact size so px_mesh_points_free(xyz, count) frees what was allocated. */
-        double *small = pxi_alloc_array(m, 3 * sizeof(double));
+        /* Shrink to the exact size so px_free_points(xyz, count) frees what was allocated. */
+        double *small = pxi_alloc_array(&alloc, m, 3 * sizeof(double));
         if (!small) {
-            pxi_free(pts, cap * 3 * sizeof(double));
+            pxi_free(&alloc, pts, cap * 3 * sizeof(double));
             return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
         }
         memcpy(small, pts, m * 3 * sizeof(double));
-        pxi_free(pts, cap * 3 * sizeof(double));
+        pxi_free(&alloc, pts, cap * 3 * sizeof(double));
         pts = small;
     }
     *xyz = pts;
@@ -285,22 +289,26 @@ px_status px_mesh_points_from_file(const char *path, double **xyz, size_t *count
     return PX_OK;
 }
 
-void px_mesh_points_free(double *xyz, size_t count) {
-    if (xyz) pxi_free(xyz, count * 3 * sizeof(double));
+void px_free_points(double *xyz, size_t count, const px_allocator *allocator) {
+    px_allocator alloc;
+    if (!xyz || pxi_allocator_resolve(allocator, &alloc, NULL) != PX_OK) return;
+    pxi_free(&alloc, xyz, count * 3 * sizeof(double));
 }
 
-px_convex *px_convex_from_file(const char *path, const px_convex_options *options, px_error *err) {
+px_convex *px_convex_create_from_file(const char *path, const px_convex_options *options, px_error *err) {
+    pxi_error_clear(err);
     if (!path || !path[0]) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_from_file: path is NULL or empty");
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_convex_create_from_file: path is NULL or empty");
         return NULL;
     }
+    /* The points are temporary: malloc'ed whatever the polytope's allocator. */
     double *xyz = NULL;
     size_t n = 0;
-    if (px_mesh_points_from_file(path, &xyz, &n, err) != PX_OK) return NULL;
+    if (px_load_points(path, NULL, &xyz, &n, err) != PX_OK) return NULL;
     px_error inner;
     memset(&inner, 0, sizeof inner);
-    px_convex *c = px_convex_from_points(xyz, n, options, &inner);
-    px_mesh_points_free(xyz, n);
+    px_convex *c = px_convex_create(xyz, n, options, &inner);
+    px_free_points(xyz, n, NULL);
     if (!c) {
         /* Keep the code, name the file. */
         char msg[sizeof inner.message];

@@ -1,4 +1,6 @@
-/* Pose constructors and validation. */
+/* Pose constructors and validation. The quaternion-to-matrix map is the
+ * standard one (K. Shoemake, "Animating rotation with quaternion curves",
+ * SIGGRAPH 1985). */
 #include <math.h>
 #include <string.h>
 
@@ -12,26 +14,39 @@ px_pose px_pose_identity(void) {
     return p;
 }
 
-px_pose px_pose_from_rt(const double r[9], const double t[3]) {
-    px_pose p = px_pose_identity();
-    if (r) memcpy(p.r, r, sizeof p.r);
-    if (t) p.t = pxi_v(t[0], t[1], t[2]);
-    return p;
+px_status px_pose_from_rt(const double r[9], const double t[3], px_pose *out) {
+    if (!out) return PX_ERR_INVALID_ARGUMENT;
+    *out = px_pose_identity();
+    if (!r || !t) return PX_ERR_INVALID_ARGUMENT;
+    px_pose p;
+    memcpy(p.r, r, sizeof p.r);
+    p.t = pxi_v(t[0], t[1], t[2]);
+    px_status st = px_pose_check(&p, NULL);
+    if (st == PX_OK) *out = p;
+    return st;
 }
 
-px_pose px_pose_from_quat(const double q[4], const double t[3]) {
-    px_pose p = px_pose_identity();
-    if (t) p.t = pxi_v(t[0], t[1], t[2]);
-    if (!q) return p;
+px_status px_pose_from_quat(const double q[4], const double t[3], px_pose *out) {
+    if (!out) return PX_ERR_INVALID_ARGUMENT;
+    *out = px_pose_identity();
+    if (!q || !t) return PX_ERR_INVALID_ARGUMENT;
     /* isfinite first: an ordered comparison with NaN raises FE_INVALID. */
-    int finite = isfinite(q[0]) && isfinite(q[1]) && isfinite(q[2]) && isfinite(q[3]);
-    double n = finite ? sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]) : 0.0;
-    if (!finite || !isfinite(n) || n == 0.0) {
-        /* Leave a pose that px_pose_check rejects rather than inventing one. */
-        for (int i = 0; i < 9; ++i) p.r[i] = NAN;
-        return p;
-    }
-    double w = q[0] / n, x = q[1] / n, y = q[2] / n, z = q[3] / n;
+    for (int i = 0; i < 4; ++i)
+        if (!isfinite(q[i])) return PX_ERR_NON_FINITE;
+    if (!isfinite(t[0]) || !isfinite(t[1]) || !isfinite(t[2])) return PX_ERR_NON_FINITE;
+    double m = 0.0;
+    for (int i = 0; i < 4; ++i)
+        if (fabs(q[i]) > m) m = fabs(q[i]);
+    if (!(m > 0.0)) return PX_ERR_INVALID_ARGUMENT;
+    /* Divide by the largest component (a power of two, so exactly) before
+     * squaring: |q| of 1e-300 or 1e300 neither underflows nor overflows. */
+    int e = ilogb(m);
+    double s[4];
+    for (int i = 0; i < 4; ++i) s[i] = ldexp(q[i], -e); /* not q * 2^-e: 2^1031 overflows for subnormal q */
+    double n = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + s[3] * s[3]);
+    double w = s[0] / n, x = s[1] / n, y = s[2] / n, z = s[3] / n;
+    px_pose p;
+    p.t = pxi_v(t[0], t[1], t[2]);
     p.r[0] = 1 - 2 * (y * y + z * z);
     p.r[1] = 2 * (x * y - w * z);
     p.r[2] = 2 * (x * z + w * y);
@@ -41,10 +56,12 @@ px_pose px_pose_from_quat(const double q[4], const double t[3]) {
     p.r[6] = 2 * (x * z - w * y);
     p.r[7] = 2 * (y * z + w * x);
     p.r[8] = 1 - 2 * (x * x + y * y);
-    return p;
+    *out = p;
+    return PX_OK;
 }
 
 px_status px_pose_check(const px_pose *pose, px_error *err) {
+    pxi_error_clear(err);
     if (!pose) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "pose is NULL");
     const double *r = pose->r;
     for (int i = 0; i < 9; ++i)

@@ -4,7 +4,7 @@
 
 #include <math.h>
 
-#include "proxima/proxima.h"
+#include "proxima/math.h"
 
 static inline px_vec3 pxi_v(double x, double y, double z) {
     px_vec3 r = {x, y, z};
@@ -31,6 +31,43 @@ static inline double pxi_max_abs(px_vec3 a) {
     return m;
 }
 static inline int pxi_is_finite3(px_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+
+/* Scale-safe arithmetic. Squares and products of two lengths overflow above
+ * about 1e154 and underflow below 1e-154; the helpers below keep the plain
+ * formula (the same bits) in the safe range and work at a power-of-two scale
+ * (exact) outside it. */
+
+/* a * 2^e, exact unless the result leaves the normal range. */
+static inline px_vec3 pxi_ldexp3(px_vec3 a, int e) {
+    return pxi_v(ldexp(a.x, e), ldexp(a.y, e), ldexp(a.z, e));
+}
+/* Lengths whose squares are safe: max-abs in [2^-500, 2^500] (squares and
+ * products of two such lengths stay normal and finite). */
+static inline int pxi_len_ok(double m) { return m >= 0x1p-500 && m <= 0x1p500; }
+/* |a| without overflow or underflow of the squares. */
+static inline double pxi_len_safe(px_vec3 a) {
+    double m = pxi_max_abs(a);
+    if (pxi_len_ok(m)) return sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    if (!(m > 0.0) || !isfinite(m)) return m == m ? m : NAN;
+    int e = ilogb(m);
+    px_vec3 s = pxi_ldexp3(a, -e);
+    return ldexp(sqrt(s.x * s.x + s.y * s.y + s.z * s.z), e);
+}
+/* a / |a| (zero vector for zero or non-finite a), scale-safe likewise. */
+static inline px_vec3 pxi_unit_safe(px_vec3 a) {
+    double m = pxi_max_abs(a);
+    if (!(m > 0.0) || !isfinite(m)) return pxi_v(0, 0, 0);
+    if (!pxi_len_ok(m)) a = pxi_ldexp3(a, -ilogb(m));
+    double l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return l > 0.0 && isfinite(l) ? pxi_v(a.x / l, a.y / l, a.z / l) : pxi_v(0, 0, 0);
+}
+/* The power of two k with m k in [1, 2), for m > 0 finite; clamped to the
+ * double range (a subnormal m gets 2^1023, not inf). 1 otherwise. */
+static inline double pxi_pow2_unit(double m) {
+    if (!(m > 0.0) || !isfinite(m)) return 1.0;
+    int e = -ilogb(m);
+    return ldexp(1.0, e > 1023 ? 1023 : e);
+}
 
 /* R * p (rotation only), R row-major. */
 static inline px_vec3 pxi_rot(const double r[9], px_vec3 p) {

@@ -66,7 +66,7 @@ static int tr_features_touch(const px_convex *a, const px_convex *b, const px_po
         double u, w;
         pxi_segment_closest(p0, p1, q0, q1, &u, &w);
         px_vec3 x = pxi_madd(p0, pxi_sub(p1, p0), u), y = pxi_madd(q0, pxi_sub(q1, q0), w);
-        if (!(pxi_len(pxi_sub(x, y)) <= tol)) return 0;
+        if (!(pxi_len_safe(pxi_sub(x, y)) <= tol)) return 0;
         *pa = pxi_xform_inv(tt, x);
         *pb = y;
         return 1;
@@ -74,7 +74,7 @@ static int tr_features_touch(const px_convex *a, const px_convex *b, const px_po
     return 0;
 }
 pxi_outcome pxi_advance_warm(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d,
-                             px_distance_cache *cache, pxi_translation *out) {
+                             px_pair_cache *cache, pxi_translation *out) {
     px_vec3 nu = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
     double nl = pxi_len(nu);
     if (!(nl > 0.0) || !isfinite(nl)) return PXI_UNPROVEN;
@@ -120,9 +120,9 @@ pxi_outcome pxi_advance(const px_convex *a, const px_convex *b, const px_pose *t
         start.fb = ans.fb;
         if (ans.intersecting) break;
         px_vec3 gap = pxi_sub(ans.pb, pxi_xform(&tt, ans.pa));
-        double gl = pxi_len(gap);
+        double gl = pxi_len_safe(gap);
         if (!(gl > 0.0)) break;
-        n = pxi_scale(gap, 1.0 / gl);
+        n = pxi_len_ok(gl) ? pxi_scale(gap, 1.0 / gl) : pxi_unit_safe(gap);
         double nd = pxi_dot(n, d);
         if (!(nd > 1e-3 * sqrt(pxi_dot(d, d)))) return PXI_UNPROVEN; /* may miss: the ray cast decides */
         tau += ans.distance / nd;

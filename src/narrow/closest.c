@@ -27,7 +27,7 @@ void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double 
     if (pxi_max_abs(d2) > m) m = pxi_max_abs(d2);
     if (pxi_max_abs(r) > m) m = pxi_max_abs(r);
     if (m > 0.0 && isfinite(m)) {
-        double k = ldexp(1.0, -ilogb(m));
+        double k = pxi_pow2_unit(m); /* clamped: 2^-ilogb(m) is inf for subnormal m */
         d1 = pxi_scale(d1, k), d2 = pxi_scale(d2, k), r = pxi_scale(r, k);
     }
     double a = pxi_dot(d1, d1), e = pxi_dot(d2, d2), f = pxi_dot(d2, r);

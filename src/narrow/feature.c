@@ -8,7 +8,7 @@
 #include "math/vec3.h"
 
 px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p) {
-    px_feature f = {PX_FEATURE_VERTEX, ids[0]};
+    px_feature f = {PX_FEATURE_VERTEX, ids[0], 0};
     uint32_t u[4] = {ids[0], ids[0], ids[0], ids[0]};
     int m = 0;
     for (int k = 0; k < n; ++k) {

@@ -132,7 +132,7 @@ static int egjk_run(egjk *g, sx_simplex *s, px_vec3 *v, double *vv, uint32_t *it
  * centres coincide (fcl #346, libccd #25). */
 static void egjk_cold(egjk *g, sx_simplex *s) {
     px_vec3 c = pxi_sub(pxi_xform(g->t, g->a->center), g->b->center);
-    if (!(pxi_len2(c) > 0.0)) c = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+    if (!(pxi_max_abs(c) > 0.0)) c = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
     s->n = 1;
     s->margin = 0.0;
     s->p[0] = egjk_support(g, c);
@@ -167,7 +167,7 @@ void pxi_gjk_seed_run(const px_convex *a, const px_convex *b, const px_pose *t_a
 }
 
 /* The cached simplex, if every id is in range for this pair. */
-static int egjk_warm_simplex(const egjk *g, const px_distance_cache *cache, sx_simplex *s) {
+static int egjk_warm_simplex(const egjk *g, const px_pair_cache *cache, sx_simplex *s) {
     s->n = 0;
     s->margin = 0.0;
     if (!cache || cache->simplex_count == 0 || cache->simplex_count > 4) return 0;
@@ -180,7 +180,7 @@ static int egjk_warm_simplex(const egjk *g, const px_distance_cache *cache, sx_s
     return 1;
 }
 
-static void egjk_store(const sx_simplex *s, px_vec3 dir, px_distance_cache *cache) {
+static void egjk_store(const sx_simplex *s, px_vec3 dir, px_pair_cache *cache) {
     if (!cache) return;
     cache->simplex_count = (uint8_t)s->n;
     for (int m = 0; m < s->n; ++m) {
@@ -263,10 +263,12 @@ static void egjk_polish(const egjk *g, const sx_simplex *s, pxi_answer *out) {
     for (int m = 0; m < s->n; ++m) all_a[m] = s->p[m].ia, all_b[m] = s->p[m].ib;
     int na = distinct_ids(all_a, s->n, ia), nb = distinct_ids(all_b, s->n, ib);
     if (na > 3 || nb > 3) return;
-    /* Relative to one B vertex: the numbers stay as small as the features. */
+    /* Relative to one B vertex: the numbers stay as small as the features;
+     * and times the pair's power of two k, so that the squared distances
+     * neither overflow (bodies above 1e154) nor underflow (below 1e-154). */
     px_vec3 o = g->b->v[ib[0]], pa[3], pb[3];
-    for (int k = 0; k < na; ++k) pa[k] = pxi_sub(pxi_xform(g->t, g->a->v[ia[k]]), o);
-    for (int k = 0; k < nb; ++k) pb[k] = pxi_sub(g->b->v[ib[k]], o);
+    for (int k = 0; k < na; ++k) pa[k] = pxi_scale(pxi_sub(pxi_xform(g->t, g->a->v[ia[k]]), o), g->k);
+    for (int k = 0; k < nb; ++k) pb[k] = pxi_scale(pxi_sub(g->b->v[ib[k]], o), g->k);
     polish_best best;
     best.d2 = INFINITY;
     for (int k = 0; k < na; ++k) polish_point_set(&best, pa[k], ia[k], pb, ib, nb, 1);
@@ -288,17 +290,17 @@ static void egjk_polish(const egjk *g, const sx_simplex *s, pxi_answer *out) {
     if (!(best.d2 < INFINITY)) return;
     /* In exact arithmetic d <= |v|: accept it unless it is worse by more
      * than rounding (then the simplex was not what we think: keep |v|). */
-    double d = sqrt(best.d2),
+    double d = sqrt(best.d2) / g->k,
            noise = 64.0 * DBL_EPSILON * (pxi_max_abs(o) + pxi_max_abs(g->t->t) + g->a->scale);
     if (!(d <= out->distance + noise)) return;
     out->distance = d;
-    out->pa = pxi_xform_inv(g->t, pxi_add(best.pa, o));
-    out->pb = pxi_add(best.pb, o);
+    out->pa = pxi_xform_inv(g->t, pxi_add(pxi_scale(best.pa, 1.0 / g->k), o));
+    out->pb = pxi_add(pxi_scale(best.pb, 1.0 / g->k), o);
     out->fa = pxi_feature_of_vertices(g->a, best.ia, best.na, &out->pa);
     out->fb = pxi_feature_of_vertices(g->b, best.ib, best.nb, &out->pb);
 }
 
-void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_pair_cache *cache,
                       pxi_answer *out, pxi_simplex_pairs *simplex_out) {
     memset(out, 0, sizeof *out);
     egjk g;
@@ -334,7 +336,7 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
     out->iterations = it;
     if (!inside) egjk_polish(&g, &s, out);
     out->outcome = PXI_DONE;
-    if (inside == 2) out->approx = PXI_APPROX_CONTACT_BAND;
+    if (inside == 2) out->quality = PX_QUALITY_CONTACT_BAND;
     if (!inside && !(gap <= PXI_GJK_OPEN_GAP * vv)) {
         /* The loop stopped on a repeat or at the round-off floor with the
          * duality gap still open: the lower bound (|v|^2 - gap) / |v| is
@@ -361,7 +363,8 @@ void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_a
  * tries the previous separating direction: one support pair when the pair
  * is still separated along it. */
 pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab,
-                              px_distance_cache *cache, int *intersecting, uint32_t *iterations) {
+                              px_pair_cache *cache, int *intersecting, uint32_t *iterations,
+                              uint32_t *quality) {
     egjk g;
     egjk_init(&g, a, b, t_ab);
     sx_simplex s;
@@ -376,16 +379,19 @@ pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_p
     }
     s.n = 0;
     s.margin = 0.0;
-    if (!(pxi_len2(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+    if (!(pxi_max_abs(v) > 0.0)) v = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+    if (!pxi_len_ok(pxi_max_abs(v))) v = pxi_scale(v, g.k); /* |v|^2 below would overflow or underflow */
     uint32_t cap = sx_iteration_cap(a, b), it = 0;
     int hit = -1; /* -1: not proved either way yet */
     double vv = pxi_len2(v);
+    /* The contact band of every query (tolerance.h), in scaled units. */
+    double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab) * g.k;
     while (it < cap) {
         ++it;
         sx_point w = egjk_support(&g, v);
         /* A separating axis only if the gap it proves clears the contact
          * band (touching within rounding counts as intersecting). */
-        if (pxi_dot(v, w.w) > PXI_GJK_CONTACT * sqrt(vv)) {
+        if (pxi_dot(v, w.w) > band * sqrt(vv)) {
             hit = 0;
             break;
         }
@@ -398,8 +404,9 @@ pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_p
         }
         px_vec3 nv = sx_point_of(&s);
         double nvv = pxi_len2(nv);
-        if (!(nvv > PXI_GJK_CONTACT * PXI_GJK_CONTACT)) { /* within the contact band of K */
+        if (!(nvv > band * band)) { /* within the contact band */
             hit = 1;
+            *quality |= PX_QUALITY_CONTACT_BAND;
             break;
         }
         if (s.n > 1 && !(nvv < vv)) break; /* round-off floor: not proved */

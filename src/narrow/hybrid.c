@@ -476,7 +476,7 @@ static int round_step(hy_ctx *x, int first, hy_local *r) {
 }
 
 /* Reads the cached sets; 0 when absent or out of range (cold). */
-static int load_cache(hy_ctx *x, const px_distance_cache *cache) {
+static int load_cache(hy_ctx *x, const px_pair_cache *cache) {
     if (!cache) return 0;
     uint32_t n[2] = {cache->count_a, cache->count_b};
     const uint32_t *ids[2] = {cache->vertex_a, cache->vertex_b};
@@ -497,7 +497,7 @@ static int load_cache(hy_ctx *x, const px_distance_cache *cache) {
     return 1;
 }
 
-static void store_cache(const hy_ctx *x, px_distance_cache *cache, const pxi_answer *out) {
+static void store_cache(const hy_ctx *x, px_pair_cache *cache, const pxi_answer *out) {
     if (!cache) return;
     uint8_t *n[2] = {&cache->count_a, &cache->count_b};
     uint32_t *ids[2] = {cache->vertex_a, cache->vertex_b};
@@ -540,7 +540,7 @@ static int feature_holds(const px_convex *c, px_feature f, const hy_set *s) {
 static px_feature feature_of(const hy_ctx *x, int i, const px_vec3 *p) {
     const hy_set *s = &x->s[i];
     if (s->n == 1 || s->n == 4) { /* a tetrahedron that proved intersection: no feature holds it */
-        px_feature f = {PX_FEATURE_VERTEX, heaviest(s)};
+        px_feature f = {PX_FEATURE_VERTEX, heaviest(s), 0};
         return f;
     }
     if (x->hint[i].type != PX_FEATURE_NONE && feature_holds(x->c[i], x->hint[i], s)) return x->hint[i];
@@ -548,7 +548,7 @@ static px_feature feature_of(const hy_ctx *x, int i, const px_vec3 *p) {
         const px_convex *c = x->c[i];
         for (uint32_t k = c->v_first[s->id[0]]; k < c->v_first[s->id[0] + 1]; ++k)
             if (c->v_adj[k] == s->id[1]) {
-                px_feature f = {PX_FEATURE_EDGE, c->v_edges[k]};
+                px_feature f = {PX_FEATURE_EDGE, c->v_edges[k], 0};
                 return f;
             }
     }
@@ -580,7 +580,7 @@ static void setup_frame(hy_ctx *x) {
  * direction when the centres coincide). */
 static void cold_start(hy_ctx *x) {
     px_vec3 d = pxi_sub(pxi_xform(x->t_ab, x->c[0]->center), x->c[1]->center);
-    if (!(pxi_len2(d) > 0.0)) d = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
+    if (!(pxi_max_abs(d) > 0.0)) d = pxi_v(0.5773502691896258, 0.5773502588, 0.5773502794);
     for (int i = 0; i < 2; ++i) {
         x->s[i].n = 1;
         x->s[i].id[0] = support(x, i, d, UINT32_MAX);
@@ -593,7 +593,7 @@ static uint32_t round_cap(const px_convex *a, const px_convex *b) {
     return 64 + 4 * lg;
 }
 
-void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_pair_cache *cache,
                 pxi_answer *out) {
     memset(out, 0, sizeof *out);
     hy_ctx x;
@@ -632,7 +632,7 @@ void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_
     } else {
         int band = x.vv <= abs_tol * abs_tol;
         finish(&x, band, out);
-        if (band) out->approx = PXI_APPROX_CONTACT_BAND;
+        if (band) out->quality = PX_QUALITY_CONTACT_BAND;
     }
     store_cache(&x, cache, out);
 }

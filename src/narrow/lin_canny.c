@@ -73,7 +73,7 @@ static inline px_vec3 to_other(const lc_ctx *x, int i, px_vec3 p) { return pxi_x
 static inline px_vec3 dir_to_other(const lc_ctx *x, int i, px_vec3 d) { return pxi_rot(x->T[i].r, d); }
 
 static inline px_feature feat(uint32_t type, uint32_t index) {
-    px_feature f = {type, index};
+    px_feature f = {type, index, 0};
     return f;
 }
 
@@ -171,7 +171,7 @@ static int vertex_vertex(lc_ctx *x, int i) {
     }
     x->p[i] = ci->v[vi];
     x->p[j] = cj->v[vj];
-    x->dist = pxi_len(pxi_sub(q, cj->v[vj]));
+    x->dist = pxi_len_safe(pxi_sub(q, cj->v[vj]));
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
 }
 
@@ -181,6 +181,15 @@ static int vertex_vertex(lc_ctx *x, int i) {
  * for nearly parallel edges is the whole of dir and swamps a true slope of
  * order angle^2. */
 static inline px_vec3 perp(px_vec3 dir, px_vec3 u) { return pxi_madd(dir, u, -pxi_dot(dir, u)); }
+
+/* A direction whose only use is the sign of (P - v) . dir, a product of two
+ * lengths: brought to unit size by a power of two when that product would
+ * overflow or underflow (bodies beyond 1e150 or below 1e-150); unchanged,
+ * so the same bits, otherwise. */
+static inline px_vec3 unit_scale_dir(px_vec3 dir) {
+    double m = pxi_max_abs(dir);
+    return pxi_len_ok(m) || !(m > 0.0) || !isfinite(m) ? dir : pxi_ldexp3(dir, -ilogb(m));
+}
 
 /* Mirtich's clipping of segment [p0, p1] (in v's body frame) against the
  * cone VR(v): 1 = v stays a candidate, 0 = move v to edge *edge, -1 =
@@ -211,7 +220,7 @@ static int clip_against_vertex(const px_convex *c, uint32_t v, px_vec3 p0, px_ve
         }
     }
     if (lo > hi) return -1;
-    px_vec3 dir = pxi_sub(p1, p0);
+    px_vec3 dir = unit_scale_dir(pxi_sub(p1, p0));
     if (elo != NONE && pxi_dot(lerp(d0, d1, lo), perp(dir, c->e[elo].u)) > 0.0) {
         *edge = elo;
         return 0;
@@ -236,7 +245,12 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     }
     px_vec3 t = cj->v[E->tail], h = cj->v[E->head];
     px_vec3 d = pxi_sub(h, t);
-    double lam = pxi_clamp01(pxi_dot(pxi_sub(q, t), d) / pxi_dot(d, d));
+    px_vec3 qt = pxi_sub(q, t), ds = d;
+    if (!pxi_len_ok(pxi_max_abs(d))) { /* |d|^2 overflows or underflows: the ratio at unit scale */
+        int ex = -ilogb(pxi_max_abs(d));
+        qt = pxi_ldexp3(qt, ex), ds = pxi_ldexp3(d, ex);
+    }
+    double lam = pxi_clamp01(pxi_dot(qt, ds) / pxi_dot(ds, ds));
     px_vec3 y = lerp(t, h, lam);
     int clip = x->tie == 0.0 ? -1 : 0;
     if (clip < 0) { /* exact mode: clip E against the cone of v (V-Clip) */
@@ -255,7 +269,7 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     }
     x->p[i] = ci->v[v];
     x->p[j] = y;
-    x->dist = pxi_len(pxi_sub(q, y));
+    x->dist = pxi_len_safe(pxi_sub(q, y));
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
 }
 
@@ -395,7 +409,7 @@ static int clip_against_edge(const px_convex *c, uint32_t e, px_vec3 p0, px_vec3
         }
     }
     if (lo > hi) return -1;
-    px_vec3 dir = pxi_sub(p1, p0);
+    px_vec3 dir = unit_scale_dir(pxi_sub(p1, p0));
     if (nlo >= 0 && edge_slope(c, E, nlo, lerp(p0, p1, lo), dir) > 0.0) {
         *nbr = n[nlo];
         return 0;
@@ -445,7 +459,7 @@ static int edge_edge(lc_ctx *x, int i) {
     }
     x->p[i] = lerp(ci->v[Ei->tail], ci->v[Ei->head], s);
     x->p[j] = yq;
-    x->dist = pxi_len(pxi_sub(xp, yq));
+    x->dist = pxi_len_safe(pxi_sub(xp, yq));
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
 }
 
@@ -455,12 +469,15 @@ static px_feature closest_boundary_feature(const px_convex *c, uint32_t f, px_ve
     const pxi_face *F = &c->f[f];
     double best = INFINITY;
     px_feature out = feat(PX_FEATURE_EDGE, c->f_edges[F->first]);
+    /* Squared distances compared at unit scale when they would overflow or
+     * underflow (k = 1, the plain squares, in the safe range). */
+    double m = c->scale + pxi_max_abs(p0) + pxi_max_abs(p1), ks = pxi_len_ok(m) ? 1.0 : pxi_pow2_unit(m);
     for (uint32_t k = 0; k < F->count; ++k) {
         uint32_t e = c->f_edges[F->first + k];
         const pxi_edge *E = &c->e[e];
         double s, t;
         pxi_segment_closest(p0, p1, c->v[E->tail], c->v[E->head], &s, &t);
-        double d2 = pxi_len2(pxi_sub(lerp(p0, p1, s), lerp(c->v[E->tail], c->v[E->head], t)));
+        double d2 = pxi_len2(pxi_scale(pxi_sub(lerp(p0, p1, s), lerp(c->v[E->tail], c->v[E->head], t)), ks));
         if (d2 < best) {
             best = d2;
             out = t <= 0.0   ? feat(PX_FEATURE_VERTEX, E->tail)
@@ -613,8 +630,7 @@ static int contact_within_rounding(lc_ctx *x) {
         x->band = 1;
         return 1;
     }
-    double span =
-        a->radius + b->radius + pxi_len(x->T[0].t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
+    double span = pxi_pair_size(a, b, &x->T[0]);
     if (x->dist > 1e-8 * span) return 0;
     px_vec3 n; /* B -> A, B's frame */
     if (x->f[1].type == PX_FEATURE_FACE)
@@ -680,7 +696,7 @@ void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
     if (r == LC_DONE && contact_within_rounding(&x)) r = LC_PENETRATION;
     out->distance = r == LC_PENETRATION ? 0.0 : x.dist;
     out->intersecting = r == LC_PENETRATION;
-    out->approx = out->intersecting && x.band ? PXI_APPROX_CONTACT_BAND : 0u;
+    out->quality = out->intersecting && x.band ? PX_QUALITY_CONTACT_BAND : 0u;
     out->pa = x.p[0];
     out->pb = x.p[1];
 }

@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "convex/convex.h"
+#include "proxima/query.h"
 
 /* How a method ended. */
 typedef enum pxi_outcome {
@@ -24,13 +25,6 @@ typedef enum pxi_outcome {
     PXI_UNPROVEN = 1,    /* stopped without a proof (a rounding floor, a cycle) */
     PXI_OUT_OF_STEPS = 2 /* its step budget ran out */
 } pxi_outcome;
-
-/* Why an answer is not exact (bits; 0 = exact). */
-enum {
-    PXI_APPROX_CONTACT_BAND = 1u, /* "intersecting" because the distance is within the contact band */
-    PXI_APPROX_DEPTH_BUDGET = 2u, /* EPA out of budget: depth exact along its best normal only */
-    PXI_APPROX_UNPROVEN = 4u      /* an unproven bound accepted as the answer */
-};
 
 /* One distance answer in body frames (pa in A's frame, pb in B's), shared
  * by every distance method; query.c turns it into a public result. */
@@ -41,8 +35,8 @@ typedef struct pxi_answer {
     int intersecting;
     uint32_t iterations;
     pxi_outcome outcome;
-    double gap;      /* PXI_UNPROVEN (GJK): the true distance is at least distance - gap */
-    uint32_t approx; /* PXI_APPROX_* bits */
+    double gap;       /* PXI_UNPROVEN (GJK): the true distance is at least distance - gap */
+    uint32_t quality; /* px_quality bits (0: exact) */
 } pxi_answer;
 
 /* ---- Lin-Canny (lin_canny.c). ---- */
@@ -99,19 +93,20 @@ void pxi_gjk_seed_run(const px_convex *a, const px_convex *b, const px_pose *t_a
  * gap) when it stopped on a repeat or the rounding floor with the duality
  * gap open. `cache` (may be NULL) receives the simplex, direction and
  * features; `simplex_out` (may be NULL) the final simplex. */
-void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+void pxi_gjk_distance(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_pair_cache *cache,
                       pxi_answer *out, pxi_simplex_pairs *simplex_out);
 
 /* Boolean GJK with early exit on a separating axis. PXI_DONE with
  * *intersecting set when proved either way, else PXI_UNPROVEN. */
 pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_pose *t_ab,
-                              px_distance_cache *cache, int *intersecting, uint32_t *iterations);
+                              px_pair_cache *cache, int *intersecting, uint32_t *iterations,
+                              uint32_t *quality);
 
 /* ---- The Lin-Canny/GJK hybrid of seed 001 (hybrid.c). ---- */
 
 /* PXI_DONE, or PXI_OUT_OF_STEPS when its rounds ran out (a safeguard).
  * `cache` (may be NULL): its vertex sets are read and updated. */
-void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_distance_cache *cache,
+void pxi_hybrid(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_pair_cache *cache,
                 pxi_answer *out);
 
 /* ---- Penetration depth by EPA (epa.c). ---- */
@@ -166,7 +161,7 @@ typedef struct pxi_ray_bound {
  * the lower bound to finish from. PXI_OUT_OF_STEPS: a warm run that did not
  * converge cleanly (a stale hint): out is not set, the caller reruns cold. */
 pxi_outcome pxi_raycast(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                        px_distance_cache *cache, pxi_translation *out, pxi_ray_bound *bound);
+                        px_pair_cache *cache, pxi_translation *out, pxi_ray_bound *bound);
 
 /* Conservative advancement with Lin-Canny from tau, a proved lower bound
  * (A + tau d does not overlap B); n is the normal to report if the first
@@ -180,7 +175,7 @@ pxi_outcome pxi_advance(const px_convex *a, const px_convex *b, const px_pose *t
 /* The warm start of a tracked translation: a lower bound from the cached
  * contact normal, then pxi_advance; updates the cache on PXI_DONE. */
 pxi_outcome pxi_advance_warm(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 d,
-                             px_distance_cache *cache, pxi_translation *out);
+                             px_pair_cache *cache, pxi_translation *out);
 
 /* ---- Policy (query.c). ---- */
 
@@ -193,11 +188,11 @@ typedef struct pxi_policy {
 
 /* The distance of a pair under a policy (T_AB already checked). */
 void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_policy *policy,
-                       px_distance_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks);
+                       px_pair_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks);
 
 /* The collision translation of a pair (dir in B's frame, scaled to max-norm
  * in [1, 2)). */
 void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                           px_distance_cache *cache, pxi_translation *out, uint32_t *fallbacks);
+                           px_pair_cache *cache, pxi_translation *out, uint32_t *fallbacks);
 
 #endif

@@ -38,22 +38,46 @@
 #include "narrow/narrow.h"
 #include "narrow/tolerance.h"
 
-/* Checks the arguments every query shares and computes T_AB. Poses far
- * apart (translations of opposite sign near 1e308) can overflow T_AB's
- * translation even though each pose is finite: PX_ERR_NON_FINITE. */
+/* The frames of a query: every polytope is stored about its centre
+ * (convex.h), so the queries run between the stored frames, and answers map
+ * back to the world through them. */
+typedef struct pair_frames {
+    px_pose t_ab;   /* A's stored frame -> B's stored frame */
+    px_pose wa, wb; /* stored frames -> world: (R, t + R origin) */
+} pair_frames;
+
+/* Checks the arguments every query shares and computes the frames. T_AB's
+ * translation is (t_A - t_B) + (R_A o_A - R_B o_B) rotated into B: the
+ * poses' difference first, exact when the bodies are close (REFERENCES
+ * §1.8, §7), then the centres' offsets. Poses far apart (translations of
+ * opposite sign near 1e308) can overflow it even though each pose is
+ * finite: PX_ERR_NON_FINITE. */
 static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_convex *b,
-                            const px_pose *pose_b, px_pose *t_ab) {
+                            const px_pose *pose_b, pair_frames *f) {
     if (!a || !b || !pose_a || !pose_b) return PX_ERR_INVALID_ARGUMENT;
     px_status st = px_pose_check(pose_a, NULL);
     if (st == PX_OK) st = px_pose_check(pose_b, NULL);
     if (st != PX_OK) return st;
     /* Checked before the rotation: inf times a zero matrix entry is NaN. */
-    if (!pxi_is_finite3(pxi_sub(pose_a->t, pose_b->t))) return PX_ERR_NON_FINITE;
-    *t_ab = pxi_relative(pose_a, pose_b);
-    return pxi_is_finite3(t_ab->t) ? PX_OK : PX_ERR_NON_FINITE;
+    px_vec3 dt = pxi_sub(pose_a->t, pose_b->t);
+    if (!pxi_is_finite3(dt)) return PX_ERR_NON_FINITE;
+    px_vec3 oa = pxi_rot(pose_a->r, a->origin), ob = pxi_rot(pose_b->r, b->origin);
+    f->wa = *pose_a;
+    f->wa.t = pxi_add(pose_a->t, oa);
+    f->wb = *pose_b;
+    f->wb.t = pxi_add(pose_b->t, ob);
+    px_vec3 d = pxi_add(dt, pxi_sub(oa, ob));
+    if (!pxi_is_finite3(f->wa.t) || !pxi_is_finite3(f->wb.t) || !pxi_is_finite3(d)) return PX_ERR_NON_FINITE;
+    f->t_ab = pxi_relative(pose_a, pose_b);
+    f->t_ab.t = pxi_rot_t(pose_b->r, d);
+    if (!pxi_is_finite3(f->t_ab.t)) return PX_ERR_NON_FINITE;
+    /* The pair's span (sizes plus distance) must leave room for the sums and
+     * the power-of-two scaling of every method: at most 2^1021 (4.5e307). */
+    return pxi_pair_span(a, b, &f->t_ab) <= 0x1p1021 ? PX_OK : PX_ERR_RANGE;
 }
 
 static px_vec3 unit_or_zero(px_vec3 v) {
+    if (!pxi_len_ok(pxi_max_abs(v))) return pxi_unit_safe(v); /* |v|^2 would overflow or underflow */
     double l = pxi_len(v);
     return l > 0.0 && isfinite(l) ? pxi_scale(v, 1.0 / l) : pxi_v(0, 0, 0);
 }
@@ -98,7 +122,7 @@ static void run_lc(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
 }
 
 static px_feature vertex_feature(uint32_t v) {
-    px_feature f = {PX_FEATURE_VERTEX, v};
+    px_feature f = {PX_FEATURE_VERTEX, v, 0};
     return f;
 }
 
@@ -114,7 +138,7 @@ static void run_lc_seeded(const px_convex *a, const px_convex *b, const px_pose 
      * iteration (two support queries) costs about three walk steps. */
     uint32_t gjk_cap = 4 + (uint32_t)ilogb((double)a->nv + b->nv);
     pxi_gjk_seed_run(a, b, t_ab, 1e-3, gjk_cap, &g);
-    double span = a->radius + b->radius + pxi_len(t_ab->t) + pxi_max_abs(a->center) + pxi_max_abs(b->center);
+    double span = pxi_pair_size(a, b, t_ab);
     if (g.intersecting && g.inside_margin > 64.0 * DBL_EPSILON * span) {
         memset(ans, 0, sizeof *ans);
         ans->intersecting = 1;
@@ -149,15 +173,15 @@ static void run_lc_restart(const px_convex *a, const px_convex *b, const px_pose
     ans->fb = vertex_feature(g.vb);
     ans->iterations = it;
     ans->outcome = PXI_DONE;
-    ans->approx = PXI_APPROX_UNPROVEN;
+    ans->quality = PX_QUALITY_UNPROVEN;
 }
 
 /* Runs one step on the pair. `cache` is the caller's for the first step
  * only (fallbacks run cold); `prev` is the answer being finished. */
 static void run_step(step s, const px_convex *a, const px_convex *b, const px_pose *t_ab,
-                     px_distance_cache *cache, const pxi_answer *prev, pxi_simplex_pairs *simplex,
+                     px_pair_cache *cache, const pxi_answer *prev, pxi_simplex_pairs *simplex,
                      pxi_answer *ans) {
-    px_feature none = {PX_FEATURE_NONE, 0};
+    px_feature none = {PX_FEATURE_NONE, 0, 0};
     switch (s) {
     case STEP_LC: {
         int warm = cache && pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b);
@@ -177,8 +201,7 @@ static void run_step(step s, const px_convex *a, const px_convex *b, const px_po
 }
 
 /* The first step of a method on this pair. */
-static step first_step(uint32_t method, const px_convex *a, const px_convex *b,
-                       const px_distance_cache *cache) {
+static step first_step(uint32_t method, const px_convex *a, const px_convex *b, const px_pair_cache *cache) {
     switch (method) {
     case PX_METHOD_GJK: return STEP_GJK;
     case PX_METHOD_HYBRID: return STEP_HYBRID;
@@ -191,14 +214,14 @@ static step first_step(uint32_t method, const px_convex *a, const px_convex *b,
 
 /* The translation chain (also EPA's fallback). */
 void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                           px_distance_cache *cache, pxi_translation *out, uint32_t *fallbacks) {
+                           px_pair_cache *cache, pxi_translation *out, uint32_t *fallbacks) {
     memset(out, 0, sizeof *out);
     int warm = cache && cache->simplex_count >= 1 && cache->simplex_count <= 3 &&
                cache->vertex_a[0] < a->nv && cache->vertex_b[0] < b->nv &&
                cache->feature_a.type >= PX_FEATURE_VERTEX && cache->feature_b.type >= PX_FEATURE_VERTEX;
     if (warm && pxi_advance_warm(a, b, t_ab, dir, cache, out) == PXI_DONE) return;
     pxi_ray_bound bound;
-    px_distance_cache *ray_cache = cache;
+    px_pair_cache *ray_cache = cache;
     pxi_outcome st = pxi_raycast(a, b, t_ab, dir, ray_cache, out, &bound);
     if (st == PXI_OUT_OF_STEPS) { /* a warm ray cast that did not converge cleanly: cold */
         uint32_t it = out->iterations;
@@ -236,7 +259,7 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
  * (entry tau = -depth), whose contact points lie on both boundaries. */
 static void penetration(const px_convex *a, const px_convex *b, const px_pose *t_ab,
                         const pxi_simplex_pairs *method_simplex, pxi_penetration *pen, uint32_t *iterations,
-                        uint32_t *fallbacks, uint32_t *approx) {
+                        uint32_t *fallbacks, uint32_t *quality) {
     pxi_simplex_pairs simplex = *method_simplex;
     if (simplex.n < 4) {
         pxi_answer g;
@@ -245,10 +268,10 @@ static void penetration(const px_convex *a, const px_convex *b, const px_pose *t
     }
     pxi_epa(a, b, t_ab, &simplex, pen);
     *iterations += pen->iterations;
-    if (pen->outcome == PXI_UNPROVEN) *approx |= PXI_APPROX_UNPROVEN;
+    if (pen->outcome == PXI_UNPROVEN) *quality |= PX_QUALITY_UNPROVEN;
     if (pen->outcome != PXI_OUT_OF_STEPS) return;
     ++*fallbacks;
-    *approx |= PXI_APPROX_DEPTH_BUDGET;
+    *quality |= PX_QUALITY_DEPTH_BUDGET;
     pxi_translation tr;
     pxi_translation_query(a, b, t_ab, pen->normal, NULL, &tr, fallbacks);
     *iterations += tr.iterations;
@@ -262,7 +285,7 @@ static void penetration(const px_convex *a, const px_convex *b, const px_pose *t
 }
 
 void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_policy *policy,
-                       px_distance_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks) {
+                       px_pair_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks) {
     pxi_simplex_pairs simplex;
     simplex.n = 0;
     step s = first_step(policy->method, a, b, cache);
@@ -274,7 +297,7 @@ void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_
         for (;;) {
             int seed = out->outcome == PXI_OUT_OF_STEPS && k_next[s].oos_is_seed;
             if (policy->accept_bound && !seed) {
-                out->approx |= PXI_APPROX_UNPROVEN;
+                out->quality |= PX_QUALITY_UNPROVEN;
                 break;
             }
             step next = out->outcome == PXI_UNPROVEN ? k_next[s].unproven : k_next[s].out_of_steps;
@@ -292,25 +315,47 @@ void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_
         cache->feature_a = out->fa;
         cache->feature_b = out->fb;
     }
+    /* The contact band, the same for every method (proxima/query.h): each
+     * method's own band lies inside it, and this settles the rest. */
+    if (!out->intersecting && out->distance <= PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab)) {
+        out->intersecting = 1;
+        out->distance = 0.0;
+        out->quality |= PX_QUALITY_CONTACT_BAND;
+    }
     if (pen) pen->flat = 1; /* no depth unless computed below */
     if (!pen || !policy->signed_depth || !out->intersecting) return;
     if (policy->method != PX_METHOD_GJK) simplex.n = 0;
-    penetration(a, b, t_ab, &simplex, pen, &out->iterations, fallbacks, &out->approx);
+    penetration(a, b, t_ab, &simplex, pen, &out->iterations, fallbacks, &out->quality);
 }
 
 /* ---- Public entry points. ---- */
 
-px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
-                         const px_query_options *options, px_distance_cache *cache,
-                         px_distance_result *result) {
+/* The method and flags of the options, checked: PX_ERR_INVALID_ARGUMENT for
+ * an unknown method, a flag outside `allowed` or a reserved field set. */
+static px_status read_options(const px_query_options *o, uint32_t allowed, uint32_t *method,
+                              uint32_t *flags) {
+    *method = PX_METHOD_LIN_CANNY;
+    *flags = 0;
+    if (!o) return PX_OK;
+    for (size_t i = 0; i < sizeof o->reserved / sizeof o->reserved[0]; ++i)
+        if (o->reserved[i] != 0) return PX_ERR_INVALID_ARGUMENT;
+    if (o->method > PX_METHOD_HYBRID || (o->flags & ~allowed)) return PX_ERR_INVALID_ARGUMENT;
+    *method = o->method;
+    *flags = o->flags;
+    return PX_OK;
+}
+
+px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                      const px_query_options *options, px_pair_cache *cache, px_distance_result *result) {
     if (result) memset(result, 0, sizeof *result);
     if (!result) return PX_ERR_INVALID_ARGUMENT;
-    uint32_t method = options ? options->method : PX_METHOD_LIN_CANNY;
-    uint32_t flags = options ? options->flags : 0u;
-    if (method > PX_METHOD_HYBRID || (flags & ~PX_QUERY_SIGNED)) return PX_ERR_INVALID_ARGUMENT;
-    px_pose t_ab;
-    px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
+    uint32_t method, flags;
+    px_status st = read_options(options, PX_QUERY_SIGNED, &method, &flags);
     if (st != PX_OK) return st;
+    pair_frames fr;
+    st = check_pair(a, pose_a, b, pose_b, &fr);
+    if (st != PX_OK) return st;
+    const px_pose *t_ab = &fr.t_ab;
     pxi_policy policy;
     memset(&policy, 0, sizeof policy);
     policy.method = method;
@@ -318,17 +363,18 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     pxi_answer ans;
     pxi_penetration pen;
     uint32_t fallbacks = 0;
-    pxi_distance_pair(a, b, &t_ab, &policy, cache, &ans, &pen, &fallbacks);
+    pxi_distance_pair(a, b, t_ab, &policy, cache, &ans, &pen, &fallbacks);
     result->distance = ans.distance;
     result->signed_distance = ans.distance;
     result->intersecting = ans.intersecting;
     result->feature_a = ans.fa;
     result->feature_b = ans.fb;
-    result->iterations = ans.iterations;
-    result->fallbacks = fallbacks;
-    result->point_a = pxi_xform(pose_a, ans.pa);
+    result->diag.iterations = ans.iterations;
+    result->diag.fallbacks = fallbacks;
+    result->diag.quality = ans.quality;
+    result->point_a = pxi_xform(&fr.wa, ans.pa);
     if (!ans.intersecting) {
-        result->point_b = pxi_xform(pose_b, ans.pb);
+        result->point_b = pxi_xform(&fr.wb, ans.pb);
         result->normal = unit_or_zero(pxi_sub(result->point_b, result->point_a));
         return PX_OK;
     }
@@ -339,49 +385,61 @@ px_status px_distance_ex(const px_convex *a, const px_pose *pose_a, const px_con
     result->signed_distance = 0.0;
     if (pen.flat) return PX_OK; /* not asked, or A - B flat within rounding: touching, as reported */
     result->signed_distance = -pen.depth;
-    result->point_a = pxi_xform(pose_a, pen.pa);
-    result->point_b = pxi_xform(pose_b, pen.pb);
+    result->point_a = pxi_xform(&fr.wa, pen.pa);
+    result->point_b = pxi_xform(&fr.wb, pen.pb);
     result->normal = pen.depth > 0.0 ? pxi_rot(pose_b->r, pen.normal) : pxi_v(0, 0, 0);
     result->feature_a = pen.fa;
     result->feature_b = pen.fb;
     return PX_OK;
 }
 
-px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
-                      px_distance_cache *cache, px_distance_result *result) {
-    return px_distance_ex(a, pose_a, b, pose_b, NULL, cache, result);
-}
-
 px_status px_intersect(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
-                       px_distance_cache *cache, int *intersecting) {
-    if (intersecting) *intersecting = 0;
-    if (!intersecting) return PX_ERR_INVALID_ARGUMENT;
-    px_pose t_ab;
-    px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
+                       const px_query_options *options, px_pair_cache *cache, px_intersect_result *result) {
+    if (result) memset(result, 0, sizeof *result);
+    if (!result) return PX_ERR_INVALID_ARGUMENT;
+    uint32_t method, flags;
+    px_status st = read_options(options, 0u, &method, &flags);
     if (st != PX_OK) return st;
-    uint32_t it = 0;
-    if (pxi_gjk_intersect(a, b, &t_ab, cache, intersecting, &it) == PXI_DONE) return PX_OK;
+    pair_frames fr;
+    st = check_pair(a, pose_a, b, pose_b, &fr);
+    if (st != PX_OK) return st;
+    const px_pose *t_ab = &fr.t_ab;
+    uint32_t it = 0, quality = 0;
+    int hit = 0;
+    pxi_outcome oc = pxi_gjk_intersect(a, b, t_ab, cache, &hit, &it, &quality);
+    result->intersecting = hit;
+    result->diag.iterations = it;
+    result->diag.quality = quality;
+    if (oc == PXI_DONE) return PX_OK;
     /* Not proved either way (near contact between nearly coplanar facets):
-     * the GJK distance chain decides, with its Lin-Canny finish. */
+     * the distance query decides, by the method asked for. */
     pxi_policy policy;
     memset(&policy, 0, sizeof policy);
-    policy.method = PX_METHOD_GJK;
+    policy.method = method;
     pxi_answer ans;
     uint32_t fallbacks = 1;
-    pxi_distance_pair(a, b, &t_ab, &policy, NULL, &ans, NULL, &fallbacks);
-    *intersecting = ans.intersecting;
+    pxi_distance_pair(a, b, t_ab, &policy, NULL, &ans, NULL, &fallbacks);
+    result->intersecting = ans.intersecting;
+    result->diag.iterations += ans.iterations;
+    result->diag.fallbacks = fallbacks;
+    result->diag.quality = ans.quality;
     return PX_OK;
 }
 
-px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
-                         px_vec3 direction, px_distance_cache *cache, px_translation_result *result) {
+px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                       px_vec3 direction, const px_query_options *options, px_pair_cache *cache,
+                       px_translate_result *result) {
     if (result) memset(result, 0, sizeof *result);
     if (!result) return PX_ERR_INVALID_ARGUMENT;
+    uint32_t method, flags;
+    px_status st = read_options(options, PX_QUERY_BOTH_WAYS, &method, &flags);
+    if (st != PX_OK) return st;
     if (!pxi_is_finite3(direction)) return PX_ERR_NON_FINITE;
     if (!(pxi_max_abs(direction) > 0.0)) return PX_ERR_INVALID_ARGUMENT;
-    px_pose t_ab;
-    px_status st = check_pair(a, pose_a, b, pose_b, &t_ab);
+    pair_frames fr;
+    st = check_pair(a, pose_a, b, pose_b, &fr);
     if (st != PX_OK) return st;
+    const px_pose *t_ab = &fr.t_ab;
     /* Scale the direction by 2^-e to max-norm in [1, 2) (exact, also for
      * subnormal lengths), so that its squared length can neither overflow
      * nor underflow; tau is rescaled at the end. */
@@ -390,19 +448,63 @@ px_status px_translation(const px_convex *a, const px_pose *pose_a, const px_con
     px_vec3 dir_b = pxi_rot_t(pose_b->r, ds);
     pxi_translation tr;
     uint32_t fallbacks = 0;
-    pxi_translation_query(a, b, &t_ab, dir_b, cache, &tr, &fallbacks);
+    pxi_translation_query(a, b, t_ab, dir_b, cache, &tr, &fallbacks);
     double tau = ldexp(tr.tau, -e);
     if (!isfinite(tau)) return PX_ERR_NON_FINITE; /* a direction so short that tau overflows */
+    result->diag.iterations = tr.iterations;
+    result->diag.fallbacks = fallbacks;
+    /* Forward mode: is A in contact with B now? Certainly when the entry
+     * point is behind A (tau < 0: A overlaps B, or B lies behind it), and
+     * when it is ahead by less than the contact band (the distance now is at
+     * most tau |d|). It is not when the contact plane's gap now, tau (n . d),
+     * clears the band. In between (a grazing approach), and whenever the
+     * entry is behind, the distance query at tau = 0 decides, so that every
+     * query calls the same pairs touching. */
+    int check_now = 0;
+    if (tr.hit && !(flags & PX_QUERY_BOTH_WAYS)) {
+        double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
+        double along = tr.tau * sqrt(pxi_dot(dir_b, dir_b)), normal_gap = tr.tau * pxi_dot(tr.normal, dir_b);
+        check_now = tr.tau < 0.0 || !(ldexp(normal_gap, -e) > band);
+        if (tr.tau >= 0.0 && ldexp(along, -e) <= band) check_now = 1;
+    }
+    if (check_now) {
+        /* Either A touches B now (the time of impact is 0), or the whole
+         * contact interval lies behind and A moving forward only gets
+         * farther: then the distance at tau = 0 is the witness (its normal
+         * has normal . direction <= 0, and the distance of A + tau d to B is
+         * convex in tau, so it only grows). */
+        pxi_policy policy;
+        memset(&policy, 0, sizeof policy);
+        policy.method = method;
+        pxi_answer ans;
+        pxi_distance_pair(a, b, t_ab, &policy, NULL, &ans, NULL, &result->diag.fallbacks);
+        result->diag.iterations += ans.iterations;
+        if (ans.intersecting || tr.tau < 0.0) {
+            result->diag.quality = ans.quality;
+            result->feature_a = ans.fa;
+            result->feature_b = ans.fb;
+            result->point_a = pxi_xform(&fr.wa, ans.pa);
+            if (ans.intersecting) {
+                result->hit = 1;
+                result->in_contact = 1;
+                result->point_b = result->point_a;
+                return PX_OK;
+            }
+            result->point_b = pxi_xform(&fr.wb, ans.pb);
+            result->normal = unit_or_zero(pxi_sub(result->point_b, result->point_a));
+            result->gap = ans.distance;
+            return PX_OK;
+        }
+    }
     result->hit = tr.hit;
     result->tau = tau;
-    result->iterations = tr.iterations;
     result->feature_a = tr.fa;
     result->feature_b = tr.fb;
     result->normal = pxi_rot(pose_b->r, tr.normal);
     result->gap = tr.gap;
-    px_vec3 pa = pxi_xform(pose_a, tr.pa);
+    px_vec3 pa = pxi_xform(&fr.wa, tr.pa);
     if (tr.hit) pa = pxi_madd(pa, ds, tr.tau); /* tau * direction, without overflow */
     result->point_a = pa;
-    result->point_b = pxi_xform(pose_b, tr.pb);
+    result->point_b = pxi_xform(&fr.wb, tr.pb);
     return PX_OK;
 }

@@ -176,15 +176,15 @@ typedef struct ray {
     double tau0, lambda;
     double y2; /* max |x - m|^2 over the simplex, at least 1 (scaled units) */
     uint32_t it, cap;
-    const px_distance_cache *warm; /* the cache whose simplex is brought back after the first advance */
-    int v_closest;                 /* v is the closest point of a solved simplex (not a first guess) */
+    const px_pair_cache *warm; /* the cache whose simplex is brought back after the first advance */
+    int v_closest;             /* v is the closest point of a solved simplex (not a first guess) */
 } ray;
 
 /* What one step of the ray cast found. */
 enum { RAY_GO, RAY_MISS, RAY_HIT, RAY_FLOOR };
 
 static void ray_init(ray *r, const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                     const px_distance_cache *cache) {
+                     const px_pair_cache *cache) {
     r->c.a = a;
     r->c.b = b;
     r->c.t = t_ab;
@@ -315,7 +315,7 @@ static void ray_hit(ray *r, pxi_translation *out) {
 
 /* The cache after a hit: the simplex (a tetrahedron keeps a face), the
  * plane normal (towards A), the features. */
-static void ray_store(const ray *r, px_distance_cache *cache, const pxi_translation *out) {
+static void ray_store(const ray *r, px_pair_cache *cache, const pxi_translation *out) {
     if (!cache) return;
     cache->simplex_count = (uint8_t)(r->s.n < 4 ? r->s.n : 3);
     for (int m = 0; m < cache->simplex_count; ++m) {
@@ -333,7 +333,7 @@ static void ray_store(const ray *r, px_distance_cache *cache, const pxi_translat
 }
 
 pxi_outcome pxi_raycast(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                        px_distance_cache *cache, pxi_translation *out, pxi_ray_bound *bound) {
+                        px_pair_cache *cache, pxi_translation *out, pxi_ray_bound *bound) {
     memset(out, 0, sizeof *out);
     ray r;
     ray_init(&r, a, b, t_ab, dir, cache);

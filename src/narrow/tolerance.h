@@ -24,8 +24,20 @@
 
 /* ---- The pair's scale. ---- */
 
-/* S = scale_A + scale_B + max|t_AB|: every coordinate of either body, mapped
- * into B's frame, is below it. */
+/* Every polytope is stored relative to its own middle when it sits far from
+ * its frame's origin (convex.h), so a pair's scale is made of the bodies'
+ * sizes and the distance between them, never of where their body-frame
+ * coordinates sit. */
+
+/* The size of the pair, R_A + R_B + |c_A - c_B| (radii about the centres,
+ * the distance of the centres): what the contact band is relative to
+ * (stated in proxima/query.h). */
+static inline double pxi_pair_size(const px_convex *a, const px_convex *b, const px_pose *t_ab) {
+    return a->radius + b->radius + pxi_len_safe(pxi_sub(pxi_xform(t_ab, a->center), b->center));
+}
+
+/* S = scale_A + scale_B + max|t_AB| (<= the size): every coordinate of
+ * either body, mapped into B's frame, is below it. */
 static inline double pxi_pair_span(const px_convex *a, const px_convex *b, const px_pose *t_ab) {
     return a->scale + b->scale + pxi_max_abs(t_ab->t);
 }
@@ -35,11 +47,15 @@ static inline double pxi_pair_span(const px_convex *a, const px_convex *b, const
  * overflow for bodies of 1e80 or underflow for bodies of 1e-80. Exact, so
  * scaled runs see the same bits. 1 when S is 0 or not finite. */
 static inline double pxi_pair_unit(const px_convex *a, const px_convex *b, const px_pose *t_ab) {
-    double span = pxi_pair_span(a, b, t_ab);
-    return span > 0.0 && isfinite(span) ? ldexp(1.0, -ilogb(span)) : 1.0;
+    return pxi_pow2_unit(pxi_pair_span(a, b, t_ab)); /* clamped: 2^-ilogb is inf for a subnormal span */
 }
 
 /* ---- Contact bands: "touching counts as intersecting". ---- */
+
+/* The band every query honours: distance <= PXI_CONTACT_BAND * size is
+ * touching (query.c applies it to every answer; each method's own band
+ * below lies inside it). */
+#define PXI_CONTACT_BAND (64.0 * DBL_EPSILON)
 
 /* GJK family (scaled units, S in [1, 2)): |v| at or below this is contact. */
 #define PXI_GJK_CONTACT (32.0 * DBL_EPSILON)

@@ -1,21 +1,39 @@
-/* Tests of src/io (px_convex_from_file, px_mesh_points_from_file).
+/* Tests of src/io (px_convex_create_from_file, px_load_points).
  *
  * Oracles are independent of Assimp and of the hull code: the expected
  * points are written into the files by this test, so the loaded, deduplicated
  * point set must equal them exactly (float-representable coordinates), and
  * the hull of a cube must have 8 vertices, 12 edges, 6 faces. Node
  * transforms are tested with a COLLADA file instancing one mesh twice.
- * Every allocation goes through a counting allocator: nothing may leak. */
+ * Every allocation goes through a counting allocator: nothing may leak.
+ * Malformed files (lying OFF, PLY and STL headers, empty files, directories,
+ * pipes, devices, oversized files, NaN coordinates) must fail with PX_ERR_IO
+ * and the file's name in the message, under a 2 GiB address-space limit. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "proxima/proxima.h"
 #include "proxima/io.h"
+
+/* AddressSanitizer builds (PROXIMA_SANITIZE) cannot run under an address-space limit. */
+#if defined(__SANITIZE_ADDRESS__)
+#define PX_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PX_TEST_ASAN 1
+#endif
+#endif
+#ifndef PX_TEST_ASAN
+#define PX_TEST_ASAN 0
+#endif
 
 static int g_failures;
 #define CHECK(cond)                                                                                          \
@@ -55,6 +73,20 @@ static const char *write_file(const char *name, const char *text) {
         exit(2);
     }
     fputs(text, f);
+    fclose(f);
+    return path;
+}
+
+/* Writes `len` bytes to a file in the test directory; returns its path
+ * (a static buffer, valid until the next call). */
+static const char *write_bytes(const char *name, const void *data, size_t len) {
+    static char path[512];
+    snprintf(path, sizeof path, "%s/%s", g_dir, name);
+    FILE *f = fopen(path, "wb");
+    if (!f || fwrite(data, 1, len, f) != len) {
+        perror(path);
+        exit(2);
+    }
     fclose(f);
     return path;
 }
@@ -199,6 +231,284 @@ static void test_point_cloud(void) {
     }
 }
 
+/* ------------------------------------------------------------------------
+ * Lying headers and other malformed files (BAD_INPUTS.md E.23, E.28, E.30).
+ *
+ * Regression: Assimp 5.2 (Debian bookworm) allocates and constructs arrays of
+ * the sizes a header declares before reading the elements: a 45-byte OFF
+ * declaring 2e9 vertices took 13 GB before the process was killed, a 172-byte
+ * binary PLY the same, and an ascii PLY or OFF declaring a few million
+ * vertices too many loaded "successfully" with the missing vertices at the
+ * origin. main() caps the address space at 2 GiB, so a regression fails
+ * (Assimp's std::bad_alloc has no "declares" in it) instead of eating the
+ * machine. All files are written here, at test time. */
+
+/* A file refused before any import: PX_ERR_IO from both entry points, the
+ * file's path and `needle` in the message, outputs reset. */
+static void expect_refused(const char *path_in, const char *needle) {
+    char path[512];
+    snprintf(path, sizeof path, "%s", path_in); /* path_in may be write_file's buffer */
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_convex *c = px_convex_create_from_file(path, NULL, &err);
+    CHECK(c == NULL);
+    CHECK(err.code == PX_ERR_IO);
+    if (!strstr(err.message, path) || (needle && !strstr(err.message, needle))) {
+        fprintf(stderr, "  message for '%s' lacks the path or '%s': %s\n", path, needle ? needle : "",
+                err.message);
+        g_failures++;
+    }
+    double *xyz = (double *)&err; /* must be reset to NULL */
+    size_t n = 99;
+    CHECK(px_load_points(path, NULL, &xyz, &n, &err) == PX_ERR_IO);
+    CHECK(xyz == NULL && n == 0);
+    px_convex_destroy(c);
+}
+
+/* A file that must load as the tetrahedron (0,0,0) (1,0,0) (0,1,0) (0,0,1):
+ * guards the checks against refusing valid files. */
+static void expect_tetrahedron(const char *path_in) {
+    char path[512];
+    snprintf(path, sizeof path, "%s", path_in);
+    double *xyz = NULL;
+    size_t n = 0;
+    px_error err;
+    px_status st = px_load_points(path, NULL, &xyz, &n, &err);
+    if (st != PX_OK) {
+        fprintf(stderr, "  '%s' did not load: %s\n", path, err.message);
+        g_failures++;
+        return;
+    }
+    CHECK(n == 4);
+    CHECK(has_point(xyz, n, 0, 0, 0) && has_point(xyz, n, 1, 0, 0));
+    CHECK(has_point(xyz, n, 0, 1, 0) && has_point(xyz, n, 0, 0, 1));
+    px_free_points(xyz, n, NULL);
+}
+
+static const float k_tet[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+static const int k_tet_faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+static unsigned char *put_u32(unsigned char *p, uint32_t v, int big_endian) {
+    for (int i = 0; i < 4; ++i) p[i] = (unsigned char)(v >> (8 * (big_endian ? 3 - i : i)));
+    return p + 4;
+}
+static unsigned char *put_f32(unsigned char *p, float f, int big_endian) {
+    uint32_t v;
+    memcpy(&v, &f, 4);
+    return put_u32(p, v, big_endian);
+}
+
+/* Binary STL: an 80-byte header starting with `header` (space padded), the
+ * count `declared`, then the first `ntri` triangles of the tetrahedron (zero
+ * normals); `nan_z` puts a NaN into the last triangle. Returns the length. */
+static size_t make_stl(unsigned char *buf, const char *header, uint32_t declared, int ntri, int nan_z) {
+    memset(buf, ' ', 80);
+    memcpy(buf, header, strlen(header));
+    unsigned char *p = put_u32(buf + 80, declared, 0);
+    for (int t = 0; t < ntri; ++t) {
+        for (int k = 0; k < 3; ++k) p = put_f32(p, 0, 0);
+        for (int v = 0; v < 3; ++v)
+            for (int k = 0; k < 3; ++k)
+                p = put_f32(p, nan_z && t == 3 && k == 2 ? NAN : k_tet[k_tet_faces[t][v]][k], 0);
+        *p++ = 0;
+        *p++ = 0;
+    }
+    return (size_t)(p - buf);
+}
+
+/* Binary PLY of the tetrahedron: vertices (float x y z) declared `nv`,
+ * faces (list uchar int) declared `nf`; the data of 4 vertices and
+ * `faces_written` faces follows. Returns the length. */
+static size_t make_ply(unsigned char *buf, int big_endian, unsigned long long nv, unsigned long long nf,
+                       int faces_written, int nan_z) {
+    int h = sprintf((char *)buf,
+                    "ply\nformat %s 1.0\ncomment made by test_io\nelement vertex %llu\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face %llu\n"
+                    "property list uchar int vertex_indices\nend_header\n",
+                    big_endian ? "binary_big_endian" : "binary_little_endian", nv, nf);
+    unsigned char *p = buf + h;
+    for (int v = 0; v < 4; ++v)
+        for (int k = 0; k < 3; ++k) p = put_f32(p, nan_z && v == 3 && k == 2 ? NAN : k_tet[v][k], big_endian);
+    for (int f = 0; f < faces_written; ++f) {
+        *p++ = 3;
+        for (int k = 0; k < 3; ++k) p = put_u32(p, (uint32_t)k_tet_faces[f % 4][k], big_endian);
+    }
+    return (size_t)(p - buf);
+}
+
+static const char *k_tet_off_body = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+static void test_off_headers(void) {
+    char text[512];
+    /* The file of the report: 2e9 vertices declared in 45 bytes. */
+    expect_refused(write_file("lying.off", "OFF\n2000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                   "declares 2000000000 vertices but has only 45 bytes");
+    /* A smaller lie: Assimp gave PX_OK with 2e6 - 3 extra vertices at the origin. */
+    expect_refused(write_file("small_lie.off", "OFF\n2000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                   "declares 2000000 vertices");
+    expect_refused(write_file("faces_lie.off", "OFF\n4 3000000 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n"),
+                   "declares 4 vertices and 3000000 faces");
+    /* The variants Assimp accepts: colours, normals, texture coordinates,
+     * homogeneous, an explicit dimension; headerless (by extension);
+     * comments; a UTF-8 byte-order mark; OFF found by its signature. */
+    expect_refused(write_file("colour.off", "COFF\n100000000 1 0\n0 0 0 1 1 1 1\n"),
+                   "declares 100000000 vertices");
+    expect_refused(write_file("normal.off", "NOFF\n100000000 1 0\n0 0 0 0 0 1\n"),
+                   "declares 100000000 vertices");
+    expect_refused(write_file("all.off", "STCN4OFF\n100000000 1 0\n0 0 0 1\n"),
+                   "declares 100000000 vertices");
+    expect_refused(write_file("dim.off", "nOFF 3\n100000000 1 0\n0 0 0\n"), "declares 100000000 vertices");
+    expect_refused(write_file("headerless.off", "# no keyword\n\n100000000 1 0\n0 0 0\n"),
+                   "declares 100000000 vertices");
+    expect_refused(write_file("bom.off", "\xEF\xBB\xBFOFF\n100000000 1 0\n0 0 0\n"),
+                   "declares 100000000 vertices");
+    expect_refused(write_file("lying_off.model", "OFF\n100000000 1 0\n0 0 0\n"),
+                   "declares 100000000 vertices");
+    /* Counts beyond 32 bits (Assimp's strtoul10 wraps them). */
+    expect_refused(write_file("wrap.off", "OFF\n4294967300 1 0\n0 0 0\n"), "declares 4294967300 vertices");
+
+    /* Enough bytes (a sparse file of NULs) but more than PX_IO_MAX_ELEMENTS. */
+    const char *big = write_file("too_many.off", "OFF\n33554432 1 0\n");
+    CHECK(truncate(big, 80 << 20) == 0);
+    expect_refused(big, "declares 33554433 elements, more than the limit of 33554432");
+
+    /* Valid files still load. */
+    snprintf(text, sizeof text, "OFF\n4 4 6\n%s", k_tet_off_body);
+    expect_tetrahedron(write_file("tet.off", text));
+    snprintf(text, sizeof text, "# comment\n  OFF # comment\n# comment\n4 4 6\n%s", k_tet_off_body);
+    expect_tetrahedron(write_file("tet_comments.off", text));
+    /* Headerless; not "4 ...": Assimp takes a leading 4 for the 4OFF prefix. */
+    snprintf(text, sizeof text, "04 4 6\n%s", k_tet_off_body);
+    expect_tetrahedron(write_file("tet_headerless.off", text));
+    /* Tightest: 8 lines of a few bytes, no final line break. */
+    expect_tetrahedron(write_file("tet_tight.off",
+                                  "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"
+                                  "3 0 3 2\n3 1 2 3"));
+    expect_refused(write_file("nan.off",
+                              "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 nan\n3 0 2 1\n3 0 1 3\n3 0 3 2\n"
+                              "3 1 2 3\n"),
+                   "NaN");
+}
+
+static void test_ply_headers(void) {
+    static unsigned char buf[4096];
+    /* The report's case: a binary PLY declaring 2e9 vertices and faces. */
+    size_t len = make_ply(buf, 0, 2000000000ull, 2000000000ull, 0, 0);
+    expect_refused(write_bytes("lying.ply", buf, len), "declares 2000000000 vertices but has only");
+    len = make_ply(buf, 0, 1000000, 4, 4, 0);
+    expect_refused(write_bytes("vertices_lie.ply", buf, len), "declares 1000000 vertices");
+    len = make_ply(buf, 1, 1000000, 4, 4, 0);
+    expect_refused(write_bytes("vertices_lie_be.ply", buf, len), "declares 1000000 vertices");
+    /* Faces at their smallest (empty lists, 1 byte each) still do not fit. */
+    len = make_ply(buf, 0, 4, 1000000, 4, 0);
+    expect_refused(write_bytes("faces_lie.ply", buf, len), "declares 1000000 faces");
+    /* Found by its signature, whatever the extension. */
+    len = make_ply(buf, 0, 1000000, 4, 4, 0);
+    expect_refused(write_bytes("lying_ply.model", buf, len), "declares 1000000 vertices");
+    /* Ascii: 1e8 vertices declared, one written (Assimp: PX_OK, 1e8 points). */
+    expect_refused(write_file("lying_ascii.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 100000000\nproperty float x\n"
+                              "property float y\nproperty float z\nend_header\n0 0 0\n"),
+                   "declares 100000000 vertices");
+    /* Elements other than vertex and face, with and without properties. */
+    expect_refused(write_file("junk.ply", "ply\nformat binary_little_endian 1.0\nelement junk 100000000\n"
+                                          "property float a\nend_header\n0000"),
+                   "declares 100000000 'junk' elements");
+    expect_refused(write_file("empty_records.ply",
+                              "ply\nformat binary_little_endian 1.0\nelement nothing 1000000\n"
+                              "end_header\n"),
+                   "declares 1000000 'nothing' elements");
+    expect_refused(write_file("int64.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+                                           "property int64 x\nend_header\n00000000"),
+                   "type Assimp does not read");
+    expect_refused(write_file("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n1\n"),
+                   "no end_header");
+
+    /* Valid files still load, including an exactly sized binary body, big
+     * endian, and an ascii header with CRLF line breaks and comments. */
+    len = make_ply(buf, 0, 4, 4, 4, 0);
+    expect_tetrahedron(write_bytes("tet.ply", buf, len));
+    len = make_ply(buf, 1, 4, 4, 4, 0);
+    expect_tetrahedron(write_bytes("tet_be.ply", buf, len));
+    expect_tetrahedron(write_file("tet_ascii.ply",
+                                  "ply\r\nformat ascii 1.0\r\ncomment x\r\nobj_info y\r\n"
+                                  "element vertex 4\r\nproperty float x\r\nproperty float y\r\n"
+                                  "property float z\r\nelement face 4\r\n"
+                                  "property list uchar int vertex_indices\r\nend_header\r\n"
+                                  "0 0 0\r\n1 0 0\r\n0 1 0\r\n0 0 1\r\n3 0 2 1\r\n3 0 1 3\r\n"
+                                  "3 0 3 2\r\n3 1 2 3\r\n"));
+    len = make_ply(buf, 0, 4, 4, 4, 1);
+    expect_refused(write_bytes("nan.ply", buf, len), "NaN");
+}
+
+static void test_stl_files(void) {
+    static unsigned char buf[4096];
+    size_t len = make_stl(buf, "binary tetrahedron", 4, 4, 0);
+    expect_tetrahedron(write_bytes("tet.stl", buf, len));
+    /* Exporters often start a binary header with "solid". */
+    len = make_stl(buf, "solid but binary", 4, 4, 0);
+    expect_tetrahedron(write_bytes("tet_solid.stl", buf, len));
+    const char *ascii =
+        "solid t\n"
+        "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 1 0\nvertex 1 0 0\nendloop\nendfacet\n"
+        "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 0 1\nendloop\nendfacet\n"
+        "facet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 0 0 1\nvertex 0 1 0\nendloop\nendfacet\n"
+        "facet normal 0 0 0\nouter loop\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\nendloop\nendfacet\n"
+        "endsolid t\n";
+    expect_tetrahedron(write_file("tet_ascii.stl", ascii));
+    char bom[1024];
+    snprintf(bom, sizeof bom, "\xEF\xBB\xBF%s", ascii);
+    expect_tetrahedron(write_file("tet_ascii_bom.stl", bom));
+
+    /* Truncated: 4 triangles declared, 3 written; also cut inside the header. */
+    len = make_stl(buf, "binary", 4, 3, 0);
+    expect_refused(write_bytes("truncated.stl", buf, len), "declares 4 triangles");
+    expect_refused(write_bytes("truncated_header.stl", buf, 60), "neither ASCII STL nor binary STL");
+    /* A "solid" header does not make a truncated binary file ASCII. */
+    len = make_stl(buf, "solid", 4, 3, 0);
+    expect_refused(write_bytes("truncated_solid.stl", buf, len), "declares 4 triangles");
+    /* Count and size disagree, either way. */
+    len = make_stl(buf, "binary", 1000000, 4, 0);
+    expect_refused(write_bytes("count_mismatch.stl", buf, len), "declares 1000000 triangles");
+    len = make_stl(buf, "binary", 3, 4, 0);
+    expect_refused(write_bytes("padded.stl", buf, len), "declares 3 triangles");
+    /* 2^31 + 4 triangles: 84 + 50 n wraps to the size of 4 (284 bytes) in
+     * Assimp's 32-bit arithmetic; also found by signature ("solid"). */
+    len = make_stl(buf, "binary", 0x80000004u, 4, 0);
+    expect_refused(write_bytes("wrapped.stl", buf, len),
+                   "declares 2147483652 triangles but has only 284 bytes");
+    len = make_stl(buf, "solid", 0x80000004u, 4, 0);
+    expect_refused(write_bytes("wrapped_stl.model", buf, len), "declares 2147483652 triangles");
+    /* A UTF-8 byte-order mark before a binary header: Assimp drops 3 bytes
+     * from its buffer but not from the size it checks. */
+    len = make_stl(buf, "\xEF\xBB\xBF", 4, 4, 0);
+    expect_refused(write_bytes("bom.stl", buf, len), "byte-order mark");
+    len = make_stl(buf, "binary", 4, 4, 1);
+    expect_refused(write_bytes("nan.stl", buf, len), "NaN");
+}
+
+/* Empty files of each format, paths that are not regular files, and a file
+ * over PX_IO_MAX_FILE_BYTES (sparse: no disk space used). */
+static void test_special_files(void) {
+    static const char *names[] = {"empty.off",  "empty.ply", "empty.stl", "empty.obj", "empty.dae",
+                                  "empty.gltf", "empty.glb", "empty.fbx", "empty.3ds", "empty"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
+        expect_refused(write_file(names[i], ""), "is empty");
+    char path[512];
+    snprintf(path, sizeof path, "%s/dir.stl", g_dir);
+    CHECK(mkdir(path, 0700) == 0);
+    expect_refused(path, "directory");
+    snprintf(path, sizeof path, "%s/missing.ply", g_dir);
+    expect_refused(path, "No such file");
+    expect_refused("/dev/null", "not a regular file");
+    snprintf(path, sizeof path, "%s/pipe.stl", g_dir); /* fopen would block: nobody writes */
+    CHECK(mkfifo(path, 0600) == 0);
+    expect_refused(path, "not a regular file");
+    const char *huge = write_file("huge.obj", "v 0 0 0\n");
+    CHECK(truncate(huge, (1l << 30) + 1) == 0);
+    expect_refused(huge, "has 1073741825 bytes, more than the limit of 1073741824");
+}
+
 int main(void) {
     snprintf(g_dir, sizeof g_dir, "/tmp/proxima_test_io_%ld", (long)getpid());
     char cmd[300];
@@ -208,11 +518,27 @@ int main(void) {
     memset(&counted, 0, sizeof counted);
     counted.allocator = &g_counting;
     g_opt = &counted;
+#if !PX_TEST_ASAN
+    /* 2 GiB of address space: a load that allocates by a lying header fails
+     * at once (std::bad_alloc) instead of exhausting the machine. AddressSanitizer
+     * reserves terabytes of shadow memory, so not there. */
+    struct rlimit as_limit = {2ul << 30, 2ul << 30};
+    CHECK(setrlimit(RLIMIT_AS, &as_limit) == 0);
+#endif
 
     test_cube_obj();
     test_node_transforms();
     test_errors();
     test_point_cloud();
+    test_off_headers();
+    test_ply_headers();
+    test_stl_files();
+    test_special_files();
+#if !PX_TEST_ASAN
+    struct rusage usage;
+    CHECK(getrusage(RUSAGE_SELF, &usage) == 0);
+    CHECK(usage.ru_maxrss < 256 * 1024); /* kB: every lie was refused before Assimp allocated */
+#endif
 
     CHECK(g_live_bytes == 0 && g_live_blocks == 0);
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);

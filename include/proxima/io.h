@@ -18,6 +18,27 @@
 /// Thread safety: imports are serialised internally (Assimp's last-error
 /// string is process-global); the functions may be called from any thread.
 /// The lock is the library's only global state.
+///
+/// Limits: a file is checked before Assimp reads it, so that a lying header
+/// cannot make the import allocate memory the file cannot back. Only the
+/// first 64 KiB are read for this. Refused with PX_ERR_IO, the message naming
+/// the file and the problem:
+/// - anything but a regular file (directory, device, pipe), an empty file,
+///   or a file of more than PX_IO_MAX_FILE_BYTES;
+/// - an OFF, PLY or binary STL file whose header declares more vertices,
+///   faces or other elements than its size can hold (each at its smallest
+///   encoding: OFF one line of 2 bytes per vertex and face; PLY the bytes of
+///   one record, lists empty; binary STL exactly 84 + 50 n bytes for n
+///   triangles), or more than PX_IO_MAX_ELEMENTS in total (an STL triangle
+///   counts 4: 3 vertices and a face); an OFF or PLY header that does not end
+///   within the first 64 KiB, a PLY header without `end_header` or with a
+///   property type Assimp does not read; a `.stl` file that is neither a
+///   binary STL of consistent size nor ASCII text starting with `solid`;
+/// - a scene with more than PX_IO_MAX_ELEMENTS vertices, counting a mesh once
+///   per node that references it.
+/// At these limits, the arrays Assimp sizes by declared counts take about
+/// 2 GiB at most (up to ~64 bytes per element), and proxima's copy of the
+/// points 1.5 GiB (48 bytes per vertex), before the hull is computed.
 #ifndef PROXIMA_IO_H
 #define PROXIMA_IO_H
 
@@ -30,6 +51,13 @@
 extern "C" {
 #endif
 
+/// Largest mesh file accepted, in bytes (1 GiB).
+#define PX_IO_MAX_FILE_BYTES (1ull << 30)
+
+/// Largest total of the element counts a file header may declare, and the
+/// most vertices one load may collect from a scene (2^25 = 33554432).
+#define PX_IO_MAX_ELEMENTS (1ull << 25)
+
 /// Convex hull of all vertices of all meshes in the file at `path`, with the
 /// node transforms applied (the file's root frame; see the header comment for
 /// units). A mesh referenced by several nodes contributes one copy per node.
@@ -38,10 +66,12 @@ extern "C" {
 ///
 /// Returns NULL and fills `err` (may be NULL) on:
 /// - PX_ERR_INVALID_ARGUMENT: `path` NULL or empty;
-/// - PX_ERR_IO: the file cannot be opened, Assimp cannot parse it or reports
-///   an incomplete scene, the scene has no meshes or no vertices, or a vertex
-///   (after the node transform) is NaN or infinite. The message names the file
-///   and the problem (Assimp's own message is quoted when there is one);
+/// - PX_ERR_IO: the file cannot be opened, exceeds a limit or fails a check
+///   of its header (see the header comment), Assimp cannot parse it or
+///   reports an incomplete scene, the scene has no meshes or no vertices, or
+///   a vertex (after the node transform) is NaN or infinite. The message
+///   names the file and the problem (Assimp's own message is quoted when
+///   there is one);
 /// - PX_ERR_DEGENERATE: the vertices have no 3-D hull (flat, collinear, one
 ///   point): the message names the file;
 /// - PX_ERR_OUT_OF_MEMORY.

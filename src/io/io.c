@@ -19,12 +19,13 @@
  *   without a lock, so every call into Assimp (import, error copy, walk,
  *   release) runs under one mutex, and the message is copied at once.
  * - Scenes flagged AI_SCENE_FLAGS_INCOMPLETE are rejected.
+ * - Before Assimp sees a file, precheck.c checks its type, its size and the
+ *   counts its header declares (Assimp allocates by them), and the walk
+ *   stops at PX_IO_MAX_ELEMENTS vertices (instancing multiplies them).
  */
 #include "proxima/io.h"
 
-#include <errno.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,7 @@
 #include <assimp/scene.h>
 
 #include "core/core.h"
+#include "io/precheck.h"
 
 /* Node trees deeper than this are rejected (also catches cyclic graphs). */
 #define PXI_IO_MAX_DEPTH 1024
@@ -86,14 +88,14 @@ typedef struct io_walk {
     size_t capacity;
     int too_deep;
     int bad_mesh_index;
-    int overflow;
+    int too_many;         /* more than PX_IO_MAX_ELEMENTS vertices */
     int non_finite;       /* set on the first non-finite transformed vertex */
     size_t bad_vertex;    /* its index within its mesh */
     const char *bad_node; /* name of the node it belongs to */
 } io_walk;
 
 static void walk_node(io_walk *w, const struct aiNode *node, const io_xform *parent, int depth) {
-    if (!node || w->too_deep || w->bad_mesh_index || w->overflow || w->non_finite) return;
+    if (!node || w->too_deep || w->bad_mesh_index || w->too_many || w->non_finite) return;
     if (depth > PXI_IO_MAX_DEPTH) {
         w->too_deep = 1;
         return;
@@ -109,8 +111,9 @@ static void walk_node(io_walk *w, const struct aiNode *node, const io_xform *par
         const struct aiMesh *mesh = w->scene->mMeshes[mi];
         size_t nv = mesh->mVertices ? mesh->mNumVertices : 0;
         if (!w->out) {
-            if (nv > SIZE_MAX / 3 / sizeof(double) - w->count) {
-                w->overflow = 1;
+            /* The cap also bounds 3 * count * sizeof(double) on 32-bit. */
+            if (nv > PX_IO_MAX_ELEMENTS - w->count) {
+                w->too_many = 1;
                 return;
             }
             w->count += nv;
@@ -196,8 +199,11 @@ static px_status import_points_locked(const char *path, const px_allocator *allo
                        PXI_IO_MAX_DEPTH);
     } else if (w.bad_mesh_index) {
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s': a node references a mesh that does not exist", path);
-    } else if (w.overflow) {
-        st = pxi_error(err, PX_ERR_IO, "mesh file '%s': too many vertices", path);
+    } else if (w.too_many) {
+        st =
+            pxi_error(err, PX_ERR_IO,
+                      "mesh file '%s' has more than %llu vertices (a mesh counts once per node that uses it)",
+                      path, (unsigned long long)PX_IO_MAX_ELEMENTS);
     } else if (w.count == 0) {
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s' contains no vertices", path);
     }
@@ -246,20 +252,10 @@ px_status px_load_points(const char *path, const px_allocator *allocator, double
     px_allocator alloc;
     px_status ast = pxi_allocator_resolve(allocator, &alloc, err);
     if (ast != PX_OK) return ast;
-    /* Check readability first: Assimp's message for a missing file omits why. */
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        int e = errno;
-        return pxi_error(err, PX_ERR_IO, "cannot open mesh file '%s': %s", path, strerror(e));
-    }
-    errno = 0;
-    int first = getc(f);
-    int read_errno = ferror(f) ? errno : 0; /* e.g. EISDIR: fopen succeeds on a directory */
-    fclose(f);
-    if (read_errno) {
-        return pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path, strerror(read_errno));
-    }
-    if (first == EOF) return pxi_error(err, PX_ERR_IO, "mesh file '%s' is empty", path);
+    /* Readability, size and header counts first (precheck.c): Assimp's message
+     * for a missing file omits why, and Assimp allocates by declared counts. */
+    px_status pre = pxi_io_precheck(path, &alloc, err);
+    if (pre != PX_OK) return pre;
 
     double *pts = NULL;
     size_t n = 0, cap = 0;

@@ -1,0 +1,507 @@
+/* Checks of a mesh file before Assimp reads it (BAD_INPUTS.md E.28).
+ *
+ * Assimp sizes its arrays by the counts a header declares, before it reads
+ * the elements, and it allocates them with `new T[n]`, which constructs (so
+ * touches) every element: a 45-byte OFF file declaring 2e9 vertices asks
+ * for 24 GB (13 GB were committed before the process was killed), an ascii
+ * PLY declaring 1e8 vertices with one vertex line loads as 1e8 vertices, and
+ * a PLY header without end_header makes it loop forever (measured with
+ * Debian bookworm's Assimp 5.2.5). So
+ * before the import, the declared counts are compared with the size of the
+ * file, each element at the smallest size its format allows: a file refused
+ * here cannot be a valid file of its format, or exceeds a documented limit
+ * (io.h). Passing is no proof of validity: Assimp still parses the file.
+ * Only the first HEAD_BYTES bytes are read, never the whole file.
+ *
+ * Which checks run. Assimp 5.2 picks the importer by the extension of the
+ * file name when exactly one importer claims it; otherwise it asks each
+ * importer whether it recognises the file's first bytes (for text formats,
+ * BaseImporter::SearchFileHeaderForToken: the first 200 bytes, lowercased,
+ * NUL bytes removed, searched for tokens). A check runs when the extension
+ * names its format, or when the head matches a superset of that importer's
+ * signature test, so every file Assimp could hand to the OFF, PLY or STL
+ * importer is checked.
+ *
+ * What each Assimp 5.2 importer allocates from the header:
+ * - OFF (OFFLoader.cpp): numVertices positions (with normals, colours and
+ *   texture coordinates for the NOFF, COFF and STOFF variants) and numFaces
+ *   faces, then it reads one line per vertex and per face.
+ * - PLY (PlyParser.cpp, PlyLoader.cpp): per element, its declared number of
+ *   records, ascii or binary.
+ * - STL (STLLoader.cpp): the file is binary when 84 + 50 n == file size, n
+ *   being the 32-bit count at byte 80 and the arithmetic 32-bit (so a count
+ *   that wraps passes); then 3 n positions and normals. A UTF-8 byte-order
+ *   mark is removed from the buffer but not from the size that test uses.
+ */
+#define _POSIX_C_SOURCE 200809L /* stat(): the file type, before fopen could block on a FIFO */
+
+#include "io/precheck.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <string.h>
+
+#if defined(__unix__) || defined(__APPLE__)
+#include <sys/stat.h>
+#define PXI_IO_HAVE_STAT 1
+#endif
+
+#include "core/core.h"
+
+#define HEAD_BYTES 65536    /* bytes read to check a header */
+#define SIGNATURE_BYTES 200 /* what Assimp's SearchFileHeaderForToken reads */
+
+typedef unsigned long long u64;
+
+/* The file being checked: its name, size and first bytes. */
+typedef struct io_head {
+    const char *path;
+    char ext[16];              /* extension, lowercased, no dot; "" if none (or longer than 15) */
+    u64 size;                  /* file size in bytes */
+    const unsigned char *data; /* the first `len` bytes of the file */
+    size_t len;                /* min(size, HEAD_BYTES) */
+} io_head;
+
+/* a + b and a * b saturated at ULLONG_MAX: declared counts are untrusted. */
+static u64 sat_add(u64 a, u64 b) { return a > ULLONG_MAX - b ? ULLONG_MAX : a + b; }
+static u64 sat_mul(u64 a, u64 b) { return b && a > ULLONG_MAX / b ? ULLONG_MAX : a * b; }
+
+/* ASCII tolower, independent of the locale. */
+static int lower(int c) { return c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c; }
+
+/* 1 if the file starts with `s` (ASCII letters compared case-insensitively). */
+static int starts_with_ci(const io_head *h, const char *s) {
+    size_t n = strlen(s);
+    if (h->len < n) return 0;
+    for (size_t i = 0; i < n; ++i)
+        if (lower(h->data[i]) != lower((unsigned char)s[i])) return 0;
+    return 1;
+}
+
+/* Assimp's signature test (SearchFileHeaderForToken with default arguments):
+ * 1 if lowercase `token` occurs in the first 200 bytes, lowercased, once the
+ * NUL bytes are removed. */
+static int signature_has(const io_head *h, const char *token) {
+    char buf[SIGNATURE_BYTES + 1];
+    size_t n = 0;
+    for (size_t i = 0; i < h->len && i < SIGNATURE_BYTES; ++i)
+        if (h->data[i]) buf[n++] = (char)lower(h->data[i]);
+    buf[n] = '\0';
+    return strstr(buf, token) != NULL;
+}
+
+/* 1 if the file starts with a UTF-8 byte-order mark (EF BB BF). */
+static int has_utf8_bom(const io_head *h) {
+    return h->len >= 3 && h->data[0] == 0xEF && h->data[1] == 0xBB && h->data[2] == 0xBF;
+}
+
+/* Reads the decimal digits at data[*pos] on (none: 0), saturating, like
+ * Assimp's strtoul10 but without its 32-bit wrap-around; advances *pos. */
+static u64 read_count(const io_head *h, size_t *pos) {
+    u64 v = 0;
+    size_t i = *pos;
+    for (; i < h->len && h->data[i] >= '0' && h->data[i] <= '9'; ++i)
+        v = sat_add(sat_mul(v, 10), (u64)(h->data[i] - '0'));
+    *pos = i;
+    return v;
+}
+
+/* The PX_ERR_IO for a total of declared elements above PX_IO_MAX_ELEMENTS. */
+static px_status err_too_many(const io_head *h, u64 total, px_error *err) {
+    return pxi_error(err, PX_ERR_IO, "mesh file '%s' declares %llu elements, more than the limit of %llu",
+                     h->path, total, (u64)PX_IO_MAX_ELEMENTS);
+}
+
+/* ------------------------------------------------------------------ OFF */
+
+/* Skips what Assimp's OFF NextToken skips: blank space and '#' comment
+ * lines. Every byte up to ' ' counts as blank here (a superset of Assimp's
+ * set), so the digits found next are the ones Assimp reads, or Assimp reads
+ * none (count 0: it refuses the file). */
+static void off_skip(const io_head *h, size_t *pos) {
+    size_t i = *pos;
+    for (;;) {
+        while (i < h->len && h->data[i] <= ' ') ++i;
+        if (i >= h->len || h->data[i] != '#') break;
+        while (i < h->len && h->data[i] != '\n' && h->data[i] != '\r') ++i;
+    }
+    *pos = i;
+}
+
+/* OFF: optional blank space and comments, the keyword [ST][C][N][4][n]OFF
+ * ('n': a dimension follows; a headerless file, accepted by extension, has
+ * none), then the vertex, face and edge counts, then one line per vertex and
+ * per face. A line takes at least one byte and a line break, so the bytes
+ * after the vertex count must number at least 2 (V + F) - 1. Files sniffed as
+ * OFF (by_extension 0) that are not OFF are left to Assimp, which refuses them
+ * before allocating, as it does a zero count. */
+static px_status check_off(const io_head *h, int by_extension, px_error *err) {
+    const unsigned char *d = h->data;
+    const size_t n = h->len;
+    size_t p = has_utf8_bom(h) ? 3 : 0; /* Assimp's TextFileToBuffer drops it */
+    off_skip(h, &p);
+    /* Assimp consumes these letters even when "OFF" does not follow. */
+    int has_dim = 0;
+    if (p + 2 < n && d[p] == 'S' && d[p + 1] == 'T') p += 2;
+    if (p + 1 < n && d[p] == 'C') ++p;
+    if (p + 1 < n && d[p] == 'N') ++p;
+    if (p + 1 < n && d[p] == '4') ++p;
+    if (p + 1 < n && d[p] == 'n') {
+        has_dim = 1;
+        ++p;
+    }
+    if (p + 3 <= n && memcmp(d + p, "OFF", 3) == 0)
+        p += 3;
+    else if (!by_extension)
+        return PX_OK;
+    off_skip(h, &p);
+    if (has_dim) {
+        (void)read_count(h, &p);
+        off_skip(h, &p);
+    }
+    const u64 nv = read_count(h, &p);
+    const size_t after_nv = p;
+    off_skip(h, &p);
+    const u64 nf = read_count(h, &p);
+    if (p >= n && n < h->size)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': the OFF header does not end within its first %d bytes", h->path,
+                         HEAD_BYTES);
+    if (nv == 0 || nf == 0) return PX_OK;
+    const u64 avail = h->size - after_nv;
+    if (sat_mul(2, nv) - 1 > avail)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s' declares %llu vertices but has only %llu bytes "
+                         "(an OFF vertex takes a line of at least 2 bytes)",
+                         h->path, nv, h->size);
+    if (sat_mul(2, sat_add(nv, nf)) - 1 > avail)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s' declares %llu vertices and %llu faces but has only %llu bytes "
+                         "(an OFF vertex or face takes a line of at least 2 bytes)",
+                         h->path, nv, nf, h->size);
+    if (sat_add(nv, nf) > PX_IO_MAX_ELEMENTS) return err_too_many(h, sat_add(nv, nf), err);
+    return PX_OK;
+}
+
+/* ------------------------------------------------------------------ PLY */
+
+/* One line of the PLY header split into blank-separated words (at most 5
+ * are kept: "property list uchar int vertex_indices"). */
+typedef struct ply_line {
+    const unsigned char *word[5];
+    size_t word_len[5];
+    int words;
+} ply_line;
+
+/* 1 if word i of the line is `s`. */
+static int ply_word_is(const ply_line *l, int i, const char *s) {
+    return i < l->words && l->word_len[i] == strlen(s) && memcmp(l->word[i], s, l->word_len[i]) == 0;
+}
+
+/* Bytes of a PLY scalar type in binary files (the names Assimp's
+ * PLY::Property::ParseDataType knows), or 0 if it is not one of them. */
+static unsigned ply_type_size(const ply_line *l, int i) {
+    static const struct {
+        const char *name;
+        unsigned size;
+    } types[] = {{"char", 1},   {"int8", 1},    {"uchar", 1},  {"uint8", 1},   {"short", 2},   {"int16", 2},
+                 {"ushort", 2}, {"uint16", 2},  {"int", 4},    {"int32", 4},   {"uint", 4},    {"uint32", 4},
+                 {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}, {"double64", 8}};
+    for (size_t k = 0; k < sizeof types / sizeof types[0]; ++k)
+        if (ply_word_is(l, i, types[k].name)) return types[k].size;
+    return 0;
+}
+
+/* Plural noun for an element's records in messages: "vertices", "faces",
+ * or "'name' elements". */
+static void ply_noun(const ply_line *l, char *out, size_t size) {
+    if (ply_word_is(l, 1, "vertex"))
+        snprintf(out, size, "vertices");
+    else if (ply_word_is(l, 1, "face"))
+        snprintf(out, size, "faces");
+    else
+        snprintf(out, size, "'%.*s' elements",
+                 (int)(l->words > 1 && l->word_len[1] < 40 ? l->word_len[1] : 0),
+                 l->words > 1 ? (const char *)l->word[1] : "");
+}
+
+/* Splits the header line starting at *pos into words and moves *pos to the
+ * start of the next line (past \n, \r or \r\n). Returns 0 when *pos is at
+ * the end of the head. */
+static int ply_next_line(const io_head *h, size_t *pos, ply_line *l) {
+    const unsigned char *d = h->data;
+    size_t i = *pos;
+    if (i >= h->len) return 0;
+    memset(l, 0, sizeof *l);
+    size_t end = i;
+    while (end < h->len && d[end] != '\n' && d[end] != '\r') ++end;
+    while (i < end && l->words < 5) {
+        while (i < end && (d[i] == ' ' || d[i] == '\t')) ++i;
+        if (i >= end) break;
+        l->word[l->words] = d + i;
+        while (i < end && d[i] != ' ' && d[i] != '\t') ++i;
+        l->word_len[l->words] = (size_t)(d + i - l->word[l->words]);
+        ++l->words;
+    }
+    if (end < h->len && d[end] == '\r') ++end;
+    if (end < h->len && d[end] == '\n') ++end;
+    *pos = end;
+    return 1;
+}
+
+/* The element being declared while the header is read. */
+typedef struct ply_element {
+    u64 count;  /* declared records */
+    u64 bytes;  /* binary: bytes of the smallest record (lists empty) */
+    u64 values; /* ascii: numbers in the smallest record (a list: its length) */
+    char noun[64];
+} ply_element;
+
+/* Adds the smallest size of a declared element to *need and refuses the file
+ * when the elements so far cannot fit in the `avail` bytes after the header.
+ * An ascii record of k numbers takes k digits and k separators (the last
+ * line break may be missing, hence avail + 1); a record with no property is
+ * taken as 1 byte (a line), since Assimp still allocates one per record. */
+static px_status ply_add_element(const io_head *h, const ply_element *e, int binary, u64 avail, u64 *need,
+                                 px_error *err) {
+    u64 record = binary ? e->bytes : sat_mul(2, e->values);
+    if (record == 0) record = 1;
+    *need = sat_add(*need, sat_mul(e->count, record));
+    if (*need <= (binary ? avail : sat_add(avail, 1))) return PX_OK;
+    return pxi_error(err, PX_ERR_IO,
+                     "mesh file '%s' declares %llu %s but has only %llu bytes (PLY %s: at least %llu needed "
+                     "after the header)",
+                     h->path, e->count, e->noun, h->size, binary ? "binary" : "ascii", *need);
+}
+
+/* PLY: the magic "ply" (any case), then "format ascii ..." or
+ * "format binary_..." (Assimp refuses anything else before allocating), then
+ * "element NAME COUNT" lines, each followed by its "property TYPE NAME" and
+ * "property list COUNT_TYPE ITEM_TYPE NAME" lines, up to "end_header".
+ * Other lines ("comment", "obj_info") are skipped, as Assimp does. A property
+ * type Assimp does not know is refused: Assimp would misread the layout.
+ * Two passes over the header: the first finds where the body starts. */
+static px_status check_ply(const io_head *h, px_error *err) {
+    if (!starts_with_ci(h, "ply")) return PX_OK; /* Assimp checks the magic first */
+    const unsigned char *d = h->data;
+    size_t p = 3;
+    while (p < h->len && d[p] <= ' ') ++p;
+    if (h->len - p < 7 || memcmp(d + p, "format", 6) != 0 || d[p + 6] > ' ') return PX_OK;
+    p += 6;
+    while (p < h->len && (d[p] == ' ' || d[p] == '\t')) ++p;
+    int binary;
+    if (h->len - p >= 6 && memcmp(d + p, "ascii", 5) == 0 && d[p + 5] <= ' ')
+        binary = 0;
+    else if (h->len - p >= 7 && memcmp(d + p, "binary_", 7) == 0)
+        binary = 1;
+    else
+        return PX_OK;
+    ply_line l;
+    (void)ply_next_line(h, &p, &l); /* rest of the format line */
+    const size_t first = p;
+
+    size_t body = 0;
+    while (!body && ply_next_line(h, &p, &l))
+        if (ply_word_is(&l, 0, "end_header")) body = p;
+    if (!body) {
+        if (h->len < h->size)
+            return pxi_error(err, PX_ERR_IO,
+                             "mesh file '%s': the PLY header does not end within its first %d bytes", h->path,
+                             HEAD_BYTES);
+        return pxi_error(err, PX_ERR_IO, "mesh file '%s': the PLY header has no end_header line", h->path);
+    }
+    const u64 avail = h->size - body;
+
+    ply_element e;
+    int open = 0;
+    u64 need = 0, total = 0;
+    p = first;
+    while (p < body && ply_next_line(h, &p, &l)) {
+        if (ply_word_is(&l, 0, "element") || ply_word_is(&l, 0, "end_header")) {
+            if (open) {
+                px_status st = ply_add_element(h, &e, binary, avail, &need, err);
+                if (st != PX_OK) return st;
+            }
+            open = ply_word_is(&l, 0, "element");
+            if (!open) break;
+            memset(&e, 0, sizeof e);
+            if (l.words > 2) {
+                size_t q = (size_t)(l.word[2] - d);
+                e.count = read_count(h, &q);
+            }
+            ply_noun(&l, e.noun, sizeof e.noun);
+            total = sat_add(total, e.count);
+        } else if (open && ply_word_is(&l, 0, "property")) {
+            const int list = ply_word_is(&l, 1, "list");
+            const unsigned size = ply_type_size(&l, list ? 2 : 1);
+            if (!size || (list && !ply_type_size(&l, 3)))
+                return pxi_error(err, PX_ERR_IO,
+                                 "mesh file '%s': a PLY property has a type Assimp does not read", h->path);
+            e.bytes += size;
+            e.values += 1;
+        }
+    }
+    if (total > PX_IO_MAX_ELEMENTS) return err_too_many(h, total, err);
+    return PX_OK;
+}
+
+/* ------------------------------------------------------------------ STL */
+
+/* The little-endian 32-bit unsigned integer at b. */
+static u64 read_u32le(const unsigned char *b) {
+    return (u64)b[0] | (u64)b[1] << 8 | (u64)b[2] << 16 | (u64)b[3] << 24;
+}
+
+/* 1 if the head looks like ASCII STL: "solid" after blank space (and a
+ * UTF-8 byte-order mark), and no control byte other than blank space in the
+ * first 512 bytes. A binary STL's header may also start with "solid", but its
+ * triangle count and coordinates hold NUL and control bytes. */
+static int stl_is_ascii(const io_head *h) {
+    size_t p = has_utf8_bom(h) ? 3 : 0;
+    for (size_t i = p; i < h->len && i < 512; ++i)
+        if (h->data[i] < ' ' && !(h->data[i] >= '\t' && h->data[i] <= '\r')) return 0;
+    while (p < h->len && (h->data[p] == ' ' || (h->data[p] >= '\t' && h->data[p] <= '\r'))) ++p;
+    return h->len - p >= 5 && memcmp(h->data + p, "solid", 5) == 0;
+}
+
+/* STL. Assimp reads a file as binary when (84 + 50 n) mod 2^32 equals its
+ * size mod 2^32, n being the 32-bit count at byte 80 of its buffer (which
+ * starts after a UTF-8 byte-order mark, while the size still includes it).
+ * Such a file must then really hold n triangles: exactly 84 + 50 n bytes, no
+ * byte-order mark, and 4 n (3 vertices and a face per triangle) within
+ * PX_IO_MAX_ELEMENTS. Otherwise Assimp parses ASCII STL, which has no counts;
+ * a `.stl` file (by_extension) must then be ASCII (stl_is_ascii), so that a
+ * truncated or padded binary STL is reported as such instead of being parsed
+ * as text. Files sniffed as STL get only the binary checks: they may well be
+ * another format. */
+static px_status check_stl(const io_head *h, int by_extension, px_error *err) {
+    const size_t skip = has_utf8_bom(h) ? 3 : 0;
+    if (h->size >= 84 && h->len >= 84 + skip) {
+        const u64 n = read_u32le(h->data + 80 + skip);
+        if (((84 + 50 * n) & 0xFFFFFFFFu) == (h->size & 0xFFFFFFFFu)) {
+            if (skip)
+                return pxi_error(err, PX_ERR_IO,
+                                 "mesh file '%s': a binary STL that starts with a UTF-8 byte-order mark "
+                                 "(Assimp 5.2 would read past its end)",
+                                 h->path);
+            if (84 + 50 * n != h->size)
+                return pxi_error(
+                    err, PX_ERR_IO,
+                    "mesh file '%s' declares %llu triangles but has only %llu bytes (a binary STL of "
+                    "that many has 84 + 50 * %llu = %llu)",
+                    h->path, n, h->size, n, 84 + 50 * n);
+            if (4 * n > PX_IO_MAX_ELEMENTS) return err_too_many(h, 4 * n, err);
+            return PX_OK;
+        }
+    }
+    if (!by_extension || stl_is_ascii(h)) return PX_OK;
+    if (h->size < 84)
+        return pxi_error(
+            err, PX_ERR_IO,
+            "mesh file '%s' is neither ASCII STL nor binary STL (%llu bytes, less than the 84 of a "
+            "binary STL header)",
+            h->path, h->size);
+    const u64 n = read_u32le(h->data + 80);
+    if (skip && 84 + 50 * n == h->size)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': a binary STL whose header starts with a UTF-8 byte-order mark "
+                         "(Assimp 5.2 drops those 3 bytes and misreads the file)",
+                         h->path);
+    return pxi_error(err, PX_ERR_IO,
+                     "mesh file '%s' is not ASCII STL, and as binary STL it declares %llu triangles, which "
+                     "take 84 + 50 * %llu = %llu bytes, but has %llu bytes",
+                     h->path, n, n, 84 + 50 * n, h->size);
+}
+
+/* ---------------------------------------------------------------- entry */
+
+/* Lowercased extension of the file name in `path` (after the last '.' of
+ * the last path component), or "" if there is none or it is too long. */
+static void file_extension(const char *path, char *ext, size_t size) {
+    const char *name = path;
+    for (const char *c = path; *c; ++c)
+        if (*c == '/' || *c == '\\') name = c + 1;
+    const char *dot = strrchr(name, '.');
+    ext[0] = '\0';
+    if (!dot || strlen(dot + 1) >= size) return;
+    size_t i = 0;
+    for (const char *c = dot + 1; *c; ++c) ext[i++] = (char)lower((unsigned char)*c);
+    ext[i] = '\0';
+}
+
+/* Runs the checks of every format Assimp could read the file as. */
+static px_status check_formats(const io_head *h, px_error *err) {
+    const int off = strcmp(h->ext, "off") == 0, ply = strcmp(h->ext, "ply") == 0,
+              stl = strcmp(h->ext, "stl") == 0;
+    px_status st = PX_OK;
+    if (off || starts_with_ci(h, "off")) st = check_off(h, off, err);
+    if (st == PX_OK && (ply || starts_with_ci(h, "ply"))) st = check_ply(h, err);
+    if (st == PX_OK && (stl || signature_has(h, "solid") || signature_has(h, "stl")))
+        st = check_stl(h, stl, err);
+    return st;
+}
+
+px_status pxi_io_precheck(const char *path, const px_allocator *alloc, px_error *err) {
+#ifdef PXI_IO_HAVE_STAT
+    /* fopen would block on a FIFO, and a device has no size. */
+    struct stat sb;
+    if (stat(path, &sb) != 0) {
+        int e = errno;
+        return pxi_error(err, PX_ERR_IO, "cannot open mesh file '%s': %s", path, strerror(e));
+    }
+    if (S_ISDIR(sb.st_mode))
+        return pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path, strerror(EISDIR));
+    if (!S_ISREG(sb.st_mode))
+        return pxi_error(err, PX_ERR_IO, "mesh file '%s' is not a regular file (a device, pipe or socket)",
+                         path);
+#endif
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        int e = errno;
+        return pxi_error(err, PX_ERR_IO, "cannot open mesh file '%s': %s", path, strerror(e));
+    }
+    long end = -1;
+    errno = 0;
+    if (fseek(f, 0, SEEK_END) == 0) end = ftell(f);
+    if (end < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        int e = errno;
+        fclose(f);
+        return pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path,
+                         e ? strerror(e) : "cannot find its size");
+    }
+    io_head h;
+    memset(&h, 0, sizeof h);
+    h.path = path;
+    h.size = (u64)end;
+    file_extension(path, h.ext, sizeof h.ext);
+    if (h.size == 0) {
+        fclose(f);
+        return pxi_error(err, PX_ERR_IO, "mesh file '%s' is empty", path);
+    }
+    if (h.size > PX_IO_MAX_FILE_BYTES) {
+        fclose(f);
+        return pxi_error(err, PX_ERR_IO, "mesh file '%s' has %llu bytes, more than the limit of %llu", path,
+                         h.size, (u64)PX_IO_MAX_FILE_BYTES);
+    }
+    h.len = h.size < HEAD_BYTES ? (size_t)h.size : HEAD_BYTES;
+    unsigned char *buf = pxi_alloc(alloc, h.len);
+    if (!buf) {
+        fclose(f);
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
+    }
+    errno = 0;
+    size_t got = fread(buf, 1, h.len, f);
+    int e = ferror(f) ? errno : 0; /* e.g. EISDIR where stat() is not used */
+    fclose(f);
+    px_status st;
+    if (got != h.len)
+        st = pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path,
+                       e ? strerror(e) : "it became shorter while being read");
+    else {
+        h.data = buf;
+        st = check_formats(&h, err);
+    }
+    pxi_free(alloc, buf, h.len);
+    return st;
+}

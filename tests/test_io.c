@@ -6,7 +6,8 @@
  * the hull of a cube must have 8 vertices, 12 edges, 6 faces. Node
  * transforms are tested with a COLLADA file instancing one mesh twice.
  * Every allocation goes through a counting allocator: nothing may leak.
- * Malformed files (lying OFF, PLY and STL headers, empty files, directories,
+ * Malformed files (lying OFF, PLY and STL headers, formats whose counts
+ * cannot be checked, empty files, directories,
  * pipes, devices, oversized files, NaN coordinates) must fail with PX_ERR_IO
  * and the file's name in the message, under a 2 GiB address-space limit. */
 #define _POSIX_C_SOURCE 200809L
@@ -487,6 +488,36 @@ static void test_stl_files(void) {
     expect_refused(write_bytes("nan.stl", buf, len), "NaN");
 }
 
+/* Regression: Assimp 5.2's X, ASE, MD5, NFF and COB importers size arrays by
+ * counts in the body of the file (1e8 vertices declared in ~200 bytes:
+ * 1.1-1.5 GB committed); no header check can bound them, so they are refused
+ * by extension and, for X, ASE and MD5, by signature under any name. Also
+ * the two 4-byte prefixes Assimp takes for UTF-32 byte-order marks. */
+static void test_unchecked_formats(void) {
+    const char *x = "xof 0303txt 0032\nMesh m {\n100000000;\n0;0;0;,\n1;0;0;,\n0;1;0;;\n1;\n3;0,1,2;;\n}\n";
+    const char *ase = "*3DSMAX_ASCIIEXPORT 200\n*GEOMOBJECT {\n*MESH {\n*MESH_NUMVERTEX 100000000\n"
+                      "*MESH_NUMFACES 1\n*MESH_VERTEX_LIST {\n*MESH_VERTEX 0 0 0 0\n}\n}\n}\n";
+    const char *md5 = "MD5Version 10\ncommandline \"\"\nnumJoints 1\nnumMeshes 1\n"
+                      "joints {\n\"root\" -1 ( 0 0 0 ) ( 0 0 0 )\n}\n"
+                      "mesh {\nshader \"a\"\nnumverts 100000000\nvert 0 ( 0 0 ) 0 1\n}\n";
+    expect_refused(write_file("lying.x", x), "DirectX files are not accepted");
+    expect_refused(write_file("lying_x.txt", x), "DirectX files are not accepted");
+    expect_refused(write_file("lying.ase", ase), "ASE files are not accepted");
+    expect_refused(write_file("lying_ase.dat", ase), "ASE files are not accepted");
+    expect_refused(write_file("lying.md5mesh", md5), "MD5 files are not accepted");
+    expect_refused(write_file("lying_md5.bin", md5), "MD5 files are not accepted");
+    expect_refused(write_file("lying.nff", "pp 100000000\n0 0 0\n1 0 0\n0 1 0\n"),
+                   "NFF files are not accepted");
+    expect_refused(write_file("lying.cob",
+                              "Caligari V00.01ALH             \nPolH V0.08 Id 1 Parent 0 Size 00000100\n"
+                              "World Vertices 100000000\n0 0 0\n"),
+                   "COB files are not accepted");
+    static const unsigned char utf32_be[] = {0, 0, 0xFE, 0xFF, 0, 0, 0, 'O', 0, 0, 0, 'F', 0, 0, 0, 'F', 0};
+    static const unsigned char utf32_le[] = {0xFE, 0xFF, 0, 0, 'O', 0, 0, 0, 'F', 0, 0, 0, 'F', 0, 0, 0};
+    expect_refused(write_bytes("utf32_be.off", utf32_be, sizeof utf32_be), "UTF-32");
+    expect_refused(write_bytes("utf32_le.obj", utf32_le, sizeof utf32_le), "UTF-32");
+}
+
 /* Empty files of each format, paths that are not regular files, and a file
  * over PX_IO_MAX_FILE_BYTES (sparse: no disk space used). */
 static void test_special_files(void) {
@@ -533,6 +564,7 @@ int main(void) {
     test_off_headers();
     test_ply_headers();
     test_stl_files();
+    test_unchecked_formats();
     test_special_files();
 #if !PX_TEST_ASAN
     struct rusage usage;

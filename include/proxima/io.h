@@ -3,11 +3,11 @@
 /// proxima::io, pkg-config proxima-io), the only part of proxima that links
 /// Assimp.
 ///
-/// Any format Assimp 5 reads (OBJ, STL, PLY, OFF, COLLADA, glTF, FBX, ...)
-/// can be turned into a convex polytope: the convex hull of every vertex of
-/// every mesh in the file. Positions pass through Assimp as 32-bit floats
-/// (about 7 significant digits); do not route precision-critical geometry
-/// through files.
+/// Any format Assimp 5 reads (OBJ, STL, PLY, OFF, COLLADA, glTF, FBX, ...),
+/// except those refused below (see Limits), can be turned into a convex
+/// polytope: the convex hull of every vertex of every mesh in the file.
+/// Positions pass through Assimp as 32-bit floats (about 7 significant
+/// digits); do not route precision-critical geometry through files.
 ///
 /// Frames and units: the node tree of the file is applied, so vertices are in
 /// the file's root ("scene") frame. No unit conversion is made by proxima:
@@ -34,6 +34,12 @@
 ///   within the first 64 KiB, a PLY header without `end_header` or with a
 ///   property type Assimp does not read; a `.stl` file that is neither a
 ///   binary STL of consistent size nor ASCII text starting with `solid`;
+/// - DirectX (.x), ASE (.ase, .ask), MD5 (.md5mesh, .md5anim, .md5camera),
+///   NFF (.nff, .enff) and Caligari (.cob, .scn) files, also X, ASE and MD5
+///   content under another name: Assimp 5.2 sizes arrays by counts written
+///   anywhere in them, which no header check can bound;
+/// - files starting with 00 00 FE FF or FE FF 00 00, which Assimp 5.2 takes
+///   for UTF-32 byte-order marks and mishandles;
 /// - a scene with more than PX_IO_MAX_ELEMENTS vertices, counting a mesh once
 ///   per node that references it.
 /// At these limits, the arrays Assimp sizes by declared counts take about

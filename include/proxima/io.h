@@ -17,7 +17,9 @@
 ///
 /// Thread safety: imports are serialised internally (Assimp's last-error
 /// string is process-global); the functions may be called from any thread.
-/// The lock is the library's only global state.
+/// The lock is the library's only global state. It is created on first use;
+/// should that fail (mtx_init), every load fails with PX_ERR_INTERNAL
+/// instead of calling Assimp unlocked.
 ///
 /// Limits: a file is checked before Assimp reads it, so that a lying header
 /// cannot make the import allocate memory the file cannot back. Only the
@@ -78,6 +80,8 @@ extern "C" {
 ///   a vertex (after the node transform) is NaN or infinite. The message
 ///   names the file and the problem (Assimp's own message is quoted when
 ///   there is one);
+/// - PX_ERR_INTERNAL: the import lock could not be created (see Thread
+///   safety);
 /// - PX_ERR_DEGENERATE: the vertices have no 3-D hull (flat, collinear, one
 ///   point): the message names the file;
 /// - PX_ERR_OUT_OF_MEMORY.
@@ -93,7 +97,7 @@ PX_API px_convex *px_convex_create_from_file(const char *path, const px_convex_o
 /// On error `*xyz` is NULL, `*count` is 0, and the status is returned with
 /// `err` (may be NULL) filled as for `px_convex_create_from_file` (PX_ERR_IO,
 /// PX_ERR_INVALID_ARGUMENT for a NULL argument or an allocator without both
-/// functions, PX_ERR_OUT_OF_MEMORY).
+/// functions, PX_ERR_INTERNAL, PX_ERR_OUT_OF_MEMORY).
 PX_API px_status px_load_points(const char *path, const px_allocator *allocator, double **xyz, size_t *count,
                                 px_error *err);
 

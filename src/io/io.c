@@ -40,20 +40,34 @@
 /* Node trees deeper than this are rejected (also catches cyclic graphs). */
 #define PXI_IO_MAX_DEPTH 1024
 
+/* The import lock, created once (call_once) on first use. If mtx_init fails
+ * then, the failure is permanent: every later load fails too, with
+ * PX_ERR_INTERNAL, rather than calling Assimp without the lock. */
 static once_flag g_io_once = ONCE_FLAG_INIT;
 static mtx_t g_io_mutex;
-static int g_io_mutex_ok;
+static int g_io_mutex_ok; /* written once, inside call_once */
 
+/* call_once callback: creates the import mutex and records whether it could. */
 static void io_mutex_init(void) { g_io_mutex_ok = (mtx_init(&g_io_mutex, mtx_plain) == thrd_success); }
 
-static void io_lock(void) {
+/* Takes the import lock. On PX_OK the caller must call io_unlock; otherwise
+ * the lock is not held and err names the file and the failure. */
+static px_status io_lock(const char *path, px_error *err) {
     call_once(&g_io_once, io_mutex_init);
-    if (g_io_mutex_ok) mtx_lock(&g_io_mutex);
+    if (!g_io_mutex_ok)
+        return pxi_error(
+            err, PX_ERR_INTERNAL,
+            "cannot import mesh file '%s': the import mutex could not be created (mtx_init failed), "
+            "and Assimp is not safe to call without it",
+            path);
+    if (mtx_lock(&g_io_mutex) != thrd_success)
+        return pxi_error(err, PX_ERR_INTERNAL,
+                         "cannot import mesh file '%s': locking the import mutex failed", path);
+    return PX_OK;
 }
 
-static void io_unlock(void) {
-    if (g_io_mutex_ok) mtx_unlock(&g_io_mutex);
-}
+/* Releases the lock taken by a successful io_lock. */
+static void io_unlock(void) { mtx_unlock(&g_io_mutex); }
 
 /* Affine map as a row-major 3x4 matrix [R | t]: p' = R p + t. */
 typedef struct io_xform {
@@ -259,8 +273,9 @@ px_status px_load_points(const char *path, const px_allocator *allocator, double
 
     double *pts = NULL;
     size_t n = 0, cap = 0;
-    io_lock();
-    px_status st = import_points_locked(path, &alloc, &pts, &n, &cap, err);
+    px_status st = io_lock(path, err);
+    if (st != PX_OK) return st;
+    st = import_points_locked(path, &alloc, &pts, &n, &cap, err);
     io_unlock();
     if (st != PX_OK) return st;
 

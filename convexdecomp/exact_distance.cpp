@@ -163,8 +163,9 @@ extern "C" pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const
         if (realizing_p != nullptr) std::copy(rp, rp + 3, realizing_p);
         if (realizing_q != nullptr) std::copy(rq, rq + 3, realizing_q);
         return PXCD_OK;
-    } catch (const std::bad_alloc &) {
+    } catch (const std::bad_alloc &) { // out of memory is told by the type, never by the text
         set_msg(msg, msg_len, "pxcd_exact_distance: out of memory");
+        return PXCD_OUT_OF_MEMORY;
     } catch (const CGAL::Failure_exception &e) {
         char buf[512];
         std::snprintf(buf, sizeof buf, "pxcd_exact_distance: CGAL failure: %s", e.what());

@@ -516,6 +516,7 @@ extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_h
         set_msg(msg, msg_len, "pxcd_hull_compute: no input points");
         return PXCD_ERROR;
     }
+    // Out of memory is told by the exception's type, never by its text.
     const char *what = nullptr;
     char buf[512];
     try {
@@ -524,7 +525,8 @@ extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_h
         *out = hull;
         return PXCD_OK;
     } catch (const std::bad_alloc &) {
-        what = "pxcd_hull_compute: out of memory";
+        set_msg(msg, msg_len, "pxcd_hull_compute: out of memory");
+        return PXCD_OUT_OF_MEMORY;
     } catch (const CGAL::Failure_exception &e) {
         std::snprintf(buf, sizeof buf, "pxcd_hull_compute: CGAL failure: %s", e.what());
         what = buf;

@@ -9,7 +9,9 @@
  *   2. pxcd_exact_distance: exact Euclidean distance between the convex hulls
  *      of two point sets (CGAL Polytope_distance_d with Homogeneous<Gmpzf>),
  *      used as ground truth by tests and benchmarks.
- * No function throws or aborts: CGAL exceptions are caught and reported.
+ * No function throws or aborts: CGAL exceptions are caught and reported;
+ * running out of memory (std::bad_alloc, recognised by its type) has its own
+ * status.
  */
 #ifndef PROXIMA_PXCD_H
 #define PROXIMA_PXCD_H
@@ -23,8 +25,9 @@ extern "C" {
 
 typedef enum pxcd_status {
     PXCD_OK = 0,
-    PXCD_DEGENERATE = 1, /* fewer than 4 affinely independent points */
-    PXCD_ERROR = 2       /* CGAL threw, or out of memory: see msg */
+    PXCD_DEGENERATE = 1,   /* fewer than 4 affinely independent points */
+    PXCD_ERROR = 2,        /* bad argument, CGAL threw, or an internal check failed: see msg */
+    PXCD_OUT_OF_MEMORY = 3 /* an allocation failed (std::bad_alloc) */
 } pxcd_status;
 
 /* The hull, as polygons. Vertex ids index `vertices`; each face is a convex
@@ -50,9 +53,9 @@ typedef struct pxcd_hull {
  * the caller checks). On PXCD_OK *out is a new hull (and *dimension is 3).
  * On PXCD_DEGENERATE, *dimension is set to the affine dimension of the input
  * (0 = one distinct point, 1 = collinear, 2 = coplanar, decided with exact
- * predicates) and *out is NULL. On PXCD_ERROR *out is NULL and a sentence
- * goes to msg (msg_len bytes, may be 0); count == 0 is an error. `dimension`
- * and `msg` may be NULL.
+ * predicates) and *out is NULL. On PXCD_ERROR and PXCD_OUT_OF_MEMORY *out is
+ * NULL and a sentence goes to msg (msg_len bytes, may be 0); count == 0 is
+ * an error. `dimension` and `msg` may be NULL.
  * Time: ~1 s for 200k points in convex position. If the FPU's directed
  * rounding does not work (valgrind), an exact rational kernel is used
  * instead of CGAL's filtered one: same result, much slower. Setting the
@@ -73,7 +76,8 @@ void pxcd_hull_free(pxcd_hull *hull);
  * does not). *is_zero is 1 when the exact distance is 0 (touching or
  * intersecting). Optionally (realizing_p / realizing_q non-NULL, 3 doubles
  * each) returns the realizing points, each coordinate correctly rounded.
- * Any output pointer may be NULL. Outputs are written only on PXCD_OK.
+ * Any output pointer may be NULL. Outputs are written only on PXCD_OK;
+ * otherwise PXCD_ERROR or PXCD_OUT_OF_MEMORY, with a sentence in msg.
  * Time: ~0.1 s for two 5k-vertex hulls, a few seconds for 200k points each. */
 pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_xyz, size_t nq,
                                 double *distance, double *squared_distance, int *is_zero, double *realizing_p,

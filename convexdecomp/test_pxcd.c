@@ -23,7 +23,21 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
+#include <unistd.h>
+
+/* AddressSanitizer (PROXIMA_SANITIZE) cannot run under an address-space limit. */
+#if defined(__SANITIZE_ADDRESS__)
+#define PXCD_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PXCD_TEST_ASAN 1
+#endif
+#endif
+#ifndef PXCD_TEST_ASAN
+#define PXCD_TEST_ASAN 0
+#endif
 
 #define PI 3.14159265358979323846
 
@@ -224,7 +238,7 @@ static pxcd_hull *hull_of(const double *xyz, size_t n, pxcd_status *st, int *dim
     pxcd_hull *h = NULL;
     *dim = -1;
     *st = pxcd_hull_compute(xyz, n, &h, dim, msg, sizeof msg);
-    if (*st == PXCD_ERROR) printf("  pxcd_hull_compute error: %s\n", msg);
+    if (*st == PXCD_ERROR || *st == PXCD_OUT_OF_MEMORY) printf("  pxcd_hull_compute error: %s\n", msg);
     return h;
 }
 
@@ -489,6 +503,51 @@ static void test_degenerate(void) {
     pxcd_hull_free(NULL);
 }
 
+/* Regression: out of memory is its own status, PXCD_OUT_OF_MEMORY, told by
+ * the exception's type (std::bad_alloc); callers used to search the message
+ * for "memory". Configuration: the address space is capped (RLIMIT_AS, soft
+ * limit only) at the process's current size plus 32 MiB, then the hull of 4M
+ * points is asked for: CGAL's first copy of them (96 MiB or more) cannot be
+ * allocated. Skipped under AddressSanitizer. pxcd_exact_distance is not
+ * tested this way: GMP aborts the process when its own allocations fail. */
+static void test_out_of_memory(void) {
+    if (PXCD_TEST_ASAN) return;
+    const size_t n = (size_t)4 << 20;
+    double *xyz = malloc(3 * n * sizeof *xyz);
+    if (!xyz) {
+        CHECK(0, "cannot allocate the input");
+        return;
+    }
+    for (size_t i = 0; i < 3 * n; ++i) xyz[i] = (double)(i % 1013);
+    long vm_pages = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (f) {
+        if (fscanf(f, "%ld", &vm_pages) != 1) vm_pages = 0;
+        fclose(f);
+    }
+    struct rlimit old, lim;
+    if (vm_pages <= 0 || getrlimit(RLIMIT_AS, &old) != 0) {
+        printf("out-of-memory test skipped: no /proc/self/statm or RLIMIT_AS\n");
+        free(xyz);
+        return;
+    }
+    lim = old;
+    lim.rlim_cur = (rlim_t)vm_pages * (rlim_t)sysconf(_SC_PAGESIZE) + ((rlim_t)32 << 20);
+    if (old.rlim_cur != RLIM_INFINITY && lim.rlim_cur > old.rlim_cur) lim.rlim_cur = old.rlim_cur;
+    char msg[128] = "";
+    pxcd_hull *h = (pxcd_hull *)1;
+    pxcd_status st = PXCD_OK;
+    const int limited = setrlimit(RLIMIT_AS, &lim) == 0;
+    if (limited) {
+        st = pxcd_hull_compute(xyz, n, &h, NULL, msg, sizeof msg);
+        setrlimit(RLIMIT_AS, &old);
+    }
+    CHECK(limited, "setrlimit failed");
+    CHECK(st == PXCD_OUT_OF_MEMORY && h == NULL && strstr(msg, "out of memory"), "st=%d h=%p msg=%s", (int)st,
+          (void *)h, msg);
+    free(xyz);
+}
+
 /* ---------- exact distance tests ---------- */
 
 static void tetra(double s, double z0, int up, double out[12]) {
@@ -693,6 +752,7 @@ int main(int argc, char **argv) {
     test_random_lattice();
     test_hull_scales();
     test_degenerate();
+    test_out_of_memory();
     test_distance_scales();
     test_distance_cubes();
     test_distance_random();

@@ -6,6 +6,8 @@
  * inputs with their documented statuses, memory per vertex, and the
  * allocator: leak count and failure injection at every allocation. */
 #include <stdint.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include "access.h"
 #include "check.h"
@@ -179,7 +181,7 @@ static px_convex *build_checked(const double *xyz, size_t n, const char *what) {
     px_error err;
     memset(&err, 0, sizeof err);
     px_convex *c = px_convex_create(xyz, n, NULL, &err);
-    CHECK(c != NULL, "%s: px_convex_from_points failed: %s", what, err.message);
+    CHECK(c != NULL, "%s: px_convex_create failed: %s", what, err.message);
     if (c) check_polytope(c, xyz, n, what);
     return c;
 }
@@ -396,6 +398,51 @@ static void test_allocator(void) {
     printf("  failure injection: %d builds with one failing allocation\n", injected);
 }
 
+/* Regression: when the hull computation ran out of memory,
+ * px_convex_from_points told it by searching CGAL's message for "memory";
+ * now pxcd reports PXCD_OUT_OF_MEMORY (std::bad_alloc, by type) and this
+ * must become PX_ERR_OUT_OF_MEMORY. Configuration: the address space is
+ * capped (RLIMIT_AS, soft limit only) at the process's current size plus
+ * 32 MiB, then a polytope is built from 4M points (96 MiB): CGAL's first
+ * copy of them cannot be allocated. Skipped under AddressSanitizer, whose
+ * shadow memory needs an unlimited address space. */
+static void test_out_of_memory(void) {
+    if (tu_sanitized()) return;
+    const size_t n = (size_t)4 << 20;
+    double *xyz = malloc(3 * n * sizeof *xyz);
+    CHECK(xyz != NULL, "input");
+    if (!xyz) return;
+    for (size_t i = 0; i < 3 * n; ++i) xyz[i] = (double)(i % 1013);
+    long vm_pages = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (f) {
+        if (fscanf(f, "%ld", &vm_pages) != 1) vm_pages = 0;
+        fclose(f);
+    }
+    struct rlimit old, lim;
+    if (vm_pages <= 0 || getrlimit(RLIMIT_AS, &old) != 0) {
+        printf("  out-of-memory test skipped: no /proc/self/statm or RLIMIT_AS\n");
+        free(xyz);
+        return;
+    }
+    lim = old;
+    lim.rlim_cur = (rlim_t)vm_pages * (rlim_t)sysconf(_SC_PAGESIZE) + ((rlim_t)32 << 20);
+    if (old.rlim_cur != RLIM_INFINITY && lim.rlim_cur > old.rlim_cur) lim.rlim_cur = old.rlim_cur;
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_convex *c = NULL;
+    int limited = setrlimit(RLIMIT_AS, &lim) == 0;
+    if (limited) {
+        c = px_convex_create(xyz, n, NULL, &err);
+        setrlimit(RLIMIT_AS, &old);
+    }
+    CHECK(limited, "setrlimit");
+    CHECK(c == NULL && err.code == PX_ERR_OUT_OF_MEMORY, "4M points under a 32 MiB margin: %s: %s",
+          px_status_string(err.code), err.message);
+    px_convex_destroy(c);
+    free(xyz);
+}
+
 int main(void) {
     tu_init("test_convex");
     double t0 = tu_now();
@@ -403,6 +450,7 @@ int main(void) {
     test_degenerate_inputs();
     test_random_polytopes(tu_scaled(300));
     test_allocator();
+    test_out_of_memory();
     printf("  %ld polytopes validated; bytes per vertex: min %.0f, max %.0f (limit 1024); %.2f s\n",
            g_polytopes, g_min_bytes_per_vertex, g_max_bytes_per_vertex, tu_now() - t0);
     return tu_finish();

@@ -347,9 +347,13 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
                   what[dim >= 0 && dim <= 2 ? dim : 2], dim);
         return NULL;
     }
+    if (hs == PXCD_OUT_OF_MEMORY) {
+        pxi_error(err, PX_ERR_OUT_OF_MEMORY,
+                  "px_convex_create: out of memory computing the hull of %zu points", count);
+        return NULL;
+    }
     if (hs != PXCD_OK || !hull) {
-        pxi_error(err, strstr(msg, "memory") ? PX_ERR_OUT_OF_MEMORY : PX_ERR_INTERNAL,
-                  "px_convex_create: hull computation failed: %s", msg);
+        pxi_error(err, PX_ERR_INTERNAL, "px_convex_create: hull computation failed: %s", msg);
         return NULL;
     }
     px_convex *c = pxi_alloc(&alloc, sizeof *c);

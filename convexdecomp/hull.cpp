@@ -51,8 +51,9 @@
 // disabled (CGAL_DISABLE_ROUNDING_MATH_CHECK); instead we run the same check
 // once (directed_rounding_works) and, if rounding modes do not work, compute
 // with Simple_cartesian<Exact_rational>: no filters, no dependence on the
-// FPU, same algorithm, slower. The environment variable
-// PXCD_HULL_EXACT_KERNEL=1 forces that path (used by the tests).
+// FPU, same algorithm, slower. Tests force that path with
+// pxcd_hull_compute_ex(..., PXCD_HULL_FORCE_EXACT_KERNEL, ...); the library
+// reads no environment variable.
 //
 // Determinism: quickhull's output order depends on memory addresses (CGAL
 // keys a std::map by vertex handles), so equal inputs gave differently
@@ -411,18 +412,23 @@ bool directed_rounding_works() {
     return -CGAL_IA_MUL(-1.1, 10.1) != CGAL_IA_MUL(1.1, 10.1) && -CGAL_IA_DIV(-1., 10) != CGAL_IA_DIV(1., 10);
 }
 
-bool use_exact_kernel() {
-    static const bool exact = [] {
-        const char *force = std::getenv("PXCD_HULL_EXACT_KERNEL");
-        return (force != nullptr && force[0] != '\0' && force[0] != '0') || !directed_rounding_works();
-    }();
-    return exact;
+// Whether to compute with the exact kernel: when the caller forces it
+// (tests), or when directed rounding does not work here (valgrind). The
+// rounding test runs once; its answer is a property of the machine, not a
+// setting.
+bool use_exact_kernel(bool force) {
+    static const bool rounding_works = directed_rounding_works();
+    return force || !rounding_works;
 }
 
-pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
+// The hull (nullptr with *dimension < 3 for degenerate input), computed with
+// the exact kernel if force_exact or use_exact_kernel says so. Throws on
+// failure (std::bad_alloc, CGAL::Failure_exception, Hull_error).
+pxcd_hull *compute(const double *xyz, size_t count, int *dimension, bool force_exact) {
     Facets facets;
-    const int dim = use_exact_kernel() ? compute_facets<Exact_kernel, Exact_traits>(xyz, count, facets)
-                                       : compute_facets<Fast_kernel, Fast_traits>(xyz, count, facets);
+    const int dim = use_exact_kernel(force_exact)
+                        ? compute_facets<Exact_kernel, Exact_traits>(xyz, count, facets)
+                        : compute_facets<Fast_kernel, Fast_traits>(xyz, count, facets);
     if (dimension != nullptr) *dimension = dim;
     if (dim < 3) return nullptr;
     const std::vector<uint32_t> &loops = facets.loops;
@@ -507,11 +513,20 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension) {
 
 extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out, int *dimension,
                                          char *msg, size_t msg_len) {
+    return pxcd_hull_compute_ex(xyz, count, 0, out, dimension, msg, msg_len);
+}
+
+extern "C" pxcd_status pxcd_hull_compute_ex(const double *xyz, size_t count, unsigned flags, pxcd_hull **out,
+                                            int *dimension, char *msg, size_t msg_len) {
     if (out == nullptr) {
         set_msg(msg, msg_len, "pxcd_hull_compute: out is NULL");
         return PXCD_ERROR;
     }
     *out = nullptr;
+    if ((flags & ~static_cast<unsigned>(PXCD_HULL_FORCE_EXACT_KERNEL)) != 0) {
+        set_msg(msg, msg_len, "pxcd_hull_compute_ex: unknown flags");
+        return PXCD_ERROR;
+    }
     if (count == 0 || xyz == nullptr) {
         set_msg(msg, msg_len, "pxcd_hull_compute: no input points");
         return PXCD_ERROR;
@@ -520,7 +535,7 @@ extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_h
     const char *what = nullptr;
     char buf[512];
     try {
-        pxcd_hull *hull = compute(xyz, count, dimension);
+        pxcd_hull *hull = compute(xyz, count, dimension, (flags & PXCD_HULL_FORCE_EXACT_KERNEL) != 0);
         if (hull == nullptr) return PXCD_DEGENERATE;
         *out = hull;
         return PXCD_OK;

@@ -58,10 +58,22 @@ typedef struct pxcd_hull {
  * an error. `dimension` and `msg` may be NULL.
  * Time: ~1 s for 200k points in convex position. If the FPU's directed
  * rounding does not work (valgrind), an exact rational kernel is used
- * instead of CGAL's filtered one: same result, much slower. Setting the
- * environment variable PXCD_HULL_EXACT_KERNEL=1 forces it (for tests). */
+ * instead of CGAL's filtered one: same result, much slower. Reads no
+ * environment variable and keeps no setting between calls. */
 pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_hull **out, int *dimension, char *msg,
                               size_t msg_len);
+
+/* Flags of pxcd_hull_compute_ex. */
+enum {
+    /* Test only: compute with the exact rational kernel even where directed
+     * rounding works, so that tests run the valgrind fallback natively. */
+    PXCD_HULL_FORCE_EXACT_KERNEL = 1
+};
+
+/* Test only: pxcd_hull_compute with `flags`, a combination of PXCD_HULL_*
+ * values (0: exactly pxcd_hull_compute). Unknown flags are PXCD_ERROR. */
+pxcd_status pxcd_hull_compute_ex(const double *xyz, size_t count, unsigned flags, pxcd_hull **out,
+                                 int *dimension, char *msg, size_t msg_len);
 
 void pxcd_hull_free(pxcd_hull *hull);
 

@@ -1,8 +1,11 @@
 /* Standalone test of the pxcd C ABI (convexdecomp/pxcd.h).
  *
- *   test_pxcd          run the tests; exit status 0 iff all pass
- *   test_pxcd --bench  also time a 200k-point ellipsoid hull and the exact
- *                      distance between two 5k-vertex hulls
+ *   test_pxcd                 run the tests; exit status 0 iff all pass
+ *   test_pxcd --exact-kernel  the same, every hull computed with the exact
+ *                             rational kernel (PXCD_HULL_FORCE_EXACT_KERNEL,
+ *                             the fallback used under valgrind)
+ *   test_pxcd --bench         also time a 200k-point ellipsoid hull and the
+ *                             exact distance between two 5k-vertex hulls
  *
  * Hull checks used throughout (check_hull): the combinatorics promised by
  * pxcd.h (ids in range, no repeated vertex in a face, every undirected edge
@@ -233,11 +236,14 @@ static int check_hull(const pxcd_hull *h, const double *xyz, size_t n, int geom)
     return ok;
 }
 
+/* Flags of every hull computed by the tests (--exact-kernel). */
+static unsigned g_hull_flags = 0;
+
 static pxcd_hull *hull_of(const double *xyz, size_t n, pxcd_status *st, int *dim) {
     char msg[256] = "";
     pxcd_hull *h = NULL;
     *dim = -1;
-    *st = pxcd_hull_compute(xyz, n, &h, dim, msg, sizeof msg);
+    *st = pxcd_hull_compute_ex(xyz, n, g_hull_flags, &h, dim, msg, sizeof msg);
     if (*st == PXCD_ERROR || *st == PXCD_OUT_OF_MEMORY) printf("  pxcd_hull_compute error: %s\n", msg);
     return h;
 }
@@ -503,6 +509,39 @@ static void test_degenerate(void) {
     pxcd_hull_free(NULL);
 }
 
+/* pxcd_hull_compute_ex: both kernels give the same hull, bit for bit (the
+ * output is canonical), and unknown flags are refused. Regression for the
+ * test-only switch, which was the environment variable
+ * PXCD_HULL_EXACT_KERNEL read by the library itself. */
+static void test_kernel_flag(void) {
+    enum { N = 400 };
+    double xyz[3 * N];
+    for (size_t i = 0; i < N; ++i) { /* small integers: many coplanar points */
+        for (int k = 0; k < 3; ++k) xyz[3 * i + k] = floor(rnd01() * 9);
+    }
+    char msg[256] = "";
+    pxcd_hull *fast = NULL, *exact = NULL;
+    int dim_fast = -1, dim_exact = -1;
+    pxcd_status s1 = pxcd_hull_compute_ex(xyz, N, 0, &fast, &dim_fast, msg, sizeof msg);
+    pxcd_status s2 =
+        pxcd_hull_compute_ex(xyz, N, PXCD_HULL_FORCE_EXACT_KERNEL, &exact, &dim_exact, msg, sizeof msg);
+    CHECK(s1 == PXCD_OK && s2 == PXCD_OK && fast && exact, "kernels: %d %d %s", (int)s1, (int)s2, msg);
+    if (fast && exact)
+        CHECK(fast->vertex_count == exact->vertex_count && fast->face_count == exact->face_count &&
+                  memcmp(fast->vertices, exact->vertices, 3 * fast->vertex_count * sizeof(double)) == 0 &&
+                  memcmp(fast->face_offsets, exact->face_offsets, (fast->face_count + 1) * sizeof(size_t)) ==
+                      0 &&
+                  memcmp(fast->face_indices, exact->face_indices,
+                         fast->face_offsets[fast->face_count] * sizeof(uint32_t)) == 0,
+              "the two kernels give different hulls");
+    pxcd_hull_free(fast);
+    pxcd_hull_free(exact);
+    pxcd_hull *h = (pxcd_hull *)1;
+    msg[0] = '\0';
+    CHECK(pxcd_hull_compute_ex(xyz, N, 2, &h, NULL, msg, sizeof msg) == PXCD_ERROR && h == NULL && msg[0],
+          "unknown flag accepted");
+}
+
 /* Regression: out of memory is its own status, PXCD_OUT_OF_MEMORY, told by
  * the exception's type (std::bad_alloc); callers used to search the message
  * for "memory". Configuration: the address space is capped (RLIMIT_AS, soft
@@ -539,7 +578,7 @@ static void test_out_of_memory(void) {
     pxcd_status st = PXCD_OK;
     const int limited = setrlimit(RLIMIT_AS, &lim) == 0;
     if (limited) {
-        st = pxcd_hull_compute(xyz, n, &h, NULL, msg, sizeof msg);
+        st = pxcd_hull_compute_ex(xyz, n, g_hull_flags, &h, NULL, msg, sizeof msg);
         setrlimit(RLIMIT_AS, &old);
     }
     CHECK(limited, "setrlimit failed");
@@ -745,6 +784,19 @@ static void bench(void) {
 }
 
 int main(int argc, char **argv) {
+    int run_bench = 0;
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--bench") == 0) {
+            run_bench = 1;
+        } else if (strcmp(argv[i], "--exact-kernel") == 0) {
+            g_hull_flags |= PXCD_HULL_FORCE_EXACT_KERNEL;
+        } else {
+            fprintf(stderr, "usage: %s [--exact-kernel] [--bench]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (g_hull_flags & PXCD_HULL_FORCE_EXACT_KERNEL)
+        printf("hulls: exact rational kernel (--exact-kernel)\n");
     test_cube_with_extras();
     test_tetrahedron();
     test_sphere(2000);
@@ -756,7 +808,8 @@ int main(int argc, char **argv) {
     test_distance_scales();
     test_distance_cubes();
     test_distance_random();
-    if (argc > 1 && strcmp(argv[1], "--bench") == 0) bench();
+    test_kernel_flag();
+    if (run_bench) bench();
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;
 }

@@ -15,6 +15,7 @@
 
 #include "access.h"
 #include "math/vec3.h"
+#include "narrow/narrow.h"
 #include "oracle_sat.h"
 #include "proxima/proxima.h"
 #include "px_gen.h"
@@ -111,10 +112,14 @@ static void test_intersect_near_contact(void) {
 }
 
 /* Deep overlap of near-concentric spheres of 500 and 1,000 vertices: even
- * when EPA's budget runs out (counted in fallbacks), moving B by the depth
- * along the normal must leave the pair exactly touching, and the depth must
- * be within 1 % of the SAT oracle. */
+ * when EPA's budget runs out, moving B by the depth along the normal must
+ * leave the pair exactly touching, and the depth must be within 1 % of the
+ * SAT oracle. The budget path must be taken at least once here, flagged
+ * PX_QUALITY_DEPTH_BUDGET and counted as a fallback, and its depth (exact
+ * along the normal it reports, by a translation query) can be no smaller
+ * than the SAT minimum over all normals. */
 static void test_epa_deep_round(void) {
+    int budget_paths = 0;
     pg_rng rng;
     pg_seed(&rng, 1);
     static double xyz[3 * 1000];
@@ -145,11 +150,25 @@ static void test_epa_deep_round(void) {
                     "sphere %d method %d offset %d: depth %.17g oracle %.17g (fallbacks %u), distance after "
                     "the move %.3g",
                     n, m, off, depth, orc.depth, r.diag.fallbacks, after.distance);
+                if (r.diag.quality & PX_QUALITY_DEPTH_BUDGET) {
+                    budget_paths++;
+                    CHECK(r.diag.fallbacks >= 1 && depth >= orc.depth * (1.0 - 1e-12),
+                          "sphere %d method %d offset %d: budget answer with %u fallbacks, depth %.17g below "
+                          "the "
+                          "SAT minimum %.17g",
+                          n, m, off, r.diag.fallbacks, depth, orc.depth);
+                } else {
+                    CHECK(fabs(depth - orc.depth) <= 1e-9 * orc.depth,
+                          "sphere %d method %d offset %d: exact answer %.17g, SAT %.17g", n, m, off, depth,
+                          orc.depth);
+                }
             }
         }
         os_shape_free(&sh);
         px_convex_destroy(s);
     }
+    CHECK(budget_paths > 0, "EPA's budget path was never taken: the test no longer covers it");
+    printf("  EPA budget path taken %d times, flagged and checked against SAT\n", budget_paths);
 }
 
 /* Plates whose Minkowski difference is flat within rounding: the signed
@@ -210,8 +229,75 @@ static void test_extreme_numbers(void) {
     px_convex_destroy(b);
 }
 
+/* The internal policy hook a hierarchy will use (narrow.h, pxi_policy):
+ * with accept_bound, GJK's unproven answer at the rounding floor comes back
+ * as it is, flagged PX_QUALITY_UNPROVEN, with no fallback; its gap must
+ * bracket the true distance (Lin-Canny's): d_true in [d - gap, d], up to
+ * rounding. Without it the same pair is finished by Lin-Canny (one
+ * fallback). Pairs: near-contact placements, where GJK's duality gap stays
+ * open (about half of them). */
+static void test_accept_bound_policy(void) {
+    pg_rng rng;
+    pg_seed(&rng, 777);
+    double xyz[3 * 60];
+    int unproven = 0;
+    for (int i = 0; i < 400; ++i) {
+        size_t na = pg_shape(&rng, (pg_kind)pg_below(&rng, PG_KIND_COUNT), 40, 1.0, xyz);
+        px_convex *a = px_convex_create(xyz, na, NULL, NULL);
+        size_t nb = pg_shape(&rng, (pg_kind)pg_below(&rng, PG_KIND_COUNT), 40, 1.0, xyz);
+        px_convex *b = px_convex_create(xyz, nb, NULL, NULL);
+        if (!a || !b) {
+            px_convex_destroy(a);
+            px_convex_destroy(b);
+            continue;
+        }
+        px_pose pb = pg_pose_random(&rng, 1.0), pa = pg_pose_around(&rng, pb.t, 1.0);
+        px_query_options sg;
+        memset(&sg, 0, sizeof sg);
+        sg.flags = PX_QUERY_SIGNED;
+        px_distance_result r;
+        px_distance(a, &pa, b, &pb, &sg, NULL, &r);
+        double gap = pow(10.0, pg_range(&rng, -14.0, -9.0));
+        pa.t = pxi_madd(pa.t, r.normal, r.signed_distance - gap);
+        px_pose t_ab =
+            pxi_relative(&pa, &pb); /* bodies near their frame origin: stored frames = body frames */
+        pxi_policy pol;
+        memset(&pol, 0, sizeof pol);
+        pol.method = PX_METHOD_GJK;
+        pol.accept_bound = 1;
+        pxi_answer bound, full;
+        uint32_t fb_bound = 0, fb_full = 0;
+        pxi_distance_pair(a, b, &t_ab, &pol, NULL, &bound, NULL, &fb_bound);
+        pol.accept_bound = 0;
+        pxi_distance_pair(a, b, &t_ab, &pol, NULL, &full, NULL, &fb_full);
+        pol.method = PX_METHOD_LIN_CANNY;
+        pxi_answer lc;
+        uint32_t fb_lc = 0;
+        pxi_distance_pair(a, b, &t_ab, &pol, NULL, &lc, NULL, &fb_lc);
+        if (bound.quality & PX_QUALITY_UNPROVEN) {
+            unproven++;
+            double noise = 64 * DBL_EPSILON * 4.0;
+            CHECK(fb_bound == 0 && lc.distance <= bound.distance + noise &&
+                      lc.distance >= bound.distance - bound.gap - noise,
+                  "pair %d: unproven GJK %.17g with gap %.3g does not bracket Lin-Canny's %.17g", i,
+                  bound.distance, bound.gap, lc.distance);
+            CHECK(fb_full >= 1 && fabs(full.distance - lc.distance) <= noise &&
+                      !(full.quality & PX_QUALITY_UNPROVEN),
+                  "pair %d: the default policy gives %.17g (fallbacks %u), Lin-Canny %.17g", i, full.distance,
+                  fb_full, lc.distance);
+        } else {
+            CHECK(fb_bound == 0 && bound.distance == full.distance, "pair %d: proven answers differ", i);
+        }
+        px_convex_destroy(a);
+        px_convex_destroy(b);
+    }
+    CHECK(unproven > 10, "only %d unproven GJK answers: the test no longer covers the policy", unproven);
+    printf("  accept_bound: %d unproven GJK answers bracket Lin-Canny's distance\n", unproven);
+}
+
 int main(void) {
     tu_init("test_query_edges");
+    test_accept_bound_policy();
     test_warm_translation_hint();
     test_intersect_near_contact();
     test_epa_deep_round();

@@ -7,13 +7,13 @@
 //   - distance: ~1,000 random settings per size from scratch (gap about 10 %
 //     of the diameter, NULL cache) and sequences of 100 small moves of
 //     delta = 1 %, 0.5 %, 0.25 %, 0.125 % of the diameter (cache carried from
-//     query to query). proxima lin-canny, gjk and hybrid (px_distance_ex)
+//     query to query). proxima lin-canny, gjk and hybrid (px_distance)
 //     against fcl::distance (GJK through libccd, tolerance 1e-9 and the
 //     default 1e-6); a subset checked against the exact distance (CGAL
 //     Polytope_distance_d over an exact number type, pxcd_exact_distance).
 //   - penetration: overlapping settings (B's centre at 0.6-0.9 of the sum of
 //     the two support extents along a random direction, random rotations).
-//     proxima px_distance_ex with PX_QUERY_SIGNED (lin-canny, gjk, hybrid)
+//     proxima px_distance with PX_QUERY_SIGNED (lin-canny, gjk, hybrid)
 //     against FCL's signed distance (enable_signed_distance, GST_LIBCCD) and
 //     libccd's ccdMPRPenetration / ccdGJKPenetration (EPA) given a
 //     brute-force support callback over the hull vertices. Ground truth at
@@ -21,7 +21,7 @@
 //     edge-edge normal with brute-force support functions; above, the least
 //     h_A(n) + h_B(-n) over the normals the methods report ("best-normal").
 //   - translation: A moves along a direction d (random offsets from the line
-//     of centres, so some miss), B stays. proxima px_translation (NULL cache
+//     of centres, so some miss), B stays. proxima px_translate (NULL cache
 //     from scratch, a per-sequence cache incremental) against FCL's
 //     continuousCollide (translation motion, conservative advancement,
 //     GST_LIBCCD) on a segment [tau0, tau1] that brackets every contact.
@@ -540,7 +540,7 @@ int px_method_of(const std::string &name) {
     return PX_METHOD_LIN_CANNY;
 }
 
-// proxima's px_distance_ex; `signed_query` asks for the penetration depth.
+// proxima's px_distance; `signed_query` asks for the penetration depth.
 Run run_px_distance(const Body &b, const Workload &w, const std::string &method, bool signed_query) {
     px_query_options opt;
     std::memset(&opt, 0, sizeof opt);
@@ -593,8 +593,8 @@ Run run_ccd_penetration(const Body &b, const Workload &w, bool epa) {
     });
 }
 
-// proxima's px_translation (GJK ray cast cold; conservative advancement with Lin-Canny warm).
-Run run_px_translation(const Body &b, const Workload &w) {
+// proxima's px_translate (GJK ray cast cold; conservative advancement with Lin-Canny warm).
+Run run_px_translate(const Body &b, const Workload &w) {
     return time_workload(w, [&](const Q &q, px_pair_cache *cache, Answer &a) {
         px_translate_result res;
         const px_status st =
@@ -985,7 +985,7 @@ Run run_method(const Body &b, const Workload &w, const std::string &m) {
         if (m == "fcl-signed") return run_fcl_distance(b, w, 1e-6, true);
         return run_ccd_penetration(b, w, m == "libccd-epa");
     }
-    if (m == "raycast-advance") return run_px_translation(b, w);
+    if (m == "raycast-advance") return run_px_translate(b, w);
     return run_fcl_translation(b, w);
 }
 
@@ -1348,7 +1348,7 @@ int write_markdown(const std::string &path, const std::vector<Row> &rows, const 
         command.c_str(), seconds, read_first_line("/proc/cpuinfo", "model name").c_str(), load_start.c_str(),
         load_average().c_str());
     std::fprintf(
-        f, "\n## Distance\n\nproxima `px_distance_ex` (lin-canny, gjk, hybrid; NULL cache from scratch, "
+        f, "\n## Distance\n\nproxima `px_distance` (lin-canny, gjk, hybrid; NULL cache from scratch, "
            "one cache per sequence incremental) against `fcl::distance` (GJK in libccd) with tolerance "
            "1e-9 (`fcl-gjk-libccd`) and the default 1e-6 (`fcl-gjk-libccd-tol1e-6`); reference: CGAL's "
            "exact distance.\n");
@@ -1356,7 +1356,7 @@ int write_markdown(const std::string &path, const std::vector<Row> &rows, const 
     md_table(f, rows, "distance", "incremental", kDistanceMethods);
     std::fprintf(
         f,
-        "\n## Penetration depth\n\nOverlapping settings from scratch. proxima `px_distance_ex` with "
+        "\n## Penetration depth\n\nOverlapping settings from scratch. proxima `px_distance` with "
         "`PX_QUERY_SIGNED` (depth = −signed_distance) against FCL's `fcl::distance` with "
         "`enable_signed_distance` (`fcl-signed`, GST_LIBCCD, tolerance 1e-6) and libccd 2.1's "
         "`ccdMPRPenetration` (`libccd-mpr`) and `ccdGJKPenetration` (GJK + EPA, `libccd-epa`). libccd "
@@ -1371,7 +1371,7 @@ int write_markdown(const std::string &path, const std::vector<Row> &rows, const 
     std::fprintf(
         f,
         "\n## Collision translation\n\nA moves along d, B stays; τ_min is the least τ with A + τd "
-        "touching B. proxima `px_translation` (`raycast-advance`: GJK ray cast with a NULL cache from "
+        "touching B. proxima `px_translate` with `PX_QUERY_BOTH_WAYS` (`raycast-advance`: GJK ray cast with a NULL cache from "
         "scratch; with one cache per sequence, conservative advancement with Lin–Canny from the "
         "previous contact, the ray cast as fallback) against FCL's `fcl::continuousCollide` with a "
         "translation motion "

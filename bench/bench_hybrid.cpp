@@ -1,6 +1,6 @@
 // bench_hybrid: the timing experiments of seed 001, section 6 (the
 // Lin-Canny/GJK hybrid paper, Figures 1-3), on proxima's three distance
-// methods (px_distance_ex: lin-canny, gjk, hybrid), with FCL 0.7's GJK
+// methods (px_distance: lin-canny, gjk, hybrid), with FCL 0.7's GJK
 // (fcl::distance, libccd, tolerance 1e-9; it keeps no state) as a reference.
 //
 //   (a) "translation": random convex polyhedra of increasing vertex count

@@ -19,7 +19,7 @@
  *   (d) the three distance methods (Lin-Canny, GJK, hybrid) side by side on
  *       one tracked motion through approach, contact, overlap and separation;
  *   (e) signed distance (penetration depth) at several depths, checked by
- *       moving B out along the normal and against px_translation;
+ *       moving B out along the normal and against px_translate;
  *   (f) collision translation along hitting, missing and overlapping
  *       directions, cold vs warm;
  *   (g) px_intersect against the distance query's flag over the motion of (d).
@@ -430,7 +430,7 @@ static px_feature random_feature(const body *b) {
     return f;
 }
 
-/* Times one query (px_distance, or px_distance_ex when `opt` is not NULL). */
+/* Times one query (px_distance, or px_distance when `opt` is not NULL). */
 static int timed_query_ex(const body *a, const px_pose *pa, const body *b, const px_pose *pb,
                           const px_query_options *opt, px_pair_cache *cache, int reps, double *us,
                           px_distance_result *res) {
@@ -693,7 +693,7 @@ static int timed_translation(const body *a, const px_pose *pa, const body *b, co
     *us = (now_ns() - t0) * 1e-3 / reps;
     *cache = c;
     if (!record(st == PX_OK))
-        fprintf(stderr, "FAIL: px_translation(%s, %s): %s\n", a->name, b->name, px_status_string(st));
+        fprintf(stderr, "FAIL: px_translate(%s, %s): %s\n", a->name, b->name, px_status_string(st));
     return st == PX_OK;
 }
 
@@ -784,7 +784,7 @@ static track_stats run_tracked(const qpair *p, int n, int reps) {
             px_translate_result tr;
             px_status st = px_translate(p->a->c, &pa, p->b->c, &pb, u, &demo_both_ways, NULL, &tr);
             if (!record(st == PX_OK && tr.hit))
-                fprintf(stderr, "FAIL: %s step %d: px_translation along the line of centres: %s, hit %d\n",
+                fprintf(stderr, "FAIL: %s step %d: px_translate along the line of centres: %s, hit %d\n",
                         p->name, k, px_status_string(st), tr.hit);
             else
                 pa = pose_shifted(&pa, vscale(u, tr.tau)), s.touch_snaps++;
@@ -911,7 +911,7 @@ static void run_signed(const qpair *p, int reps) {
     px_translate_result tr;
     px_status st = px_translate(p->a->c, &pa, p->b->c, &pb, u, &demo_both_ways, NULL, &tr);
     if (!record(st == PX_OK && tr.hit)) {
-        printf("      %-34s FAIL: px_translation along the line of centres: %s, hit %d\n", p->name,
+        printf("      %-34s FAIL: px_translate along the line of centres: %s, hit %d\n", p->name,
                px_status_string(st), tr.hit);
         return;
     }
@@ -1099,11 +1099,11 @@ static unsigned long run_new_sections(const char *models, body *tea, body *puma,
 
     /* ---------------------------------------------------------------- (d) */
     printf(
-        "\n(d) Methods side by side (px_distance_ex): Lin-Canny, GJK and the hybrid on one tracked motion\n"
+        "\n(d) Methods side by side (px_distance): Lin-Canny, GJK and the hybrid on one tracked motion\n"
         "    %d steps of 1-5 degrees of relative rotation (about (1,2,3)/sqrt(14)); B's centre swings\n"
         "    twice from 1.15 x size to 0.35 x size from A's and back (size = R_A + R_B), with a sideways\n"
         "    wobble: approach, contact, overlap, separation; at every 50th step A is slid along the line\n"
-        "    of centres until it touches B (px_translation). Each method keeps its own cache ('track');\n"
+        "    of centres until it touches B (px_translate). Each method keeps its own cache ('track');\n"
         "    'cold' is a zeroed cache. 'max |d-d_LC|' = largest distance difference from Lin-Canny, x size;\n"
         "    'flags' = steps where the intersecting flag differs from Lin-Canny outside the touching band\n"
         "    |signed distance| <= %.0e x size (inside it in parentheses); 'cert' = worst certificate\n"
@@ -1121,12 +1121,12 @@ static unsigned long run_new_sections(const char *models, body *tea, body *puma,
     /* ---------------------------------------------------------------- (e) */
     printf(
         "\n(e) Signed distance (PX_QUERY_SIGNED): each pair slid into contact along its line of centres\n"
-        "    (px_translation), then pushed a further 'push' x size. Depth = -signed_distance per method;\n"
+        "    (px_translate), then pushed a further 'push' x size. Depth = -signed_distance per method;\n"
         "    'agree' = largest depth difference between methods, x size (check: <= %.0e); 'move' = |signed\n"
         "    distance| after translating B by depth x normal, worst method, x size (check: <= %.0e, i.e. "
         "the\n"
         "    pair touches); 'wit' = witness consistency (point_b - point_a = signed_distance x normal, both\n"
-        "    points on their boundaries), x size. Minimality, from px_translation (the least translation\n"
+        "    points on their boundaries), x size. Minimality, from px_translate (the least translation\n"
         "    of A along d that separates the pair is |tau(d)|, and the depth is its minimum over all d):\n"
         "    'tau(n)' = ||tau(normal)| - depth|, x size (check: <= %.0e); 'min/d' = the least |tau(d)| over\n"
         "    the push direction and 64 random directions, / depth (check: >= 1). Times: one cold signed\n"
@@ -1140,7 +1140,7 @@ static unsigned long run_new_sections(const char *models, body *tea, body *puma,
     /* ---------------------------------------------------------------- (f) */
     const qpair *tp = &pairs[1];
     printf(
-        "\n(f) Collision translation (px_translation): %s; A slides along a direction, B stays.\n"
+        "\n(f) Collision translation (px_translate): %s; A slides along a direction, B stays.\n"
         "    Centres 1.1 x size apart along x unless 'overlap' (0.5 x size: starts intersecting, tau < 0).\n"
         "    hit: tau (x size, A moved by tau x direction touches B) and the contact normal; checked: the\n"
         "    signed distance at tau is ~0 (x size), the pair is disjoint 1e-6 x size before, the contact\n"
@@ -1413,7 +1413,7 @@ int main(int argc, char **argv) {
     body puma[2];
     if (!body_init(&puma[0], "Puma link 2 (STL, in)", load_or_die(models, k_puma_stl))) return 1;
     if (!body_init(&puma[1], "Puma link 3 (DAE, m)", load_or_die(models, k_puma_dae))) return 1;
-    printf("    Puma links (px_convex_from_file): link2.stl hull %u V / %u E / %u F (inches) from %s;\n"
+    printf("    Puma links (px_convex_create_from_file): link2.stl hull %u V / %u E / %u F (inches) from %s;\n"
            "    link3.dae hull %u V / %u E / %u F (metres) from %s.\n",
            puma[0].nv, puma[0].ne, puma[0].nf, k_puma_stl, puma[1].nv, puma[1].ne, puma[1].nf, k_puma_dae);
     printf("\n    %-34s %17s %9s %10s %9s %7s %7s %7s\n", "pair (A / B)", "M1 + M2 = N", "track med",

@@ -71,7 +71,8 @@ typedef struct px_pair_cache {
 } px_pair_cache;
 
 /// The distance algorithms. All answer the same query with the same result;
-/// they differ in speed profile (docs/methods.md).
+/// they differ in speed profile: Lin-Canny is the fastest tracked and on
+/// round bodies, GJK and the hybrid need only support queries.
 typedef enum px_method {
     /// Closest features by the walk of M. Lin's thesis (1993, ch. 3) in B.
     /// Mirtich's V-Clip formulation (ACM TOG 17(3), 1998). The default.
@@ -131,8 +132,11 @@ typedef struct px_diagnostics {
     /// steps, seeds included.
     uint32_t iterations;
     /// Hand-offs to another method after one that should have concluded did
-    /// not (docs/methods.md, "Fallbacks"). Seeding a cold start and
-    /// declining a warm fast path are not counted.
+    /// not: Lin-Canny restarted from GJK after a rounding cycle, GJK finished
+    /// by Lin-Canny when its duality gap stays open at the rounding floor,
+    /// the hybrid out of rounds, EPA out of budget, a ray cast rerun or
+    /// finished by advancement, px_intersect's slow path. Seeding a cold
+    /// start and declining a warm fast path are not counted.
     uint32_t fallbacks;
     /// PX_QUALITY_EXACT (0), or px_quality bits saying why not.
     uint32_t quality;

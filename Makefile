@@ -15,7 +15,7 @@ ABS_BUILD = $(abspath $(BUILD))
 DEB_PACKAGES := build-essential cmake pkg-config clang-format libcgal-dev libgmp-dev libmpfr-dev \
   libboost-dev libassimp-dev libfcl-dev libccd-dev libbullet-dev gnuplot-nox
 
-.PHONY: all deps configure build demo test test-release test-asan test-install format format-check bench clean
+.PHONY: all deps configure build demo test test-release test-asan test-install test-embed format format-check bench clean
 
 all: build
 
@@ -70,6 +70,15 @@ test-install: build
 	  cc app_io.c -o app_io $$(pkg-config --cflags --libs proxima-io) && ./app_io $(TEAPOT)
 	@echo "test-install: find_package and the README's pkg-config lines build and run"
 
+# A parent project that embeds proxima with add_subdirectory: it builds, and
+# none of proxima's settings leak into the parent (tests/parent).
+test-embed:
+	rm -rf $(ABS_BUILD)/parent
+	cmake -S tests/parent -B $(ABS_BUILD)/parent -DPROXIMA_SOURCE=$(CURDIR) > /dev/null
+	cmake --build $(ABS_BUILD)/parent -j $(JOBS) --target parent_app > /dev/null
+	$(ABS_BUILD)/parent/parent_app
+	@echo "test-embed: proxima builds inside a parent project and leaves its settings alone"
+
 format-check:
 	@files=$$(git ls-files '*.c' '*.h' '*.cpp' 2>/dev/null); \
 	if [ -n "$$files" ]; then clang-format --dry-run --Werror $$files; fi
@@ -78,7 +87,7 @@ format:
 	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp')
 
 test: deps
-	$(MAKE) format-check test-release test-install test-asan
+	$(MAKE) format-check test-release test-install test-embed test-asan
 	@echo "make test: all suites passed (release, install, ASan+UBSan)"
 
 # The full benchmark (about 40 minutes on the 2-core machine; not part of

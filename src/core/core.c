@@ -52,9 +52,3 @@ px_status pxi_error(px_error *err, px_status code, const char *fmt, ...) {
     }
     return code;
 }
-
-void pxi_error_clear(px_error *err) {
-    if (!err) return;
-    err->code = PX_OK;
-    err->message[0] = '\0';
-}

@@ -25,6 +25,10 @@ px_status pxi_error(px_error *err, px_status code, const char *fmt, ...)
     ;
 
 /* The success state of an error: PX_OK and an empty message. */
-void pxi_error_clear(px_error *err);
+static inline void pxi_error_clear(px_error *err) {
+    if (!err) return;
+    err->code = PX_OK;
+    err->message[0] = '\0';
+}
 
 #endif

@@ -42,9 +42,15 @@
  * (convex.h), so the queries run between the stored frames, and answers map
  * back to the world through them. */
 typedef struct pair_frames {
-    px_pose t_ab;   /* A's stored frame -> B's stored frame */
-    px_pose wa, wb; /* stored frames -> world: (R, t + R origin) */
+    px_pose t_ab; /* A's stored frame -> B's stored frame */
+    const px_pose *pose_a, *pose_b;
+    px_vec3 ta, tb; /* the stored frames' origins in the world: t + R origin */
 } pair_frames;
+
+/* World point of a stored-frame point of A (which = 0) or B (which = 1). */
+static inline px_vec3 to_world(const pair_frames *f, int which, px_vec3 p) {
+    return pxi_add(pxi_rot(which ? f->pose_b->r : f->pose_a->r, p), which ? f->tb : f->ta);
+}
 
 /* Checks the arguments every query shares and computes the frames. T_AB's
  * translation is (t_A - t_B) + (R_A o_A - R_B o_B) rotated into B: the
@@ -61,15 +67,24 @@ static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_
     /* Checked before the rotation: inf times a zero matrix entry is NaN. */
     px_vec3 dt = pxi_sub(pose_a->t, pose_b->t);
     if (!pxi_is_finite3(dt)) return PX_ERR_NON_FINITE;
-    px_vec3 oa = pxi_rot(pose_a->r, a->origin), ob = pxi_rot(pose_b->r, b->origin);
-    f->wa = *pose_a;
-    f->wa.t = pxi_add(pose_a->t, oa);
-    f->wb = *pose_b;
-    f->wb.t = pxi_add(pose_b->t, ob);
-    px_vec3 d = pxi_add(dt, pxi_sub(oa, ob));
-    if (!pxi_is_finite3(f->wa.t) || !pxi_is_finite3(f->wb.t) || !pxi_is_finite3(d)) return PX_ERR_NON_FINITE;
+    f->pose_a = pose_a;
+    f->pose_b = pose_b;
     f->t_ab = pxi_relative(pose_a, pose_b);
-    f->t_ab.t = pxi_rot_t(pose_b->r, d);
+    f->ta = pose_a->t;
+    f->tb = pose_b->t;
+    /* Most bodies sit near their frame's origin (origin 0): nothing more. */
+    int ra = a->origin.x != 0.0 || a->origin.y != 0.0 || a->origin.z != 0.0;
+    int rb = b->origin.x != 0.0 || b->origin.y != 0.0 || b->origin.z != 0.0;
+    if (ra || rb) {
+        px_vec3 zero = {0, 0, 0};
+        px_vec3 oa = ra ? pxi_rot(pose_a->r, a->origin) : zero,
+                ob = rb ? pxi_rot(pose_b->r, b->origin) : zero;
+        f->ta = pxi_add(pose_a->t, oa);
+        f->tb = pxi_add(pose_b->t, ob);
+        px_vec3 d = pxi_add(dt, pxi_sub(oa, ob));
+        if (!pxi_is_finite3(f->ta) || !pxi_is_finite3(f->tb) || !pxi_is_finite3(d)) return PX_ERR_NON_FINITE;
+        f->t_ab.t = pxi_rot_t(pose_b->r, d);
+    }
     if (!pxi_is_finite3(f->t_ab.t)) return PX_ERR_NON_FINITE;
     /* The pair's span (sizes plus distance) must leave room for the sums and
      * the power-of-two scaling of every method: at most 2^1021 (4.5e307). */
@@ -317,7 +332,8 @@ void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_
     }
     /* The contact band, the same for every method (proxima/query.h): each
      * method's own band lies inside it, and this settles the rest. */
-    if (!out->intersecting && out->distance <= PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab)) {
+    if (!out->intersecting && out->distance <= PXI_CONTACT_BAND * pxi_pair_size_bound(a, b, t_ab) &&
+        out->distance <= PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab)) {
         out->intersecting = 1;
         out->distance = 0.0;
         out->quality |= PX_QUALITY_CONTACT_BAND;
@@ -372,9 +388,9 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     result->diag.iterations = ans.iterations;
     result->diag.fallbacks = fallbacks;
     result->diag.quality = ans.quality;
-    result->point_a = pxi_xform(&fr.wa, ans.pa);
+    result->point_a = to_world(&fr, 0, ans.pa);
     if (!ans.intersecting) {
-        result->point_b = pxi_xform(&fr.wb, ans.pb);
+        result->point_b = to_world(&fr, 1, ans.pb);
         result->normal = unit_or_zero(pxi_sub(result->point_b, result->point_a));
         return PX_OK;
     }
@@ -385,8 +401,8 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     result->signed_distance = 0.0;
     if (pen.flat) return PX_OK; /* not asked, or A - B flat within rounding: touching, as reported */
     result->signed_distance = -pen.depth;
-    result->point_a = pxi_xform(&fr.wa, pen.pa);
-    result->point_b = pxi_xform(&fr.wb, pen.pb);
+    result->point_a = to_world(&fr, 0, pen.pa);
+    result->point_b = to_world(&fr, 1, pen.pb);
     result->normal = pen.depth > 0.0 ? pxi_rot(pose_b->r, pen.normal) : pxi_v(0, 0, 0);
     result->feature_a = pen.fa;
     result->feature_b = pen.fb;
@@ -483,14 +499,14 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
             result->diag.quality = ans.quality;
             result->feature_a = ans.fa;
             result->feature_b = ans.fb;
-            result->point_a = pxi_xform(&fr.wa, ans.pa);
+            result->point_a = to_world(&fr, 0, ans.pa);
             if (ans.intersecting) {
                 result->hit = 1;
                 result->in_contact = 1;
                 result->point_b = result->point_a;
                 return PX_OK;
             }
-            result->point_b = pxi_xform(&fr.wb, ans.pb);
+            result->point_b = to_world(&fr, 1, ans.pb);
             result->normal = unit_or_zero(pxi_sub(result->point_b, result->point_a));
             result->gap = ans.distance;
             return PX_OK;
@@ -502,9 +518,9 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
     result->feature_b = tr.fb;
     result->normal = pxi_rot(pose_b->r, tr.normal);
     result->gap = tr.gap;
-    px_vec3 pa = pxi_xform(&fr.wa, tr.pa);
+    px_vec3 pa = to_world(&fr, 0, tr.pa);
     if (tr.hit) pa = pxi_madd(pa, ds, tr.tau); /* tau * direction, without overflow */
     result->point_a = pa;
-    result->point_b = pxi_xform(&fr.wb, tr.pb);
+    result->point_b = to_world(&fr, 1, tr.pb);
     return PX_OK;
 }

@@ -478,10 +478,12 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
      * query calls the same pairs touching. */
     int check_now = 0;
     if (tr.hit && !(flags & PX_QUERY_BOTH_WAYS)) {
+        /* Lengths: tr.tau is in units of the scaled direction dir_b, so
+         * tr.tau |dir_b| is the distance A travels, whatever |direction|. */
         double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
         double along = tr.tau * sqrt(pxi_dot(dir_b, dir_b)), normal_gap = tr.tau * pxi_dot(tr.normal, dir_b);
-        check_now = tr.tau < 0.0 || !(ldexp(normal_gap, -e) > band);
-        if (tr.tau >= 0.0 && ldexp(along, -e) <= band) check_now = 1;
+        check_now = tr.tau < 0.0 || !(normal_gap > band);
+        if (tr.tau >= 0.0 && along <= band) check_now = 1;
     }
     if (check_now) {
         /* Either A touches B now (the time of impact is 0), or the whole

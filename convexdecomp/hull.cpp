@@ -73,6 +73,7 @@
 #include <CGAL/exceptions.h>
 
 #include <algorithm>
+#include <cfenv>
 #include <array>
 #include <cstdint>
 #include <cstdio>
@@ -516,6 +517,18 @@ extern "C" pxcd_status pxcd_hull_compute(const double *xyz, size_t count, pxcd_h
     return pxcd_hull_compute_ex(xyz, count, 0, out, dimension, msg, msg_len);
 }
 
+namespace {
+// Saves the floating-point environment, clears the flags and turns traps off
+// (feholdexcept); restores the saved environment when it goes out of scope.
+struct Fenv_guard {
+    std::fenv_t env;
+    Fenv_guard() { std::feholdexcept(&env); }
+    ~Fenv_guard() { std::fesetenv(&env); }
+    Fenv_guard(const Fenv_guard &) = delete;
+    Fenv_guard &operator=(const Fenv_guard &) = delete;
+};
+} // namespace
+
 extern "C" pxcd_status pxcd_hull_compute_ex(const double *xyz, size_t count, unsigned flags, pxcd_hull **out,
                                             int *dimension, char *msg, size_t msg_len) {
     if (out == nullptr) {
@@ -531,6 +544,12 @@ extern "C" pxcd_status pxcd_hull_compute_ex(const double *xyz, size_t count, uns
         set_msg(msg, msg_len, "pxcd_hull_compute: no input points");
         return PXCD_ERROR;
     }
+    // CGAL's interval filters raise floating-point exceptions internally
+    // (FE_INVALID when an interval overflows, for coordinates of 1e154 and
+    // beyond, or meets subnormal ones) and then decide exactly. The caller's
+    // floating-point environment is kept and restored on every return: traps
+    // the caller enabled do not fire inside the hull, and no flag leaks out.
+    Fenv_guard fenv_guard;
     // Out of memory is told by the exception's type, never by its text.
     const char *what = nullptr;
     char buf[512];

@@ -153,9 +153,10 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
         double m = pxi_max_abs(c->v[i]);
         if (m > big) big = m;
     }
-    /* Coordinates divided by the largest one: no overflow at 1e139, no
-     * underflow at 1e-23 (triple products of raw coordinates would). */
-    double inv = big > 0.0 ? 1.0 / big : 1.0;
+    /* Coordinates brought to unit size by a power of two (1 / big would
+     * overflow for a subnormal big): triple products of raw coordinates
+     * would overflow at 1e139 and underflow at 1e-23. */
+    double inv = pxi_pow2_unit(big);
     for (uint32_t i = 0; i < c->nv; ++i) mid = pxi_add(mid, pxi_scale(c->v[i], inv / c->nv));
     double vol = 0.0;
     for (uint32_t f = 0; f < c->nf; ++f) {

@@ -11,6 +11,8 @@
  *   transform overflows: a status, never NaN. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "access.h"
@@ -295,8 +297,225 @@ static void test_accept_bound_policy(void) {
     printf("  accept_bound: %d unproven GJK answers bracket Lin-Canny's distance\n", unproven);
 }
 
+/* ---- Findings of the issue-8 review, each reproduced. ---- */
+
+/* A case file of the review (tests/data/review8): A's and B's vertices (hex
+ * floats), their poses, a direction and a cache's raw bytes. */
+static int load_case(const char *name, px_convex **a, px_pose *pa, px_convex **b, px_pose *pb, px_vec3 *dir,
+                     px_pair_cache *cache) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", PX_TEST_DATA, name);
+    FILE *f = fopen(path, "r");
+    CHECK(f != NULL, "cannot open %s", path);
+    if (!f) return 0;
+    px_convex **cs[2] = {a, b};
+    px_pose *ps[2] = {pa, pb};
+    int ok = 1;
+    for (int q = 0; q < 2 && ok; ++q) {
+        unsigned n = 0;
+        ok = fscanf(f, "%u", &n) == 1 && n > 0 && n < 100000;
+        double *p = ok ? malloc(3 * sizeof *p * n) : NULL;
+        for (unsigned i = 0; ok && i < 3 * n; ++i) ok = fscanf(f, "%la", &p[i]) == 1;
+        *cs[q] = ok ? px_convex_create(p, n, NULL, NULL) : NULL;
+        free(p);
+        for (int i = 0; ok && i < 9; ++i) ok = fscanf(f, "%la", &ps[q]->r[i]) == 1;
+        ok = ok && fscanf(f, "%la %la %la", &ps[q]->t.x, &ps[q]->t.y, &ps[q]->t.z) == 3;
+    }
+    ok = ok && fscanf(f, "%la %la %la", &dir->x, &dir->y, &dir->z) == 3;
+    char hex[2 * sizeof *cache + 8];
+    memset(cache, 0, sizeof *cache);
+    if (ok && fscanf(f, "%200s", hex) == 1 && strlen(hex) >= 2 * sizeof *cache) {
+        unsigned char *bytes = (unsigned char *)cache;
+        for (size_t i = 0; i < sizeof *cache; ++i) {
+            unsigned v = 0;
+            sscanf(hex + 2 * i, "%2x", &v);
+            bytes[i] = (unsigned char)v;
+        }
+    }
+    fclose(f);
+    CHECK(ok && *a && *b, "case %s did not load", name);
+    return ok && *a && *b;
+}
+
+/* The contact band of query.h, from the public bounds. */
+static double band_of(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb) {
+    px_bounds ba, bb;
+    px_convex_bounds(a, pa, &ba);
+    px_convex_bounds(b, pb, &bb);
+    return 64 * DBL_EPSILON * (ba.radius + bb.radius + pxi_len(pxi_sub(ba.center, bb.center)));
+}
+
+static px_pose translated(const px_pose *p, px_vec3 d, double tau) {
+    px_pose q = *p;
+    q.t = pxi_madd(q.t, d, tau);
+    return q;
+}
+
+/* Thin bodies (slabs 1:1:1e-6, needles of radius 1e-5) where the ray cast
+ * stopped at its rounding floor, advancement could not confirm, and its
+ * unproven hit came back with PX_OK: cases 30, 84 and 338 are misses (the
+ * line passes 1.7e-9, 9.5e-10 and 8.6 bands from B: exact distance along the
+ * line, golden section), reported as hits at tau -1.35e-8, 4.3e-9, 1.8e-13;
+ * case 304 stopped 4.9 bands short of contact (advancement accepted features
+ * 16 bands apart as touching). Now: misses with a witness plane checked on
+ * every vertex; the hit within the band and minimal. */
+static void test_review_thin_translation(void) {
+    const char *names[4] = {"case_translate_30.txt", "case_translate_84.txt", "case_translate_338.txt",
+                            "case_translate_304.txt"};
+    for (int k = 0; k < 4; ++k) {
+        px_convex *a = NULL, *b = NULL;
+        px_pose pa, pb;
+        px_vec3 d;
+        px_pair_cache cache;
+        if (!load_case(names[k], &a, &pa, &b, &pb, &d, &cache)) {
+            px_convex_destroy(a);
+            px_convex_destroy(b);
+            continue;
+        }
+        double band = band_of(a, &pa, b, &pb);
+        for (int mode = 0; mode < 2; ++mode) {
+            px_translate_result t;
+            px_status st = px_translate(a, &pa, b, &pb, d, mode ? &tu_both_ways : NULL, NULL, &t);
+            CHECK(st == PX_OK, "%s mode %d: %s", names[k], mode, px_status_string(st));
+            if (k < 3) {
+                CHECK(!t.hit && t.gap > band,
+                      "%s mode %d: hit %d tau %.3g gap %.3g (a miss by more than the band)", names[k], mode,
+                      t.hit, t.tau, t.gap);
+                for (uint32_t i = 0; i < px_convex_vertex_count(a); ++i) {
+                    px_vec3 w = px_pose_apply(&pa, ta_vertex(a, i));
+                    CHECK(pxi_dot(t.normal, pxi_sub(w, t.point_a)) <= 8 * band,
+                          "%s: A vertex %u above the witness", names[k], i);
+                }
+                for (uint32_t i = 0; i < px_convex_vertex_count(b); ++i) {
+                    px_vec3 w = px_pose_apply(&pb, ta_vertex(b, i));
+                    double h = pxi_dot(t.normal, pxi_sub(w, t.point_b));
+                    CHECK(h >= -8 * band,
+                          "%s mode %d: B vertex %u below the witness by %.3g (band %.3g, gap %.3g)", names[k],
+                          mode, i, -h, band, t.gap);
+                }
+            } else {
+                px_distance_result at, before;
+                px_pose moved = translated(&pa, d, t.tau),
+                        early = translated(&pa, d, t.tau - 100 * band / pxi_len(d));
+                px_distance(a, &moved, b, &pb, NULL, NULL, &at);
+                px_distance(a, &early, b, &pb, NULL, NULL, &before);
+                CHECK(t.hit && at.intersecting && !before.intersecting,
+                      "%s mode %d: hit %d, touching at tau %d, separated 100 bands before %d", names[k], mode,
+                      t.hit, at.intersecting, !before.intersecting);
+            }
+        }
+        px_convex_destroy(a);
+        px_convex_destroy(b);
+    }
+}
+
+/* A cache whose direction hint is (1e200, -0.2352, 1.8e308): the ray cast
+ * took it as its first direction, its dot products overflowed, and tau came
+ * out 2.228 where contact is at 0.5245. Warm must equal cold. */
+static void test_review_cache_hint(void) {
+    px_convex *a = NULL, *b = NULL;
+    px_pose pa, pb;
+    px_vec3 d;
+    px_pair_cache cache;
+    if (!load_case("cachecase_1.txt", &a, &pa, &b, &pb, &d, &cache)) {
+        px_convex_destroy(a);
+        px_convex_destroy(b);
+        return;
+    }
+    for (int mode = 0; mode < 2; ++mode) {
+        px_translate_result cold, warm;
+        px_pair_cache c = cache;
+        px_translate(a, &pa, b, &pb, d, mode ? &tu_both_ways : NULL, NULL, &cold);
+        px_status st = px_translate(a, &pa, b, &pb, d, mode ? &tu_both_ways : NULL, &c, &warm);
+        CHECK(st == PX_OK && warm.hit == cold.hit &&
+                  fabs(warm.tau - cold.tau) <= 1e-12 * (1 + fabs(cold.tau)),
+              "cache hint, mode %d: warm tau %.17g, cold %.17g", mode, warm.tau, cold.tau);
+    }
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+}
+
+/* A body whose points sit at 2^40 in its own frame, posed back by -2^40
+ * next to a unit cube: the relative translation rounded t_A - t_B at
+ * ulp(2^40) before the centres' offset cancelled it, so gaps below 1.2e-4
+ * came out 0 (touching) and larger ones off by up to 1.2e-4. */
+static void test_review_far_pose_cancel(void) {
+    double o = 0x1p40, pts[24], unit[24];
+    for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 3; ++k) pts[3 * i + k] = o + ((i >> k) & 1), unit[3 * i + k] = (i >> k) & 1;
+    px_convex *a = px_convex_create(pts, 8, NULL, NULL), *b = px_convex_create(unit, 8, NULL, NULL);
+    CHECK(a && b, "cubes");
+    const double gaps[4] = {0x1p-30, 0x1p-14, 0x1p-13, 1e-3};
+    for (int g = 0; g < 4 && a && b; ++g) {
+        px_pose pa = at(-o, -o, -o), pb = at(1.0 + gaps[g], 0, 0);
+        for (uint32_t m = 0; m < 3; ++m) {
+            px_query_options q;
+            memset(&q, 0, sizeof q);
+            q.method = m;
+            px_distance_result r;
+            px_distance(a, &pa, b, &pb, &q, NULL, &r);
+            CHECK(!r.intersecting && fabs(r.distance - gaps[g]) <= 4 * DBL_EPSILON * 4,
+                  "far pose, gap %g, method %u: distance %.17g", gaps[g], m, r.distance);
+        }
+        px_translate_result t;
+        px_translate(a, &pa, b, &pb, pxi_v(1, 0, 0), NULL, NULL, &t);
+        CHECK(t.hit && fabs(t.tau - gaps[g]) <= 16 * DBL_EPSILON, "far pose, gap %g: tau %.17g", gaps[g],
+              t.tau);
+    }
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+}
+
+/* Cubes 2^-46 (0.36 band) apart slide along their touching faces: the
+ * distance query says touching, and the forward translation said "no hit,
+ * not in contact" (its check at tau = 0 ran only on hits). */
+static void test_review_parallel_slide(void) {
+    double unit[24];
+    for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 3; ++k) unit[3 * i + k] = (i >> k) & 1;
+    px_convex *c = px_convex_create(unit, 8, NULL, NULL);
+    if (!c) return;
+    px_pose pa = px_pose_identity(), pb = at(1.0 + 0x1p-46, 0, 0);
+    const px_vec3 dirs[3] = {{0, 1, 0}, {0, 0, -1}, {0, 1, 1}};
+    for (int i = 0; i < 3; ++i) {
+        px_translate_result t;
+        px_translate(c, &pa, c, &pb, dirs[i], NULL, NULL, &t);
+        CHECK(t.hit && t.in_contact && t.tau == 0.0, "slide %d: hit %d in_contact %d", i, t.hit,
+              t.in_contact);
+    }
+    px_convex_destroy(c);
+}
+
+/* Sliver and subnormal-thickness hulls: exactly solids for CGAL, but with
+ * face planes double precision cannot hold (a zero or inward "unit" normal,
+ * side normals 0.79999 for 0.8 on a slab 2^-1060 thick, on which Lin-Canny
+ * answered 0.049989 for 0.05). Refused with PX_ERR_DEGENERATE. */
+static void test_review_thin_hulls(void) {
+    double sliver[12] = {0, 0, 0, 0, 2.28e-41, 0, 2.59e-9, 4.3e-5, 4.3e-5, 1, 0, 0};
+    double slab[24];
+    for (int i = 0; i < 8; ++i)
+        slab[3 * i] = (i & 1), slab[3 * i + 1] = (i & 2) ? 1 : 0, slab[3 * i + 2] = (i & 4) ? 0x1p-1060 : 0;
+    const double *sets[2] = {sliver, slab};
+    size_t counts[2] = {4, 8};
+    for (int k = 0; k < 2; ++k) {
+        px_error err;
+        tu_untrap_fp(); /* the subnormal slab's own arithmetic */
+        px_convex *c = px_convex_create(sets[k], counts[k], NULL, &err);
+        tu_trap_fp();
+        CHECK(c == NULL ? err.code == PX_ERR_DEGENERATE : px_convex_validate(c, NULL) == PX_OK,
+              "thin hull %d: accepted but invalid, or refused with %s (%s)", k, px_status_string(err.code),
+              err.message);
+        px_convex_destroy(c);
+    }
+}
+
 int main(void) {
     tu_init("test_query_edges");
+    test_review_thin_translation();
+    test_review_cache_hint();
+    test_review_far_pose_cancel();
+    test_review_parallel_slide();
+    test_review_thin_hulls();
     test_accept_bound_policy();
     test_warm_translation_hint();
     test_intersect_near_contact();

@@ -5,6 +5,7 @@
  */
 #include "convex/convex.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -286,6 +287,8 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     return PX_OK;
 }
 
+static px_status validate_local(const px_convex *c, px_error *err);
+
 static uint32_t default_lut_resolution(uint32_t nv) {
     /* About four cells per vertex, between 2 and 256 cells per cube side:
      * at most 6*256*256*4 = 1.5 MiB, 8 bytes per vertex at 200k. A
@@ -373,6 +376,19 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
                        "px_convex_create: the hull's size %.3g is outside the supported range [%.3g, %.3g] "
                        "(2^-1000 .. 2^1000; where the points sit in the double range does not matter)",
                        c->scale, PXI_MIN_SIZE, PXI_MAX_SIZE);
+    if (st == PX_OK && validate_local(c, NULL) != PX_OK) {
+        /* Exactly a solid (CGAL's predicates), but with a face whose plane
+         * double precision cannot represent: a sliver too thin for its
+         * normal, a slab 2^-1060 thick whose subnormal coordinates carry too
+         * few bits (its side normals came out 0.79999 for 0.8), faces meeting
+         * at an angle below rounding. Refused rather than answered on wrong
+         * planes. */
+        px_error why;
+        validate_local(c, &why);
+        st = pxi_error(err, PX_ERR_DEGENERATE,
+                       "px_convex_create: the hull is a solid but too thin for double precision (%s)",
+                       why.message);
+    }
     if (st == PX_OK) {
         uint32_t res =
             options && options->lut_resolution ? options->lut_resolution : default_lut_resolution(c->nv);
@@ -458,9 +474,10 @@ px_status px_convex_bounds(const px_convex *c, const px_pose *pose, px_bounds *o
  * dihedral turns outward) on all hulls; a closed, connected, locally convex
  * polyhedral surface bounds a convex body (van Heijenoort 1952). The global
  * vertex-below-every-plane test runs too when V*F is small enough. */
-px_status px_convex_validate(const px_convex *c, px_error *err) {
-    pxi_error_clear(err);
-    if (!c) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "polytope is NULL");
+/* The checks that cost O(V + E + F): Euler, face loops against edge
+ * adjacency, unit outward normals, planar faces, convex dihedrals, vertex
+ * adjacency. px_convex_create runs them on every polytope it builds. */
+static px_status validate_local(const px_convex *c, px_error *err) {
     if ((int64_t)c->nv - (int64_t)c->ne + (int64_t)c->nf != 2)
         return pxi_error(err, PX_ERR_INTERNAL, "Euler's formula fails: V=%u E=%u F=%u", c->nv, c->ne, c->nf);
     double tol = 1e-9 * (c->scale > 0 ? c->scale : 1.0);
@@ -503,6 +520,15 @@ px_status px_convex_validate(const px_convex *c, px_error *err) {
                                  c->v_edges[k]);
         }
     }
+    return PX_OK;
+}
+
+px_status px_convex_validate(const px_convex *c, px_error *err) {
+    pxi_error_clear(err);
+    if (!c) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "polytope is NULL");
+    px_status st = validate_local(c, err);
+    if (st != PX_OK) return st;
+    double tol = 1e-9 * (c->scale > 0 ? c->scale : 1.0);
     if ((uint64_t)c->nv * c->nf <= 4000000u) {
         for (uint32_t f = 0; f < c->nf; ++f)
             for (uint32_t v = 0; v < c->nv; ++v)

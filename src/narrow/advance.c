@@ -131,7 +131,7 @@ pxi_outcome pxi_advance(const px_convex *a, const px_convex *b, const px_pose *t
          * another walk (exact for the facet pairs of M). */
         tt.t = pxi_madd(t_ab->t, d, tau);
         px_vec3 ca, cb;
-        if (tr_features_touch(a, b, &tt, ans.fa, ans.fb, 16.0 * tol, &ca, &cb)) {
+        if (tr_features_touch(a, b, &tt, ans.fa, ans.fb, tol, &ca, &cb)) {
             ans.pa = ca;
             ans.pb = cb;
             break;

@@ -64,3 +64,19 @@ px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int 
         }
     return f;
 }
+
+px_vec3 pxi_feature_normal(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_feature fa,
+                           px_feature fb, px_vec3 approx) {
+    px_vec3 n = approx;
+    if (fb.type == PX_FEATURE_FACE && fb.index < b->nf) {
+        n = pxi_neg(b->f[fb.index].n); /* B's outward normal points from B to A */
+    } else if (fa.type == PX_FEATURE_FACE && fa.index < a->nf) {
+        n = pxi_rot(t_ab->r, a->f[fa.index].n);
+    } else if (fa.type == PX_FEATURE_EDGE && fb.type == PX_FEATURE_EDGE && fa.index < a->ne &&
+               fb.index < b->ne) {
+        px_vec3 c = pxi_cross(pxi_rot(t_ab->r, a->e[fa.index].u), b->e[fb.index].u);
+        if (pxi_len(c) > 1e-6) n = c; /* parallel edges define no normal */
+    }
+    n = pxi_unit_safe(n);
+    return pxi_dot(n, approx) < 0.0 ? pxi_neg(n) : n;
+}

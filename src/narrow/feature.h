@@ -41,4 +41,13 @@ static inline double pxi_face_outside(const px_convex *c, uint32_t f, px_vec3 p)
  * (body frame; NULL: the vertex ids[0]). */
 px_feature pxi_feature_of_vertices(const px_convex *c, const uint32_t *ids, int n, const px_vec3 *p);
 
+/* The unit contact normal of a closest feature pair (B's frame, from A to
+ * B), from the features' geometry where it defines one: a face's normal
+ * (vertex-face, edge-face, face-anything), the cross product of two
+ * non-parallel edges; else the direction `approx` (the closest points'
+ * difference, whose direction near contact is only known to eps size /
+ * distance). Oriented like `approx`. T_AB maps A's frame into B's. */
+px_vec3 pxi_feature_normal(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_feature fa,
+                           px_feature fb, px_vec3 approx);
+
 #endif

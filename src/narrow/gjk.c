@@ -370,9 +370,10 @@ pxi_outcome pxi_gjk_intersect(const px_convex *a, const px_convex *b, const px_p
     sx_simplex s;
     px_vec3 v = pxi_sub(pxi_xform(t_ab, a->center), b->center);
     if (cache) {
-        px_vec3 d = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
-        if (pxi_is_finite3(d) && pxi_len2(d) > 0.0) v = d; /* the last separating direction */
-        if (egjk_warm_simplex(&g, cache, &s)) {            /* its vertices only seed the climbs */
+        /* the last separating direction, made unit (a cache may hold any bits) */
+        px_vec3 d = pxi_unit_safe(pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]));
+        if (pxi_max_abs(d) > 0.0) v = d;
+        if (egjk_warm_simplex(&g, cache, &s)) { /* its vertices only seed the climbs */
             g.start_a = s.p[0].ia;
             g.start_b = s.p[0].ib;
         }

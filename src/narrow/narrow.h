@@ -142,6 +142,7 @@ typedef struct pxi_translation {
     double gap;
     px_feature fa, fb;
     uint32_t iterations;
+    uint32_t quality; /* px_quality bits */
 } pxi_translation;
 
 /* What the ray cast leaves for the caller when it stopped at the rounding
@@ -162,6 +163,12 @@ typedef struct pxi_ray_bound {
  * converge cleanly (a stale hint): out is not set, the caller reruns cold. */
 pxi_outcome pxi_raycast(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
                         px_pair_cache *cache, pxi_translation *out, pxi_ray_bound *bound);
+
+/* The closest approach of the line {tau dir} to B - A, measured
+ * perpendicular to dir (a GJK on the projection along dir): out->gap is
+ * the gap no translation along dir closes, with its witness plane (hit 0). */
+void pxi_ray_miss(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                  pxi_translation *out);
 
 /* Conservative advancement with Lin-Canny from tau, a proved lower bound
  * (A + tau d does not overlap B); n is the normal to report if the first

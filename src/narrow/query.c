@@ -52,6 +52,20 @@ static inline px_vec3 to_world(const pair_frames *f, int which, px_vec3 p) {
     return pxi_add(pxi_rot(which ? f->pose_b->r : f->pose_a->r, p), which ? f->tb : f->ta);
 }
 
+/* a + b + c + d with Neumaier's compensated summation (A. Neumaier, "Rundungs-
+ * fehleranalyse einiger Verfahren zur Summation endlicher Summen", ZAMM 54,
+ * 1974): the error is about eps |sum| plus eps^2 times the terms, so large
+ * terms that cancel do not take the small result's bits with them. */
+static double sum4(double a, double b, double c, double d) {
+    double x[3] = {b, c, d}, s = a, comp = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        double t = s + x[i];
+        comp += fabs(s) >= fabs(x[i]) ? (s - t) + x[i] : (x[i] - t) + s;
+        s = t;
+    }
+    return s + comp;
+}
+
 /* Checks the arguments every query shares and computes the frames. T_AB's
  * translation is (t_A - t_B) + (R_A o_A - R_B o_B) rotated into B: the
  * poses' difference first, exact when the bodies are close (REFERENCES
@@ -81,7 +95,12 @@ static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_
                 ob = rb ? pxi_rot(pose_b->r, b->origin) : zero;
         f->ta = pxi_add(pose_a->t, oa);
         f->tb = pxi_add(pose_b->t, ob);
-        px_vec3 d = pxi_add(dt, pxi_sub(oa, ob));
+        /* t_A - t_B + R_A o_A - R_B o_B, summed with compensation: a body
+         * whose points sit at 2^40 posed back by -2^40 must keep the bits
+         * below ulp(2^40) that the cancellation leaves. */
+        px_vec3 d =
+            pxi_v(sum4(pose_a->t.x, -pose_b->t.x, oa.x, -ob.x), sum4(pose_a->t.y, -pose_b->t.y, oa.y, -ob.y),
+                  sum4(pose_a->t.z, -pose_b->t.z, oa.z, -ob.z));
         if (!pxi_is_finite3(f->ta) || !pxi_is_finite3(f->tb) || !pxi_is_finite3(d)) return PX_ERR_NON_FINITE;
         f->t_ab.t = pxi_rot_t(pose_b->r, d);
     }
@@ -227,6 +246,107 @@ static step first_step(uint32_t method, const px_convex *a, const px_convex *b, 
     }
 }
 
+/* The witness plane of a miss whose normal, from the projected GJK, is
+ * known only to eps span / gap (a line passing within 1e-12 of the size of
+ * B): its supports did not separate. The closest approach is near tau* =
+ * d . (pb - pa) / |d|^2, where Lin-Canny gives exact closest features. A
+ * plane parallel to d that separates the bodies there has a normal in the
+ * span of their geometry: d x u for an edge u of either feature (a face
+ * offers its boundary edges), or the features' own normal made orthogonal
+ * to d. Each candidate is tried; kept is the one whose supports separate by
+ * the most (a certificate by construction), if any. */
+typedef struct miss_best {
+    double gap;
+    px_vec3 n;
+    uint32_t sa, sb;
+} miss_best;
+
+static void try_miss_normal(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                            px_vec3 approx, px_vec3 n, miss_best *best) {
+    n = pxi_unit_safe(pxi_madd(n, dir, -pxi_dot(n, dir) / pxi_dot(dir, dir)));
+    if (!(pxi_max_abs(n) > 0.0)) return;
+    if (pxi_dot(n, approx) < 0.0) n = pxi_neg(n);
+    uint32_t sa = pxi_support(a, pxi_rot_t(t_ab->r, n), UINT32_MAX),
+             sb = pxi_support(b, pxi_neg(n), UINT32_MAX);
+    double gap = pxi_dot(n, pxi_sub(b->v[sb], pxi_xform(t_ab, a->v[sa])));
+    if (gap > best->gap) best->gap = gap, best->n = n, best->sa = sa, best->sb = sb;
+}
+
+/* d x (edges of feature f of body c, mapped by R into B's frame). */
+static void try_feature_edges(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                              px_vec3 approx, const px_convex *c, const double *r, px_feature f,
+                              miss_best *best) {
+    if (f.type == PX_FEATURE_EDGE && f.index < c->ne) {
+        px_vec3 u = r ? pxi_rot(r, c->e[f.index].u) : c->e[f.index].u;
+        try_miss_normal(a, b, t_ab, dir, approx, pxi_cross(dir, u), best);
+    } else if (f.type == PX_FEATURE_FACE && f.index < c->nf) {
+        const pxi_face *F = &c->f[f.index];
+        for (uint32_t k = 0; k < F->count; ++k) {
+            px_vec3 u = c->e[c->f_edges[F->first + k]].u;
+            try_miss_normal(a, b, t_ab, dir, approx, pxi_cross(dir, r ? pxi_rot(r, u) : u), best);
+        }
+    }
+}
+
+static void refine_miss(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                        pxi_translation *out) {
+    double dd = pxi_dot(dir, dir);
+    px_pose tt = *t_ab;
+    tt.t = pxi_madd(tt.t, dir, pxi_dot(dir, pxi_sub(out->pb, pxi_xform(t_ab, out->pa))) / dd);
+    pxi_lc_start start;
+    memset(&start, 0, sizeof start);
+    start.fa = out->fa;
+    start.fb = out->fb;
+    pxi_answer ans;
+    pxi_lin_canny(a, b, &tt, &start, &ans);
+    out->iterations += ans.iterations;
+    if (ans.outcome != PXI_DONE || ans.intersecting) return;
+    px_vec3 approx = pxi_sub(ans.pb, pxi_xform(&tt, ans.pa));
+    miss_best best = {0.0, {0, 0, 0}, 0, 0};
+    try_feature_edges(a, b, t_ab, dir, approx, a, t_ab->r, ans.fa, &best);
+    try_feature_edges(a, b, t_ab, dir, approx, b, NULL, ans.fb, &best);
+    try_miss_normal(a, b, t_ab, dir, approx, pxi_feature_normal(a, b, &tt, ans.fa, ans.fb, approx), &best);
+    try_miss_normal(a, b, t_ab, dir, approx, out->normal, &best);
+    if (!(best.gap > 0.0)) return;
+    out->normal = best.n;
+    out->pa = a->v[best.sa];
+    out->pb = b->v[best.sb];
+    out->gap = best.gap;
+    out->fa = pxi_feature_of_vertices(a, &best.sa, 1, NULL);
+    out->fb = pxi_feature_of_vertices(b, &best.sb, 1, NULL);
+    out->quality &= ~(uint32_t)PX_QUALITY_UNPROVEN;
+}
+
+/* A hit the ray cast reached at its rounding floor, which advancement could
+ * not confirm (thin bodies: slabs of 1e-6, needles of 1e-5, where the ray
+ * cast's planes are nearly parallel to the line): is A + tau d really
+ * within the contact band of B? If not, the line may miss B altogether
+ * (the projection of B - A along d keeps a gap): then that is the answer;
+ * otherwise the hit stands, flagged unproven. */
+static void check_floor_hit(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                            pxi_translation *out) {
+    double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
+    px_pose tt = *t_ab;
+    tt.t = pxi_madd(tt.t, dir, out->tau);
+    pxi_lc_start start;
+    memset(&start, 0, sizeof start);
+    start.fa = out->fa;
+    start.fb = out->fb;
+    pxi_answer ans;
+    pxi_lin_canny(a, b, &tt, &start, &ans);
+    out->iterations += ans.iterations;
+    if (ans.outcome == PXI_DONE && (ans.intersecting || ans.distance <= band)) return;
+    pxi_translation miss;
+    pxi_ray_miss(a, b, t_ab, dir, &miss);
+    if (miss.quality & PX_QUALITY_UNPROVEN) refine_miss(a, b, t_ab, dir, &miss);
+    out->iterations += miss.iterations;
+    if (miss.gap > band) {
+        *out = miss;
+        return;
+    }
+    out->quality |= PX_QUALITY_UNPROVEN;
+}
+
 /* The translation chain (also EPA's fallback). */
 void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
                            px_pair_cache *cache, pxi_translation *out, uint32_t *fallbacks) {
@@ -245,13 +365,19 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
         out->iterations += it;
         ++*fallbacks;
     }
-    if (st != PXI_UNPROVEN) return;
+    if (st != PXI_UNPROVEN) {
+        if (!out->hit && (out->quality & PX_QUALITY_UNPROVEN)) refine_miss(a, b, t_ab, dir, out);
+        return;
+    }
     /* Stopped at the rounding floor: conservative advancement (exact there)
      * finishes from the proved lower bound; else the ray cast's refined hit
      * stands. */
     ++*fallbacks;
     pxi_translation adv;
-    if (pxi_advance(a, b, t_ab, dir, bound.tau, bound.normal, bound.fa, bound.fb, &adv) != PXI_DONE) return;
+    if (pxi_advance(a, b, t_ab, dir, bound.tau, bound.normal, bound.fa, bound.fb, &adv) != PXI_DONE) {
+        check_floor_hit(a, b, t_ab, dir, out);
+        return;
+    }
     adv.iterations += out->iterations;
     *out = adv;
     if (ray_cache) {
@@ -465,10 +591,9 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
     pxi_translation tr;
     uint32_t fallbacks = 0;
     pxi_translation_query(a, b, t_ab, dir_b, cache, &tr, &fallbacks);
-    double tau = ldexp(tr.tau, -e);
-    if (!isfinite(tau)) return PX_ERR_NON_FINITE; /* a direction so short that tau overflows */
     result->diag.iterations = tr.iterations;
     result->diag.fallbacks = fallbacks;
+    result->diag.quality = tr.quality;
     /* Forward mode: is A in contact with B now? Certainly when the entry
      * point is behind A (tau < 0: A overlaps B, or B lies behind it), and
      * when it is ahead by less than the contact band (the distance now is at
@@ -477,13 +602,20 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
      * entry is behind, the distance query at tau = 0 decides, so that every
      * query calls the same pairs touching. */
     int check_now = 0;
-    if (tr.hit && !(flags & PX_QUERY_BOTH_WAYS)) {
+    if (!(flags & PX_QUERY_BOTH_WAYS)) {
         /* Lengths: tr.tau is in units of the scaled direction dir_b, so
          * tr.tau |dir_b| is the distance A travels, whatever |direction|. */
         double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
-        double along = tr.tau * sqrt(pxi_dot(dir_b, dir_b)), normal_gap = tr.tau * pxi_dot(tr.normal, dir_b);
-        check_now = tr.tau < 0.0 || !(normal_gap > band);
-        if (tr.tau >= 0.0 && along <= band) check_now = 1;
+        if (tr.hit) {
+            double along = tr.tau * sqrt(pxi_dot(dir_b, dir_b)),
+                   normal_gap = tr.tau * pxi_dot(tr.normal, dir_b);
+            check_now = tr.tau < 0.0 || !(normal_gap > band);
+            if (tr.tau >= 0.0 && along <= band) check_now = 1;
+        } else {
+            /* A miss whose line passes within the band of B: sliding along a
+             * face A already touches. */
+            check_now = !(tr.gap > band);
+        }
     }
     if (check_now) {
         /* Either A touches B now (the time of impact is 0), or the whole
@@ -513,6 +645,11 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
             result->gap = ans.distance;
             return PX_OK;
         }
+    }
+    double tau = ldexp(tr.tau, -e);
+    if (!isfinite(tau)) {
+        memset(result, 0, sizeof *result);
+        return PX_ERR_NON_FINITE; /* a direction so short that tau overflows */
     }
     result->hit = tr.hit;
     result->tau = tau;

@@ -97,6 +97,20 @@ static inline void tr_points(const tr_ctx *c, const sx_simplex *s, px_vec3 *m) {
  * directions stay in that plane, so M's support is the projection's. The
  * closest point v of the projection to the origin gives the separating
  * normal v / |v| (from A to B) and the gap |v|. */
+static void tr_miss(tr_ctx *c, px_vec3 d, pxi_translation *out);
+
+void pxi_ray_miss(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                  pxi_translation *out) {
+    memset(out, 0, sizeof *out);
+    tr_ctx c;
+    c.a = a;
+    c.b = b;
+    c.t = t_ab;
+    c.k = pxi_pair_unit(a, b, t_ab);
+    c.start_a = c.start_b = UINT32_MAX;
+    tr_miss(&c, dir, out);
+}
+
 static void tr_miss(tr_ctx *c, px_vec3 d, pxi_translation *out) {
     double dd = pxi_dot(d, d);
     sx_simplex s;
@@ -148,6 +162,29 @@ static void tr_miss(tr_ctx *c, px_vec3 d, pxi_translation *out) {
     out->normal = len > 0.0 && isfinite(len) ? pxi_scale(v, 1.0 / len) : pxi_v(0, 0, 0);
     out->fa = pxi_feature_of_vertices(c->a, ia, s.n, &out->pa);
     out->fb = pxi_feature_of_vertices(c->b, ib, s.n, &out->pb);
+    if (!(len > 0.0) || !isfinite(len)) return;
+    /* The certificate: the plane's points are the bodies' own supports along
+     * the normal, A's highest and B's lowest, so every vertex of A lies below
+     * point_a's plane and every vertex of B above point_b's by construction,
+     * and the gap is what they leave. The simplex's weighted points are not
+     * enough: on thin bodies (slabs of 1e-6) the final simplex keeps vertices
+     * that are not extreme along the final normal, and its plane cut B by
+     * 1.6e-4. Kept only when the supports still separate. */
+    px_vec3 n = out->normal; /* B's frame, from A to B */
+    uint32_t sa = pxi_support(c->a, pxi_rot_t(c->t->r, n), ia[0]), sb = pxi_support(c->b, pxi_neg(n), ib[0]);
+    double gap = pxi_dot(n, pxi_sub(c->b->v[sb], pxi_xform(c->t, c->a->v[sa])));
+    if (!(gap > 0.0)) {
+        /* The normal is known only to eps span / gap: near a graze its
+         * supports no longer separate. The gap stands; the plane is left to
+         * the caller to refine (query.c). */
+        out->quality |= PX_QUALITY_UNPROVEN;
+        return;
+    }
+    out->pa = c->a->v[sa];
+    out->pb = c->b->v[sb];
+    out->gap = gap;
+    out->fa = pxi_feature_of_vertices(c->a, &sa, 1, NULL);
+    out->fb = pxi_feature_of_vertices(c->b, &sb, 1, NULL);
 }
 
 /* tau from the final simplex: the line meets the simplex's plane (3
@@ -201,8 +238,10 @@ static void ray_init(ray *r, const px_convex *a, const px_convex *b, const px_po
         warm = cache->vertex_a[m] < a->nv && cache->vertex_b[m] < b->nv;
     if (warm) {
         /* Warm start: the previous contact normal and simplex. */
-        px_vec3 n = pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]);
-        if (pxi_is_finite3(n) && pxi_dot(n, dir) < 0.0) r->v = n;
+        /* A unit hint (a caller's cache may hold any bits): its dot
+         * products can neither overflow nor underflow. */
+        px_vec3 n = pxi_unit_safe(pxi_v(cache->direction[0], cache->direction[1], cache->direction[2]));
+        if (pxi_dot(n, dir) < 0.0) r->v = n;
         r->c.start_a = cache->vertex_a[0];
         r->c.start_b = cache->vertex_b[0];
         r->warm = cache;

@@ -121,7 +121,10 @@ typedef enum px_quality {
     /// round bodies).
     PX_QUALITY_DEPTH_BUDGET = 2u,
     /// Every method stopped without a proof and the last one's answer was
-    /// taken (a safeguard that no test has triggered).
+    /// taken: for distances a safeguard no test has triggered; for
+    /// translations, a hit at the ray cast's rounding floor that neither
+    /// advancement nor a distance check could confirm, or a miss whose
+    /// witness plane could not be made exact (thin bodies, grazing lines).
     PX_QUALITY_UNPROVEN = 4u
 } px_quality;
 
@@ -216,8 +219,9 @@ typedef struct px_translate_result {
     double tau;
     /// hit: the contact points at tau, point_a on A translated by
     /// tau * direction (so point_a == point_b up to rounding).
-    /// No hit: closest points of a plane that separates A + tau * direction
-    /// from B for every tau considered (see `normal`).
+    /// No hit: the points of a plane that separates A + tau * direction from
+    /// B for every tau considered (see `normal`): A's highest and B's lowest
+    /// vertex along the normal, so the plane's claim holds by construction.
     px_vec3 point_a, point_b;
     /// hit: the unit contact normal at tau, from A to B (normal . direction
     /// > 0 unless the contact is grazing).

@@ -640,9 +640,29 @@ px_status px_translate(const px_convex *a, const px_pose *pose_a, const px_conve
                 result->point_b = result->point_a;
                 return PX_OK;
             }
+            /* The witness: the plane of the closest features' normal (exact,
+             * where the closest points' difference near contact is not),
+             * through A's highest and B's lowest vertex along it; A moving
+             * forward only leaves it (normal . d <= 0). */
+            px_pose tt = *t_ab;
+            px_vec3 n =
+                pxi_feature_normal(a, b, t_ab, ans.fa, ans.fb, pxi_sub(ans.pb, pxi_xform(&tt, ans.pa)));
+            uint32_t sa = pxi_support(a, pxi_rot_t(t_ab->r, n), UINT32_MAX),
+                     sb = pxi_support(b, pxi_neg(n), UINT32_MAX);
+            double gap = pxi_dot(n, pxi_sub(b->v[sb], pxi_xform(t_ab, a->v[sa])));
+            if (gap > 0.0 && !(pxi_dot(n, dir_b) > 0.0)) {
+                result->point_a = to_world(&fr, 0, a->v[sa]);
+                result->point_b = to_world(&fr, 1, b->v[sb]);
+                result->normal = pxi_rot(pose_b->r, n);
+                result->gap = gap;
+                result->feature_a = pxi_feature_of_vertices(a, &sa, 1, NULL);
+                result->feature_b = pxi_feature_of_vertices(b, &sb, 1, NULL);
+                return PX_OK;
+            }
             result->point_b = to_world(&fr, 1, ans.pb);
             result->normal = unit_or_zero(pxi_sub(result->point_b, result->point_a));
             result->gap = ans.distance;
+            result->diag.quality |= PX_QUALITY_UNPROVEN; /* the closest points' plane, not proved */
             return PX_OK;
         }
     }

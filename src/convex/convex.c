@@ -265,6 +265,7 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     }
     c->radius = r2;
     c->scale = scale;
+    c->reach = r2 + 4.0 * pxi_max_abs(s);
     /* Widths along the 3 axes, 6 face diagonals and 4 body diagonals of a
      * cube: their ratio tells round bodies (where the line of centres is a
      * good cold-start guess) from thin ones (lin_canny.c). */

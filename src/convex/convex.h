@@ -71,6 +71,7 @@ struct px_convex {
     px_vec3 center;   /* mean of the vertices (an interior point), stored frame */
     double radius;    /* max |v - center| */
     double scale;     /* max |coordinate| of v, for relative tolerances */
+    double reach;     /* radius + 4 max|center|: with twice max|t|, a cheap bound on a pair's size */
     double roundness; /* least / greatest width over 13 directions, in (0, 1]: 1 for a ball-like body */
     pxi_lut lut;
     size_t bytes;       /* everything allocated for this polytope */

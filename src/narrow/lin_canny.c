@@ -651,7 +651,6 @@ int pxi_lc_line_of_centres_ok(const px_convex *a, const px_convex *b) {
 
 void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_lc_start *start,
                    pxi_answer *out) {
-    memset(out, 0, sizeof *out);
     lc_ctx x;
     x.c[0] = a;
     x.c[1] = b;
@@ -667,7 +666,8 @@ void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
 
     uint64_t total = (uint64_t)a->nv + a->ne + a->nf + b->nv + b->ne + b->nf;
     uint32_t cap = total > 100000000u ? 400000000u : (uint32_t)(4 * total + 64);
-    if (pxi_feature_valid(a, start->fa) && pxi_feature_valid(b, start->fb)) {
+    int warm = pxi_feature_valid(a, start->fa) && pxi_feature_valid(b, start->fb);
+    if (warm) {
         x.f[0] = start->fa;
         x.f[1] = start->fb;
     } else {
@@ -677,7 +677,7 @@ void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
         x.f[0] = feat(PX_FEATURE_VERTEX, pxi_support(a, pxi_rot_t(x.T[0].r, ab), UINT32_MAX));
         x.f[1] = feat(PX_FEATURE_VERTEX, pxi_support(b, pxi_neg(ab), UINT32_MAX));
     }
-    uint32_t budget = start->budget > 0 && start->budget < cap ? start->budget : cap, iterations = 0;
+    uint32_t budget = !warm && start->budget > 0 && start->budget < cap ? start->budget : cap, iterations = 0;
     int r = lc_walk(&x, budget, &iterations);
     out->outcome = PXI_DONE;
     if (r == LC_OUT_OF_STEPS && budget < cap) {
@@ -692,7 +692,14 @@ void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
     out->fa = x.f[0];
     out->fb = x.f[1];
     out->iterations = iterations;
-    if (out->outcome != PXI_DONE) return;
+    out->gap = 0.0;
+    out->quality = 0;
+    if (out->outcome != PXI_DONE) {
+        out->distance = 0.0;
+        out->intersecting = 0;
+        out->pa = out->pb = pxi_v(0, 0, 0);
+        return;
+    }
     if (r == LC_DONE && contact_within_rounding(&x)) r = LC_PENETRATION;
     out->distance = r == LC_PENETRATION ? 0.0 : x.dist;
     out->intersecting = r == LC_PENETRATION;

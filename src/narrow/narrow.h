@@ -45,7 +45,7 @@ typedef struct pxi_answer {
  * line of centres. */
 typedef struct pxi_lc_start {
     px_feature fa, fb; /* start pair (type PX_FEATURE_NONE: cold) */
-    uint32_t budget;   /* steps of the first walk; 0 = the safeguard cap */
+    uint32_t budget;   /* steps of the first walk when it starts cold; 0 = the safeguard cap */
     int tie;           /* 1: in tie-breaking mode from the start */
 } pxi_lc_start;
 

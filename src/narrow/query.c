@@ -110,10 +110,11 @@ static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_
     return pxi_pair_span(a, b, &f->t_ab) <= 0x1p1021 ? PX_OK : PX_ERR_RANGE;
 }
 
-static px_vec3 unit_or_zero(px_vec3 v) {
-    if (!pxi_len_ok(pxi_max_abs(v))) return pxi_unit_safe(v); /* |v|^2 would overflow or underflow */
-    double l = pxi_len(v);
-    return l > 0.0 && isfinite(l) ? pxi_scale(v, 1.0 / l) : pxi_v(0, 0, 0);
+static inline px_vec3 unit_or_zero(px_vec3 v) {
+    double l2 = pxi_len2(v);
+    /* the plain formula where |v|^2 neither overflows nor underflows */
+    if (l2 > 0x1p-1000 && l2 < 0x1p1000) return pxi_scale(v, 1.0 / sqrt(l2));
+    return pxi_unit_safe(v);
 }
 
 /* ---- The fallback table. ---- */
@@ -217,14 +218,12 @@ static void run_step(step s, const px_convex *a, const px_convex *b, const px_po
                      pxi_answer *ans) {
     px_feature none = {PX_FEATURE_NONE, 0, 0};
     switch (s) {
-    case STEP_LC: {
-        int warm = cache && pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b);
-        if (warm)
-            run_lc(a, b, t_ab, cache->feature_a, cache->feature_b, 0, 0, ans);
-        else
-            run_lc(a, b, t_ab, none, none, PXI_LC_COLD_BUDGET, 0, ans);
+    case STEP_LC:
+        /* the cache's features when they are valid (pxi_lin_canny checks),
+         * else cold from the line of centres with the cold budget */
+        run_lc(a, b, t_ab, cache ? cache->feature_a : none, cache ? cache->feature_b : none,
+               PXI_LC_COLD_BUDGET, 0, ans);
         break;
-    }
     case STEP_LC_SEEDED: run_lc_seeded(a, b, t_ab, ans); break;
     case STEP_LC_FINISH: run_lc(a, b, t_ab, prev->fa, prev->fb, 0, 0, ans); break;
     case STEP_LC_RESTART: run_lc_restart(a, b, t_ab, ans); break;
@@ -239,10 +238,11 @@ static step first_step(uint32_t method, const px_convex *a, const px_convex *b, 
     switch (method) {
     case PX_METHOD_GJK: return STEP_GJK;
     case PX_METHOD_HYBRID: return STEP_HYBRID;
-    default: {
-        int warm = cache && pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b);
-        return warm || pxi_lc_line_of_centres_ok(a, b) ? STEP_LC : STEP_LC_SEEDED;
-    }
+    default:
+        if (pxi_lc_line_of_centres_ok(a, b)) return STEP_LC;
+        return cache && pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b)
+                   ? STEP_LC
+                   : STEP_LC_SEEDED;
     }
 }
 
@@ -479,8 +479,9 @@ static px_status read_options(const px_query_options *o, uint32_t allowed, uint3
     *method = PX_METHOD_LIN_CANNY;
     *flags = 0;
     if (!o) return PX_OK;
-    for (size_t i = 0; i < sizeof o->reserved / sizeof o->reserved[0]; ++i)
-        if (o->reserved[i] != 0) return PX_ERR_INVALID_ARGUMENT;
+    uint32_t any = 0;
+    for (size_t i = 0; i < sizeof o->reserved / sizeof o->reserved[0]; ++i) any |= o->reserved[i];
+    if (any) return PX_ERR_INVALID_ARGUMENT;
     if (o->method > PX_METHOD_HYBRID || (o->flags & ~allowed)) return PX_ERR_INVALID_ARGUMENT;
     *method = o->method;
     *flags = o->flags;

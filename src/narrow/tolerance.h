@@ -36,12 +36,12 @@ static inline double pxi_pair_size(const px_convex *a, const px_convex *b, const
     return a->radius + b->radius + pxi_len_safe(pxi_sub(pxi_xform(t_ab, a->center), b->center));
 }
 
-/* A cheap bound on the size, >= pxi_pair_size (|v| <= 2 max|v|): a
+/* A cheap bound on the size, >= pxi_pair_size (|v| <= 2 max|v|, reach =
+ * R + 4 max|center|, convex.h): a
  * distance above the band of this bound is outside the band, without a
  * square root. */
 static inline double pxi_pair_size_bound(const px_convex *a, const px_convex *b, const px_pose *t_ab) {
-    return a->radius + b->radius +
-           2.0 * (pxi_max_abs(t_ab->t) + 2.0 * (pxi_max_abs(a->center) + pxi_max_abs(b->center)));
+    return a->reach + b->reach + 2.0 * pxi_max_abs(t_ab->t);
 }
 
 /* S = scale_A + scale_B + max|t_AB| (<= the size): every coordinate of

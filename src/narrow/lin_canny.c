@@ -54,11 +54,6 @@ enum { LC_CONTINUE, LC_DONE, LC_PENETRATION };
 /* lc_walk's other outcomes. */
 enum { LC_REPEAT = -1, LC_OUT_OF_STEPS = -2 };
 
-/* Bodies with px_convex.roundness below this (a width ratio over 13
- * directions) do not start from the line of centres: on a 1:8:40 ellipsoid it
- * is a poor guess and the walk from it takes tens of steps. */
-#define COLD_ROUND 0.5
-
 typedef struct lc_ctx {
     const px_convex *c[2];
     px_pose T[2];    /* T[0] = T_AB (A -> B), T[1] = T_BA (B -> A) */
@@ -630,6 +625,8 @@ static int contact_within_rounding(lc_ctx *x) {
         x->band = 1;
         return 1;
     }
+    if (x->dist > 1e-8 * pxi_pair_size_bound(a, b, &x->T[0]))
+        return 0; /* cheap first: the bound >= the size */
     double span = pxi_pair_size(a, b, &x->T[0]);
     if (x->dist > 1e-8 * span) return 0;
     px_vec3 n; /* B -> A, B's frame */
@@ -643,10 +640,6 @@ static int contact_within_rounding(lc_ctx *x) {
     uint32_t va = pxi_support(a, pxi_rot_t(x->T[0].r, pxi_neg(n)), UINT32_MAX);
     double gap = pxi_dot(n, pxi_xform(&x->T[0], a->v[va])) - pxi_dot(n, b->v[vb]);
     return gap < -64.0 * DBL_EPSILON * span;
-}
-
-int pxi_lc_line_of_centres_ok(const px_convex *a, const px_convex *b) {
-    return a->roundness >= COLD_ROUND && b->roundness >= COLD_ROUND;
 }
 
 void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_lc_start *start,

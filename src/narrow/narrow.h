@@ -62,7 +62,12 @@ void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, 
  * to a GJK seed: from the line of centres a 1:8:40 ellipsoid takes tens of
  * steps). */
 #define PXI_LC_COLD_BUDGET 12
-int pxi_lc_line_of_centres_ok(const px_convex *a, const px_convex *b);
+/* Bodies with px_convex.roundness below this (a width ratio over 13
+ * directions) do not start from the line of centres. */
+#define PXI_LC_COLD_ROUND 0.5
+static inline int pxi_lc_line_of_centres_ok(const px_convex *a, const px_convex *b) {
+    return a->roundness >= PXI_LC_COLD_ROUND && b->roundness >= PXI_LC_COLD_ROUND;
+}
 
 /* ---- GJK (gjk.c). ---- */
 

@@ -147,12 +147,7 @@ static const next_row k_next[] = {
 /* Lin-Canny from a start; its answer. */
 static void run_lc(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_feature fa, px_feature fb,
                    uint32_t budget, int tie, pxi_answer *ans) {
-    pxi_lc_start start;
-    memset(&start, 0, sizeof start);
-    start.fa = fa;
-    start.fb = fb;
-    start.budget = budget;
-    start.tie = tie;
+    pxi_lc_start start = {fa, fb, budget, tie};
     pxi_lin_canny(a, b, t_ab, &start, ans);
 }
 
@@ -398,9 +393,9 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
  * computed when the method kept none), and when EPA's budget runs out the
  * exact depth along its best normal: a translation query of A along +n
  * (entry tau = -depth), whose contact points lie on both boundaries. */
-static void penetration(const px_convex *a, const px_convex *b, const px_pose *t_ab,
-                        const pxi_simplex_pairs *method_simplex, pxi_penetration *pen, uint32_t *iterations,
-                        uint32_t *fallbacks, uint32_t *quality) {
+static PXI_NOINLINE void penetration(const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                                     const pxi_simplex_pairs *method_simplex, pxi_penetration *pen,
+                                     uint32_t *iterations, uint32_t *fallbacks, uint32_t *quality) {
     pxi_simplex_pairs simplex = *method_simplex;
     if (simplex.n < 4) {
         pxi_answer g;
@@ -425,6 +420,32 @@ static void penetration(const px_convex *a, const px_convex *b, const px_pose *t
     }
 }
 
+/* Follows the table from step s, whose answer in out was not proved, until
+ * an answer is (kept apart from the common path, which ends at the first
+ * step). */
+static PXI_NOINLINE void follow_table(const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                                      const pxi_policy *policy, step s, pxi_simplex_pairs *simplex,
+                                      pxi_answer *out, uint32_t *fallbacks) {
+    uint32_t iterations = out->iterations;
+    pxi_answer prev;
+    for (;;) {
+        int seed = out->outcome == PXI_OUT_OF_STEPS && k_next[s].oos_is_seed;
+        if (policy->accept_bound && !seed) {
+            out->quality |= PX_QUALITY_UNPROVEN;
+            break;
+        }
+        step next = out->outcome == PXI_UNPROVEN ? k_next[s].unproven : k_next[s].out_of_steps;
+        if (!seed) ++*fallbacks;
+        if (next == STEP_END) break;
+        s = next;
+        prev = *out;
+        run_step(s, a, b, t_ab, NULL, &prev, simplex, out); /* fallbacks run cold */
+        iterations += out->iterations;
+        if (out->outcome == PXI_DONE) break;
+    }
+    out->iterations = iterations;
+}
+
 void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_policy *policy,
                        px_pair_cache *cache, pxi_answer *out, pxi_penetration *pen, uint32_t *fallbacks) {
     pxi_simplex_pairs simplex;
@@ -432,26 +453,7 @@ void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_
     step s = first_step(policy->method, a, b, cache);
     /* The first step answers into out directly: most queries end there. */
     run_step(s, a, b, t_ab, cache, NULL, &simplex, out);
-    if (out->outcome != PXI_DONE) {
-        uint32_t iterations = out->iterations;
-        pxi_answer prev;
-        for (;;) {
-            int seed = out->outcome == PXI_OUT_OF_STEPS && k_next[s].oos_is_seed;
-            if (policy->accept_bound && !seed) {
-                out->quality |= PX_QUALITY_UNPROVEN;
-                break;
-            }
-            step next = out->outcome == PXI_UNPROVEN ? k_next[s].unproven : k_next[s].out_of_steps;
-            if (!seed) ++*fallbacks;
-            if (next == STEP_END) break;
-            s = next;
-            prev = *out;
-            run_step(s, a, b, t_ab, NULL, &prev, &simplex, out); /* fallbacks run cold */
-            iterations += out->iterations;
-            if (out->outcome == PXI_DONE) break;
-        }
-        out->iterations = iterations;
-    }
+    if (out->outcome != PXI_DONE) follow_table(a, b, t_ab, policy, s, &simplex, out, fallbacks);
     if (cache) {
         cache->feature_a = out->fa;
         cache->feature_b = out->fb;

@@ -22,6 +22,14 @@
 #include "convex/convex.h"
 #include "math/vec3.h"
 
+/* Keeps a rarely taken path out of its caller, whose common path then
+ * needs fewer registers saved and a smaller stack frame. */
+#if defined(__GNUC__)
+#define PXI_NOINLINE __attribute__((noinline))
+#else
+#define PXI_NOINLINE
+#endif
+
 /* ---- The pair's scale. ---- */
 
 /* Every polytope is stored relative to its own middle when it sits far from

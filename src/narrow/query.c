@@ -420,6 +420,23 @@ static PXI_NOINLINE void penetration(const px_convex *a, const px_convex *b, con
     }
 }
 
+/* What every distance answer ends with: the cache keeps its features, and
+ * the contact band, the same for every method (proxima/query.h), settles
+ * what each method's own band (inside it) left separated. */
+static inline void finish_answer(const px_convex *a, const px_convex *b, const px_pose *t_ab,
+                                 px_pair_cache *cache, pxi_answer *out) {
+    if (cache) {
+        cache->feature_a = out->fa;
+        cache->feature_b = out->fb;
+    }
+    if (!out->intersecting && out->distance <= PXI_CONTACT_BAND * pxi_pair_size_bound(a, b, t_ab) &&
+        out->distance <= PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab)) {
+        out->intersecting = 1;
+        out->distance = 0.0;
+        out->quality |= PX_QUALITY_CONTACT_BAND;
+    }
+}
+
 /* Follows the table from step s, whose answer in out was not proved, until
  * an answer is (kept apart from the common path, which ends at the first
  * step). */
@@ -454,18 +471,7 @@ void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_
     /* The first step answers into out directly: most queries end there. */
     run_step(s, a, b, t_ab, cache, NULL, &simplex, out);
     if (out->outcome != PXI_DONE) follow_table(a, b, t_ab, policy, s, &simplex, out, fallbacks);
-    if (cache) {
-        cache->feature_a = out->fa;
-        cache->feature_b = out->fb;
-    }
-    /* The contact band, the same for every method (proxima/query.h): each
-     * method's own band lies inside it, and this settles the rest. */
-    if (!out->intersecting && out->distance <= PXI_CONTACT_BAND * pxi_pair_size_bound(a, b, t_ab) &&
-        out->distance <= PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab)) {
-        out->intersecting = 1;
-        out->distance = 0.0;
-        out->quality |= PX_QUALITY_CONTACT_BAND;
-    }
+    finish_answer(a, b, t_ab, cache, out);
     if (pen) pen->flat = 1; /* no depth unless computed below */
     if (!pen || !policy->signed_depth || !out->intersecting) return;
     if (policy->method != PX_METHOD_GJK) simplex.n = 0;
@@ -508,7 +514,20 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     pxi_answer ans;
     pxi_penetration pen;
     uint32_t fallbacks = 0;
-    pxi_distance_pair(a, b, t_ab, &policy, cache, &ans, &pen, &fallbacks);
+    pen.flat = 1;
+    /* The table's first step for the most common query, a tracked unsigned
+     * Lin-Canny distance, taken directly (the same step pxi_distance_pair
+     * would take, without its dispatch); anything it does not prove goes
+     * through the table from the start. */
+    int done = 0;
+    if (method == PX_METHOD_LIN_CANNY && !policy.signed_depth && cache &&
+        pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b)) {
+        pxi_lc_start start = {cache->feature_a, cache->feature_b, 0, 0};
+        pxi_lin_canny(a, b, t_ab, &start, &ans);
+        done = ans.outcome == PXI_DONE;
+        if (done) finish_answer(a, b, t_ab, cache, &ans);
+    }
+    if (!done) pxi_distance_pair(a, b, t_ab, &policy, cache, &ans, &pen, &fallbacks);
     result->distance = ans.distance;
     result->signed_distance = ans.distance;
     result->intersecting = ans.intersecting;

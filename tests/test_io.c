@@ -540,6 +540,72 @@ static void test_special_files(void) {
     expect_refused(huge, "has 1073741825 bytes, more than the limit of 1073741824");
 }
 
+/* ------------------------------------------------------------------------
+ * The adversarial review of the loaders (Assimp 5.2.5, Debian bookworm).
+ * Every file is generated here; each block says what it reproduces. */
+
+/* A glTF 2.0 file with the given "nodes" and "scenes" arrays and one point
+ * mesh reading 4 positions from buffer `uri` of `length` bytes. */
+static const char *write_gltf(const char *name, const char *nodes, const char *scenes, const char *uri,
+                              unsigned long long length) {
+    static char text[65536];
+    snprintf(
+        text, sizeof text,
+        "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": %s, \"nodes\": %s,\n"
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"mode\": 0}]}],\n"
+        "\"buffers\": [{\"uri\": \"%s\", \"byteLength\": %llu}],\n"
+        "\"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48}],\n"
+        "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\",\n"
+        "\"min\": [0, 0, 0], \"max\": [1, 1, 1]}]}\n",
+        scenes, nodes, uri, length);
+    return write_file(name, text);
+}
+
+/* Finding 3: files a mesh references. A glTF buffer or an OBJ mtllib naming
+ * a FIFO hung the import forever, holding the import lock; a buffer that is
+ * a 3 GB sparse file was read whole (2.9 GB). Assimp now opens every file
+ * through proxima's aiFileIO. */
+static void test_referenced_files(void) {
+    char path[512], uri[600];
+    /* Valid: an external buffer and a material library load. */
+    static unsigned char bin[48];
+    for (int v = 0; v < 4; ++v)
+        for (int c = 0; c < 3; ++c) put_f32(bin + 12 * v + 4 * c, k_tet[v][c], 0);
+    write_bytes("tet.bin", bin, sizeof bin);
+    expect_tetrahedron(write_gltf("ext_ok.gltf", "[{\"mesh\": 0}]", "[{\"nodes\": [0]}]", "tet.bin", 48));
+    write_file("ok.mtl", "newmtl m\nKd 1 1 1\n");
+    expect_tetrahedron(write_file("mtl_ok.obj", "mtllib ok.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                                "usemtl m\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n"));
+    /* A FIFO (nobody writes to it: opening it would block). */
+    snprintf(path, sizeof path, "%s/fifo.bin", g_dir);
+    CHECK(mkfifo(path, 0600) == 0);
+    expect_refused(write_gltf("ext_fifo.gltf", "[{\"mesh\": 0}]", "[{\"nodes\": [0]}]", "fifo.bin", 48),
+                   "fifo.bin' was refused: it is a FIFO");
+    expect_refused(write_file("mtl_fifo.obj", "mtllib fifo.bin\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                              "f 1 2 3\nf 1 2 4\n"),
+                   "fifo.bin' was refused: it is a FIFO");
+    /* A directory, a character device. */
+    snprintf(path, sizeof path, "%s/sub", g_dir);
+    CHECK(mkdir(path, 0700) == 0);
+    expect_refused(write_gltf("ext_dir.gltf", "[{\"mesh\": 0}]", "[{\"nodes\": [0]}]", "sub", 48),
+                   "it is a directory");
+    /* (Assimp puts the directory in front of a buffer's uri: climb to /.) */
+    expect_refused(write_gltf("ext_dev.gltf", "[{\"mesh\": 0}]", "[{\"nodes\": [0]}]",
+                              "../../../../../../../../../../dev/zero", 48),
+                   "it is a character device");
+    /* Sparse buffers: one byte over the per-file limit, and exactly at it
+     * (then the mesh file and the buffer exceed PX_IO_MAX_IMPORT_BYTES).
+     * Neither is read. */
+    const char *big = write_bytes("big.bin", bin, sizeof bin);
+    CHECK(truncate(big, (off_t)PX_IO_MAX_FILE_BYTES + 1) == 0);
+    snprintf(uri, sizeof uri, "big.bin");
+    expect_refused(write_gltf("ext_big.gltf", "[{\"mesh\": 0}]", "[{\"nodes\": [0]}]", uri, 48),
+                   "more than the limit of 1073741824");
+    CHECK(truncate(big, (off_t)PX_IO_MAX_FILE_BYTES) == 0);
+    expect_refused(write_gltf("ext_total.gltf", "[{\"mesh\": 0}]", "[{\"nodes\": [0]}]", uri, 48),
+                   "PX_IO_MAX_IMPORT_BYTES");
+}
+
 int main(void) {
     snprintf(g_dir, sizeof g_dir, "/tmp/proxima_test_io_%ld", (long)getpid());
     char cmd[300];
@@ -566,6 +632,7 @@ int main(void) {
     test_stl_files();
     test_unchecked_formats();
     test_special_files();
+    test_referenced_files();
 #if !PX_TEST_ASAN
     struct rusage usage;
     CHECK(getrusage(RUSAGE_SELF, &usage) == 0);

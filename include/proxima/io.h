@@ -19,7 +19,22 @@
 /// string is process-global); the functions may be called from any thread.
 /// The lock is the library's only global state. It is created on first use;
 /// should that fail (mtx_init), every load fails with PX_ERR_INTERNAL
-/// instead of calling Assimp unlocked.
+/// instead of calling Assimp unlocked. The checks below run before the lock
+/// is taken, and no file is ever opened in a way that can block while it is
+/// held.
+///
+/// Files Assimp opens: the import reads through proxima's own file system
+/// (Assimp's aiFileIO), for the mesh file and every file it references (glTF
+/// buffers, an OBJ material library, ...). Each must be a regular file
+/// (stat() before opening, and opened with O_NONBLOCK: a FIFO or device is
+/// refused, never waited on) of at most PX_IO_MAX_FILE_BYTES, and all of
+/// them together may hold PX_IO_MAX_IMPORT_BYTES (each opening Assimp reads
+/// from counts the file's size; the mesh file counts once). The mesh file
+/// must still be the file that was checked (same device, inode, size and
+/// modification time). A refused file fails the import with PX_ERR_IO naming
+/// it and why, also where Assimp would have gone on without it (an OBJ
+/// material library); a missing referenced file is left to Assimp.
+///
 ///
 /// Limits: a file is checked before Assimp reads it, so that a lying header
 /// cannot make the import allocate memory the file cannot back. Only the
@@ -65,6 +80,12 @@ extern "C" {
 /// Largest total of the element counts a file header may declare, and the
 /// most vertices one load may collect from a scene (2^25 = 33554432).
 #define PX_IO_MAX_ELEMENTS (1ull << 25)
+
+/// Most bytes the files one import reads may hold together (1 GiB, as much
+/// as one file may): the mesh file once, and each file it references (glTF
+/// buffers, an OBJ material library, ...) with its whole size for each time
+/// Assimp opens and reads it.
+#define PX_IO_MAX_IMPORT_BYTES PX_IO_MAX_FILE_BYTES
 
 /// Convex hull of all vertices of all meshes in the file at `path`, with the
 /// node transforms applied (the file's root frame; see the header comment for

@@ -22,6 +22,11 @@
  * - Before Assimp sees a file, precheck.c checks its type, its size and the
  *   counts its header declares (Assimp allocates by them), and the walk
  *   stops at PX_IO_MAX_ELEMENTS vertices (instancing multiplies them).
+ * - Assimp opens files through fs.c (aiImportFileEx with our aiFileIO): the
+ *   mesh file must still be the one the precheck read, and every file the
+ *   import opens, the mesh file's references too, is a regular file within
+ *   the size limits. A refused open fails the import even where Assimp would
+ *   have done without the file.
  */
 #include "proxima/io.h"
 
@@ -35,6 +40,7 @@
 #include <assimp/scene.h>
 
 #include "core/core.h"
+#include "io/fs.h"
 #include "io/precheck.h"
 
 /* Node trees deeper than this are rejected (also catches cyclic graphs). */
@@ -178,11 +184,20 @@ static size_t unique_points(double *xyz, size_t n) {
     return m;
 }
 
-/* Imports the file and collects all transformed vertices (with duplicates)
- * into a pxi_alloc'ed array of `*cap` points. Called with the io lock held. */
-static px_status import_points_locked(const char *path, const px_allocator *alloc, double **out,
-                                      size_t *count, size_t *cap, px_error *err) {
-    const struct aiScene *scene = aiImportFile(path, 0);
+/* Imports the file (the one the precheck identified as `id`) and collects
+ * all transformed vertices (with duplicates) into a pxi_alloc'ed array of
+ * `*cap` points. Called with the io lock held. */
+static px_status import_points_locked(const char *path, const pxi_file_id *id, const px_allocator *alloc,
+                                      double **out, size_t *count, size_t *cap, px_error *err) {
+    /* fs outlives the scene: the importer keeps it until aiReleaseImport. */
+    pxi_io_fs fs;
+    pxi_io_fs_init(&fs, path, id, alloc);
+    const struct aiScene *scene = aiImportFileEx(path, 0, &fs.io);
+    if (fs.refused) {
+        /* Also after a success: Assimp goes on without a material library. */
+        if (scene) aiReleaseImport(scene);
+        return pxi_error(err, PX_ERR_IO, "cannot import mesh file '%s': %s", path, fs.message);
+    }
     if (!scene) {
         char msg[160];
         const char *ai = aiGetErrorString();
@@ -268,14 +283,15 @@ px_status px_load_points(const char *path, const px_allocator *allocator, double
     if (ast != PX_OK) return ast;
     /* Readability, size and header counts first (precheck.c): Assimp's message
      * for a missing file omits why, and Assimp allocates by declared counts. */
-    px_status pre = pxi_io_precheck(path, &alloc, err);
+    pxi_file_id id;
+    px_status pre = pxi_io_precheck(path, &alloc, &id, err);
     if (pre != PX_OK) return pre;
 
     double *pts = NULL;
     size_t n = 0, cap = 0;
     px_status st = io_lock(path, err);
     if (st != PX_OK) return st;
-    st = import_points_locked(path, &alloc, &pts, &n, &cap, err);
+    st = import_points_locked(path, &id, &alloc, &pts, &n, &cap, err);
     io_unlock();
     if (st != PX_OK) return st;
 

@@ -11,7 +11,10 @@
  * file, each element at the smallest size its format allows: a file refused
  * here cannot be a valid file of its format, or exceeds a documented limit
  * (io.h). Passing is no proof of validity: Assimp still parses the file.
- * Only the first HEAD_BYTES bytes are read, never the whole file.
+ * Only the first HEAD_BYTES bytes are read, never the whole file. The file
+ * is opened once, without blocking (stat() first, then O_NONBLOCK), and
+ * identified (device, inode, size, modification time): fs.c makes Assimp's
+ * own opens of it find this same file.
  *
  * Which checks run. Assimp 5.2 picks the importer by the extension of the
  * file name when exactly one importer claims it; otherwise it asks each
@@ -33,18 +36,20 @@
  *   that wraps passes); then 3 n positions and normals. A UTF-8 byte-order
  *   mark is removed from the buffer but not from the size that test uses.
  */
-#define _POSIX_C_SOURCE 200809L /* stat(): the file type, before fopen could block on a FIFO */
+#define _POSIX_C_SOURCE 200809L /* stat, open(O_NONBLOCK), fstat, pread */
 
 #include "io/precheck.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <stdio.h>
 #include <string.h>
-
-#if defined(__unix__) || defined(__APPLE__)
 #include <sys/stat.h>
-#define PXI_IO_HAVE_STAT 1
+#include <unistd.h>
+
+#ifndef O_CLOEXEC
+#define O_CLOEXEC 0
 #endif
 
 #include "core/core.h"
@@ -485,10 +490,11 @@ static px_status check_formats(const io_head *h, px_error *err) {
     return st;
 }
 
-px_status pxi_io_precheck(const char *path, const px_allocator *alloc, px_error *err) {
-#ifdef PXI_IO_HAVE_STAT
-    /* fopen would block on a FIFO, and a device has no size. */
-    struct stat sb;
+px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, px_error *err) {
+    /* stat() first: open() of a FIFO would block (O_NONBLOCK below covers one
+     * put in its place meanwhile), and a device has no size. */
+    struct stat sb, fsb;
+    memset(id, 0, sizeof *id);
     if (stat(path, &sb) != 0) {
         int e = errno;
         return pxi_error(err, PX_ERR_IO, "cannot open mesh file '%s': %s", path, strerror(e));
@@ -498,45 +504,52 @@ px_status pxi_io_precheck(const char *path, const px_allocator *alloc, px_error 
     if (!S_ISREG(sb.st_mode))
         return pxi_error(err, PX_ERR_IO, "mesh file '%s' is not a regular file (a device, pipe or socket)",
                          path);
-#endif
-    FILE *f = fopen(path, "rb");
-    if (!f) {
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
         int e = errno;
         return pxi_error(err, PX_ERR_IO, "cannot open mesh file '%s': %s", path, strerror(e));
     }
-    long end = -1;
-    errno = 0;
-    if (fseek(f, 0, SEEK_END) == 0) end = ftell(f);
-    if (end < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        int e = errno;
-        fclose(f);
-        return pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path,
-                         e ? strerror(e) : "cannot find its size");
+    if (fstat(fd, &fsb) != 0 || !S_ISREG(fsb.st_mode) || fsb.st_dev != sb.st_dev || fsb.st_ino != sb.st_ino) {
+        close(fd);
+        return pxi_error(err, PX_ERR_IO, "mesh file '%s' was replaced while being opened", path);
     }
     io_head h;
     memset(&h, 0, sizeof h);
     h.path = path;
-    h.size = (u64)end;
+    h.size = (u64)fsb.st_size;
     file_extension(path, h.ext, sizeof h.ext);
     if (h.size == 0) {
-        fclose(f);
+        close(fd);
         return pxi_error(err, PX_ERR_IO, "mesh file '%s' is empty", path);
     }
     if (h.size > PX_IO_MAX_FILE_BYTES) {
-        fclose(f);
+        close(fd);
         return pxi_error(err, PX_ERR_IO, "mesh file '%s' has %llu bytes, more than the limit of %llu", path,
                          h.size, (u64)PX_IO_MAX_FILE_BYTES);
     }
+    id->dev = (u64)fsb.st_dev;
+    id->ino = (u64)fsb.st_ino;
+    id->size = h.size;
+    id->mtime_sec = (long long)fsb.st_mtim.tv_sec;
+    id->mtime_nsec = (long long)fsb.st_mtim.tv_nsec;
     h.len = h.size < HEAD_BYTES ? (size_t)h.size : HEAD_BYTES;
     unsigned char *buf = pxi_alloc(alloc, h.len);
     if (!buf) {
-        fclose(f);
+        close(fd);
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
     }
-    errno = 0;
-    size_t got = fread(buf, 1, h.len, f);
-    int e = ferror(f) ? errno : 0; /* e.g. EISDIR where stat() is not used */
-    fclose(f);
+    size_t got = 0;
+    int e = 0;
+    while (got < h.len) {
+        ssize_t r = pread(fd, buf + got, h.len - got, (off_t)got);
+        if (r < 0 && errno == EINTR) continue;
+        if (r <= 0) {
+            e = r < 0 ? errno : 0;
+            break;
+        }
+        got += (size_t)r;
+    }
+    close(fd);
     px_status st;
     if (got != h.len)
         st = pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path,

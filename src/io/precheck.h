@@ -4,13 +4,22 @@
 
 #include "proxima/io.h"
 
+/* What identifies the file that was checked: Assimp's later opens of the
+ * same name must find this file (fs.c), not one put in its place. */
+typedef struct pxi_file_id {
+    unsigned long long dev, ino, size;
+    long long mtime_sec, mtime_nsec;
+} pxi_file_id;
+
 /* Checks the file at `path` (non-NULL, non-empty) before it is imported:
  * a regular, non-empty file of at most PX_IO_MAX_FILE_BYTES whose header
  * counts (OFF, PLY, binary STL) fit in its size and in PX_IO_MAX_ELEMENTS;
- * see io.h for the rules and precheck.c for why. Reads at most the first
- * 64 KiB. Returns PX_OK, or PX_ERR_IO (PX_ERR_OUT_OF_MEMORY if the buffer for
- * the head cannot be allocated) with `err` (may be NULL) naming the file.
+ * see io.h for the rules and precheck.c for why. Opens the file once
+ * (without blocking: O_NONBLOCK, after stat() found a regular file), reads
+ * at most its first 64 KiB, and fills `id` with what identifies it. Returns
+ * PX_OK, or PX_ERR_IO (PX_ERR_OUT_OF_MEMORY if the buffer for the head
+ * cannot be allocated) with `err` (may be NULL) naming the file.
  * Thread-safe: touches no global state and does not call Assimp. */
-px_status pxi_io_precheck(const char *path, const px_allocator *alloc, px_error *err);
+px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, px_error *err);
 
 #endif

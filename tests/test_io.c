@@ -561,6 +561,104 @@ static const char *write_gltf(const char *name, const char *nodes, const char *s
     return write_file(name, text);
 }
 
+/* Finding 1: Assimp takes any first line starting with "ply" (any case) as
+ * the PLY magic, "plyx" too, and the header check used to require
+ * "ply" + blank + "format": a 132-byte "plyx" file declaring 3e7 vertices
+ * took 1.4 GB and 75 s and loaded; "ply0" + a format line and nothing else
+ * made Assimp loop forever (its header loop ends only at end_header, and
+ * getNextLine at the end of the file leaves the line as it was). */
+static void test_ply_magic(void) {
+    const char *props = "property float x\nproperty float y\nproperty float z\n";
+    char text[1024];
+    snprintf(text, sizeof text,
+             "plyx\nformat ascii 1.0\nelement vertex 30000000\n%send_header\n0 0 0\n1 0 0\n", props);
+    expect_refused(write_file("lie_plyx.ply", text), "declares 30000000 vertices");
+    expect_refused(write_file("hang_ply0.ply", "ply0\nformat binary_little_endian 1.0\n"), "loop forever");
+    expect_refused(write_file("hang_plyx.ply", "plyx\nformat ascii 1.0\nelement vertex 4\n"), "loop forever");
+    expect_refused(
+        write_file("hang_upper.model", "PLY\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"),
+        "loop forever");
+    /* A line-end byte other than "\n" starting a line: getNextLine skips to
+     * the next '\n' without refilling its cache (here: past the file). */
+    expect_refused(write_file("cr_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n\r"),
+                   "misreads");
+    /* Valid files with such magic lines still load, also with comments. */
+    snprintf(text, sizeof text,
+             "plyjunk\nformat ascii 1.0\ncomment c\nelement vertex 4\n%send_header\n"
+             "0 0 0\n1 0 0\n0 1 0\n0 0 1\n",
+             props);
+    expect_tetrahedron(write_file("plyjunk.ply", text));
+    snprintf(text, sizeof text,
+             "PlY\r\nformat ascii 1.0\r\nelement vertex 4\r\n"
+             "property float x\r\nproperty float y\r\nproperty float z\r\nend_header\r\n"
+             "0 0 0\r\n1 0 0\r\n0 1 0\r\n0 0 1");
+    expect_tetrahedron(write_file("plycase.data", text));
+}
+
+/* Finding 2: list lengths in the body. Assimp resizes a list to its
+ * declared length before reading a value: an ascii list of 2e8 values in a
+ * 193-byte file took 3.1 GB and loaded; a binary one 1.5 GB. The check only
+ * assumed empty lists. Now the body is walked as Assimp walks it. */
+static void test_ply_lists(void) {
+    const char *head = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                       "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n"
+                       "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+    char text[1024];
+    snprintf(text, sizeof text, "%s200000000 0 1 2\n", head);
+    expect_refused(write_file("listbomb_ascii.ply", text), "more than the limit of values per list");
+    snprintf(text, sizeof text, "%s1000 0 1 2\n", head);
+    expect_refused(write_file("list_line.ply", text), "more than its line holds");
+    snprintf(text, sizeof text, "%s3 0 1\n", head);
+    expect_refused(write_file("list_short.ply", text), "more than its line holds");
+    expect_refused(write_file("vertex_short.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                              "property float y\nproperty float z\nend_header\n"
+                              "0.0 0.0 0.0\n1.0 0.0\n0.0 1.0 0.0\n0.0 0.0 1.0\n"),
+                   "fewer values");
+    snprintf(text, sizeof text, "%s3 0 1 x\n", head);
+    expect_refused(write_file("list_junk.ply", text), "not a number");
+    /* Binary: lengths 1e6 (in 12 bytes), 2e8, and -1 as a signed count
+     * (Assimp makes it 4294967295). */
+    static unsigned char buf[4096];
+    const unsigned lens[] = {1000000u, 200000000u};
+    for (int k = 0; k < 2; ++k) {
+        int h =
+            sprintf((char *)buf, "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+                                 "property float y\nproperty float z\nelement face 1\n"
+                                 "property list uint int vertex_indices\nend_header\n");
+        unsigned char *p = buf + h;
+        for (int v = 0; v < 4; ++v)
+            for (int c = 0; c < 3; ++c) p = put_f32(p, k_tet[v][c], 0);
+        p = put_u32(p, lens[k], 0);
+        for (int i = 0; i < 3; ++i) p = put_u32(p, (uint32_t)i, 0);
+        expect_refused(write_bytes(k ? "listbomb_bin2.ply" : "listbomb_bin.ply", buf, (size_t)(p - buf)),
+                       k ? "more than the limit of values per list" : "more than the bytes left");
+    }
+    int h = sprintf((char *)buf, "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+                                 "property float y\nproperty float z\nelement face 1\n"
+                                 "property list int int vertex_indices\nend_header\n");
+    unsigned char *p = buf + h;
+    for (int v = 0; v < 4; ++v)
+        for (int c = 0; c < 3; ++c) p = put_f32(p, k_tet[v][c], 0);
+    p = put_u32(p, 0xFFFFFFFFu, 0);
+    expect_refused(write_bytes("list_negative.ply", buf, (size_t)(p - buf)), "declares 4294967295 values");
+    /* Assimp writes past its arrays: a second vertex element, and a face
+     * whose texcoord list (6 to 8 values) outnumbers its vertex indices. */
+    snprintf(text, sizeof text,
+             "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nelement vertex 3\n"
+             "property float x\nend_header\n0\n1\n2\n3\n");
+    expect_refused(write_file("two_vertex.ply", text), "several vertex elements");
+    snprintf(text, sizeof text,
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+             "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+             "property list uchar float texcoord\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+             "2 0 1 8 0 0 1 0 0 1 1 1\n");
+    expect_refused(write_file("texcoord.ply", text), "texcoord");
+    /* Valid lists still load (ascii and binary: the existing tet files). */
+    snprintf(text, sizeof text, "%s3 0 1 2\n", head);
+    expect_tetrahedron(write_file("list_ok.ply", text));
+}
+
 /* Finding 3: files a mesh references. A glTF buffer or an OBJ mtllib naming
  * a FIFO hung the import forever, holding the import lock; a buffer that is
  * a 3 GB sparse file was read whole (2.9 GB). Assimp now opens every file
@@ -632,6 +730,8 @@ int main(void) {
     test_stl_files();
     test_unchecked_formats();
     test_special_files();
+    test_ply_magic();
+    test_ply_lists();
     test_referenced_files();
 #if !PX_TEST_ASAN
     struct rusage usage;

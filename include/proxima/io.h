@@ -35,10 +35,11 @@
 /// it and why, also where Assimp would have gone on without it (an OBJ
 /// material library); a missing referenced file is left to Assimp.
 ///
-///
-/// Limits: a file is checked before Assimp reads it, so that a lying header
-/// cannot make the import allocate memory the file cannot back. Only the
-/// first 64 KiB are read for this. Refused with PX_ERR_IO, the message naming
+/// Limits: a file is checked before Assimp reads it, so that a lying or
+/// malformed file cannot make the import allocate memory the file cannot
+/// back, loop forever, or crash Assimp 5.2 (Debian bookworm's 5.2.5, whose
+/// readers the checks follow). Headers are read from the first 64 KiB; PLY
+/// bodies are walked through once. Refused with PX_ERR_IO, the message naming
 /// the file and the problem:
 /// - anything but a regular file (directory, device, pipe), an empty file,
 ///   or a file of more than PX_IO_MAX_FILE_BYTES;
@@ -48,9 +49,20 @@
 ///   one record, lists empty; binary STL exactly 84 + 50 n bytes for n
 ///   triangles), or more than PX_IO_MAX_ELEMENTS in total (an STL triangle
 ///   counts 4: 3 vertices and a face); an OFF or PLY header that does not end
-///   within the first 64 KiB, a PLY header without `end_header` or with a
-///   property type Assimp does not read; a `.stl` file that is neither a
-///   binary STL of consistent size nor ASCII text starting with `solid`;
+///   within the first 64 KiB; a `.stl` file that is neither a binary STL of
+///   consistent size nor ASCII text starting with `solid`;
+/// - PLY: any file whose first line starts with "ply" in any case, whatever
+///   follows on that line (as Assimp detects PLY), is read as Assimp reads it:
+///   refused are a header Assimp would loop on (no `end_header` line it
+///   reaches), a line break other than "\n" or "\r\n" that makes it read
+///   past its buffer, a property type it does not read or a property line
+///   without a name, several vertex elements or several face/tristrips
+///   elements, records that do not fit in the file (binary) or on their line
+///   (ascii: one record per line, every value a number of its property's
+///   type), a list declaring more values than the bytes left (binary) or
+///   its line (ascii) can hold, or more than PX_IO_MAX_PLY_LIST, lists
+///   holding more than 4 * PX_IO_MAX_ELEMENTS values in all, and a face whose
+///   6 to 8 texcoord values outnumber its vertex indices;
 /// - DirectX (.x), ASE (.ase, .ask), MD5 (.md5mesh, .md5anim, .md5camera),
 ///   NFF (.nff, .enff) and Caligari (.cob, .scn) files, also X, ASE and MD5
 ///   content under another name: Assimp 5.2 sizes arrays by counts written
@@ -86,6 +98,10 @@ extern "C" {
 /// buffers, an OBJ material library, ...) with its whole size for each time
 /// Assimp opens and reads it.
 #define PX_IO_MAX_IMPORT_BYTES PX_IO_MAX_FILE_BYTES
+
+/// Most values one PLY list may declare (2^24 = 16777216). All lists of a
+/// file together may hold at most 4 * PX_IO_MAX_ELEMENTS values.
+#define PX_IO_MAX_PLY_LIST (1ull << 24)
 
 /// Convex hull of all vertices of all meshes in the file at `path`, with the
 /// node transforms applied (the file's root frame; see the header comment for

@@ -6,15 +6,18 @@
  * for 24 GB (13 GB were committed before the process was killed), an ascii
  * PLY declaring 1e8 vertices with one vertex line loads as 1e8 vertices, and
  * a PLY header without end_header makes it loop forever (measured with
- * Debian bookworm's Assimp 5.2.5). So
- * before the import, the declared counts are compared with the size of the
- * file, each element at the smallest size its format allows: a file refused
- * here cannot be a valid file of its format, or exceeds a documented limit
- * (io.h). Passing is no proof of validity: Assimp still parses the file.
- * Only the first HEAD_BYTES bytes are read, never the whole file. The file
- * is opened once, without blocking (stat() first, then O_NONBLOCK), and
- * identified (device, inode, size, modification time): fs.c makes Assimp's
- * own opens of it find this same file.
+ * Debian bookworm's Assimp 5.2.5). So before the import, the declared
+ * counts are compared with the size of the file, each element at the
+ * smallest size its format allows, and the bodies of PLY files are walked
+ * the way Assimp walks them (ply.c): a file refused here cannot be a valid
+ * file of its format, would make Assimp 5.2 hang or read outside its
+ * buffers, or exceeds a documented limit (io.h).
+ * Passing is no proof of validity: Assimp still parses the file.
+ *
+ * The file is opened once, without blocking (stat() first, then O_NONBLOCK),
+ * and identified (device, inode, size, modification time): fs.c makes
+ * Assimp's own opens of it find this same file. The first 64 KiB (the head)
+ * are read for the headers; the PLY walk streams through the rest.
  *
  * Which checks run. Assimp 5.2 picks the importer by the extension of the
  * file name when exactly one importer claims it; otherwise it asks each
@@ -30,7 +33,7 @@
  *   texture coordinates for the NOFF, COFF and STOFF variants) and numFaces
  *   faces, then it reads one line per vertex and per face.
  * - PLY (PlyParser.cpp, PlyLoader.cpp): per element, its declared number of
- *   records, ascii or binary.
+ *   records, ascii or binary; per list, its declared length (ply.c).
  * - STL (STLLoader.cpp): the file is binary when 84 + 50 n == file size, n
  *   being the 32-bit count at byte 80 and the arithmetic 32-bit (so a count
  *   that wraps passes); then 3 n positions and normals. A UTF-8 byte-order
@@ -48,32 +51,19 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "core/core.h"
+#include "io/scan.h"
+
 #ifndef O_CLOEXEC
 #define O_CLOEXEC 0
 #endif
 
-#include "core/core.h"
+#define HEAD_BYTES PXI_IO_HEAD_BYTES /* bytes read to check a header */
+#define SIGNATURE_BYTES 200          /* what Assimp's SearchFileHeaderForToken reads */
 
-#define HEAD_BYTES 65536    /* bytes read to check a header */
-#define SIGNATURE_BYTES 200 /* what Assimp's SearchFileHeaderForToken reads */
-
-typedef unsigned long long u64;
-
-/* The file being checked: its name, size and first bytes. */
-typedef struct io_head {
-    const char *path;
-    char ext[16];              /* extension, lowercased, no dot; "" if none (or longer than 15) */
-    u64 size;                  /* file size in bytes */
-    const unsigned char *data; /* the first `len` bytes of the file */
-    size_t len;                /* min(size, HEAD_BYTES) */
-} io_head;
-
-/* a + b and a * b saturated at ULLONG_MAX: declared counts are untrusted. */
-static u64 sat_add(u64 a, u64 b) { return a > ULLONG_MAX - b ? ULLONG_MAX : a + b; }
-static u64 sat_mul(u64 a, u64 b) { return b && a > ULLONG_MAX / b ? ULLONG_MAX : a * b; }
-
-/* ASCII tolower, independent of the locale. */
-static int lower(int c) { return c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c; }
+#define sat_add pxi_sat_add
+#define sat_mul pxi_sat_mul
+#define lower pxi_lower
 
 /* 1 if the file starts with `s` (ASCII letters compared case-insensitively). */
 static int starts_with_ci(const io_head *h, const char *s) {
@@ -186,168 +176,6 @@ static px_status check_off(const io_head *h, int by_extension, px_error *err) {
                          "(an OFF vertex or face takes a line of at least 2 bytes)",
                          h->path, nv, nf, h->size);
     if (sat_add(nv, nf) > PX_IO_MAX_ELEMENTS) return err_too_many(h, sat_add(nv, nf), err);
-    return PX_OK;
-}
-
-/* ------------------------------------------------------------------ PLY */
-
-/* One line of the PLY header split into blank-separated words (at most 5
- * are kept: "property list uchar int vertex_indices"). */
-typedef struct ply_line {
-    const unsigned char *word[5];
-    size_t word_len[5];
-    int words;
-} ply_line;
-
-/* 1 if word i of the line is `s`. */
-static int ply_word_is(const ply_line *l, int i, const char *s) {
-    return i < l->words && l->word_len[i] == strlen(s) && memcmp(l->word[i], s, l->word_len[i]) == 0;
-}
-
-/* Bytes of a PLY scalar type in binary files (the names Assimp's
- * PLY::Property::ParseDataType knows), or 0 if it is not one of them. */
-static unsigned ply_type_size(const ply_line *l, int i) {
-    static const struct {
-        const char *name;
-        unsigned size;
-    } types[] = {{"char", 1},   {"int8", 1},    {"uchar", 1},  {"uint8", 1},   {"short", 2},   {"int16", 2},
-                 {"ushort", 2}, {"uint16", 2},  {"int", 4},    {"int32", 4},   {"uint", 4},    {"uint32", 4},
-                 {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}, {"double64", 8}};
-    for (size_t k = 0; k < sizeof types / sizeof types[0]; ++k)
-        if (ply_word_is(l, i, types[k].name)) return types[k].size;
-    return 0;
-}
-
-/* Plural noun for an element's records in messages: "vertices", "faces",
- * or "'name' elements". */
-static void ply_noun(const ply_line *l, char *out, size_t size) {
-    if (ply_word_is(l, 1, "vertex"))
-        snprintf(out, size, "vertices");
-    else if (ply_word_is(l, 1, "face"))
-        snprintf(out, size, "faces");
-    else
-        snprintf(out, size, "'%.*s' elements",
-                 (int)(l->words > 1 && l->word_len[1] < 40 ? l->word_len[1] : 0),
-                 l->words > 1 ? (const char *)l->word[1] : "");
-}
-
-/* Splits the header line starting at *pos into words and moves *pos to the
- * start of the next line (past \n, \r or \r\n). Returns 0 when *pos is at
- * the end of the head. */
-static int ply_next_line(const io_head *h, size_t *pos, ply_line *l) {
-    const unsigned char *d = h->data;
-    size_t i = *pos;
-    if (i >= h->len) return 0;
-    memset(l, 0, sizeof *l);
-    size_t end = i;
-    while (end < h->len && d[end] != '\n' && d[end] != '\r') ++end;
-    while (i < end && l->words < 5) {
-        while (i < end && (d[i] == ' ' || d[i] == '\t')) ++i;
-        if (i >= end) break;
-        l->word[l->words] = d + i;
-        while (i < end && d[i] != ' ' && d[i] != '\t') ++i;
-        l->word_len[l->words] = (size_t)(d + i - l->word[l->words]);
-        ++l->words;
-    }
-    if (end < h->len && d[end] == '\r') ++end;
-    if (end < h->len && d[end] == '\n') ++end;
-    *pos = end;
-    return 1;
-}
-
-/* The element being declared while the header is read. */
-typedef struct ply_element {
-    u64 count;  /* declared records */
-    u64 bytes;  /* binary: bytes of the smallest record (lists empty) */
-    u64 values; /* ascii: numbers in the smallest record (a list: its length) */
-    char noun[64];
-} ply_element;
-
-/* Adds the smallest size of a declared element to *need and refuses the file
- * when the elements so far cannot fit in the `avail` bytes after the header.
- * An ascii record of k numbers takes k digits and k separators (the last
- * line break may be missing, hence avail + 1); a record with no property is
- * taken as 1 byte (a line), since Assimp still allocates one per record. */
-static px_status ply_add_element(const io_head *h, const ply_element *e, int binary, u64 avail, u64 *need,
-                                 px_error *err) {
-    u64 record = binary ? e->bytes : sat_mul(2, e->values);
-    if (record == 0) record = 1;
-    *need = sat_add(*need, sat_mul(e->count, record));
-    if (*need <= (binary ? avail : sat_add(avail, 1))) return PX_OK;
-    return pxi_error(err, PX_ERR_IO,
-                     "mesh file '%s' declares %llu %s but has only %llu bytes (PLY %s: at least %llu needed "
-                     "after the header)",
-                     h->path, e->count, e->noun, h->size, binary ? "binary" : "ascii", *need);
-}
-
-/* PLY: the magic "ply" (any case), then "format ascii ..." or
- * "format binary_..." (Assimp refuses anything else before allocating), then
- * "element NAME COUNT" lines, each followed by its "property TYPE NAME" and
- * "property list COUNT_TYPE ITEM_TYPE NAME" lines, up to "end_header".
- * Other lines ("comment", "obj_info") are skipped, as Assimp does. A property
- * type Assimp does not know is refused: Assimp would misread the layout.
- * Two passes over the header: the first finds where the body starts. */
-static px_status check_ply(const io_head *h, px_error *err) {
-    if (!starts_with_ci(h, "ply")) return PX_OK; /* Assimp checks the magic first */
-    const unsigned char *d = h->data;
-    size_t p = 3;
-    while (p < h->len && d[p] <= ' ') ++p;
-    if (h->len - p < 7 || memcmp(d + p, "format", 6) != 0 || d[p + 6] > ' ') return PX_OK;
-    p += 6;
-    while (p < h->len && (d[p] == ' ' || d[p] == '\t')) ++p;
-    int binary;
-    if (h->len - p >= 6 && memcmp(d + p, "ascii", 5) == 0 && d[p + 5] <= ' ')
-        binary = 0;
-    else if (h->len - p >= 7 && memcmp(d + p, "binary_", 7) == 0)
-        binary = 1;
-    else
-        return PX_OK;
-    ply_line l;
-    (void)ply_next_line(h, &p, &l); /* rest of the format line */
-    const size_t first = p;
-
-    size_t body = 0;
-    while (!body && ply_next_line(h, &p, &l))
-        if (ply_word_is(&l, 0, "end_header")) body = p;
-    if (!body) {
-        if (h->len < h->size)
-            return pxi_error(err, PX_ERR_IO,
-                             "mesh file '%s': the PLY header does not end within its first %d bytes", h->path,
-                             HEAD_BYTES);
-        return pxi_error(err, PX_ERR_IO, "mesh file '%s': the PLY header has no end_header line", h->path);
-    }
-    const u64 avail = h->size - body;
-
-    ply_element e;
-    int open = 0;
-    u64 need = 0, total = 0;
-    p = first;
-    while (p < body && ply_next_line(h, &p, &l)) {
-        if (ply_word_is(&l, 0, "element") || ply_word_is(&l, 0, "end_header")) {
-            if (open) {
-                px_status st = ply_add_element(h, &e, binary, avail, &need, err);
-                if (st != PX_OK) return st;
-            }
-            open = ply_word_is(&l, 0, "element");
-            if (!open) break;
-            memset(&e, 0, sizeof e);
-            if (l.words > 2) {
-                size_t q = (size_t)(l.word[2] - d);
-                e.count = read_count(h, &q);
-            }
-            ply_noun(&l, e.noun, sizeof e.noun);
-            total = sat_add(total, e.count);
-        } else if (open && ply_word_is(&l, 0, "property")) {
-            const int list = ply_word_is(&l, 1, "list");
-            const unsigned size = ply_type_size(&l, list ? 2 : 1);
-            if (!size || (list && !ply_type_size(&l, 3)))
-                return pxi_error(err, PX_ERR_IO,
-                                 "mesh file '%s': a PLY property has a type Assimp does not read", h->path);
-            e.bytes += size;
-            e.values += 1;
-        }
-    }
-    if (total > PX_IO_MAX_ELEMENTS) return err_too_many(h, total, err);
     return PX_OK;
 }
 
@@ -479,12 +307,14 @@ static void file_extension(const char *path, char *ext, size_t size) {
 }
 
 /* Runs the checks of every format Assimp could read the file as. */
+/* Runs the checks of every format Assimp could read the file as. */
 static px_status check_formats(const io_head *h, px_error *err) {
     const int off = strcmp(h->ext, "off") == 0, ply = strcmp(h->ext, "ply") == 0,
               stl = strcmp(h->ext, "stl") == 0;
     px_status st = check_unchecked(h, err);
     if (st == PX_OK && (off || starts_with_ci(h, "off"))) st = check_off(h, off, err);
-    if (st == PX_OK && (ply || starts_with_ci(h, "ply"))) st = check_ply(h, err);
+    /* PLYImporter::CanRead: "ply" anywhere in the signature bytes. */
+    if (st == PX_OK && (ply || signature_has(h, "ply"))) st = pxi_check_ply(h, err);
     if (st == PX_OK && (stl || signature_has(h, "solid") || signature_has(h, "stl")))
         st = check_stl(h, stl, err);
     return st;
@@ -517,6 +347,7 @@ px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_
     memset(&h, 0, sizeof h);
     h.path = path;
     h.size = (u64)fsb.st_size;
+    h.alloc = alloc;
     file_extension(path, h.ext, sizeof h.ext);
     if (h.size == 0) {
         close(fd);
@@ -532,32 +363,27 @@ px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_
     id->size = h.size;
     id->mtime_sec = (long long)fsb.st_mtim.tv_sec;
     id->mtime_nsec = (long long)fsb.st_mtim.tv_nsec;
+    io_reader rd;
+    memset(&rd, 0, sizeof rd);
+    rd.fd = fd;
+    rd.size = h.size;
+    rd.buf = pxi_alloc(alloc, PXI_IO_READER_BYTES);
     h.len = h.size < HEAD_BYTES ? (size_t)h.size : HEAD_BYTES;
-    unsigned char *buf = pxi_alloc(alloc, h.len);
-    if (!buf) {
-        close(fd);
-        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
-    }
-    size_t got = 0;
-    int e = 0;
-    while (got < h.len) {
-        ssize_t r = pread(fd, buf + got, h.len - got, (off_t)got);
-        if (r < 0 && errno == EINTR) continue;
-        if (r <= 0) {
-            e = r < 0 ? errno : 0;
-            break;
+    unsigned char *head = pxi_alloc(alloc, h.len);
+    px_status st = PX_OK;
+    if (!rd.buf || !head) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
+    } else {
+        h.rd = &rd;
+        if (!pxi_rd_read(&rd, head, h.len)) {
+            st = pxi_rd_error(&h, err);
+        } else {
+            h.data = head;
+            st = check_formats(&h, err);
         }
-        got += (size_t)r;
     }
+    if (head) pxi_free(alloc, head, h.len);
+    if (rd.buf) pxi_free(alloc, rd.buf, PXI_IO_READER_BYTES);
     close(fd);
-    px_status st;
-    if (got != h.len)
-        st = pxi_error(err, PX_ERR_IO, "cannot read mesh file '%s': %s", path,
-                       e ? strerror(e) : "it became shorter while being read");
-    else {
-        h.data = buf;
-        st = check_formats(&h, err);
-    }
-    pxi_free(alloc, buf, h.len);
     return st;
 }

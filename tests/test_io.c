@@ -704,6 +704,37 @@ static void test_referenced_files(void) {
                    "PX_IO_MAX_IMPORT_BYTES");
 }
 
+/* Finding 4: OFF face lines. Assimp skips a face line whose count is 0 or
+ * above 9 with --mNumFaces and reads on: two such lines in a one-face file
+ * wrap the count to 2^32 - 1 over an array of one face, and
+ * ScenePreprocessor reads past it (SIGSEGV on a 38-byte file). */
+static void test_off_faces(void) {
+    const char *verts = "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+    char text[8192];
+    snprintf(text, sizeof text, "%s0\n0 ", verts);
+    expect_refused(write_file("c_c.off", text), "has 0 vertices");
+    snprintf(text, sizeof text, "%s2 0 1\n", verts);
+    expect_refused(write_file("face2.off", text), "a face needs at least 3");
+    snprintf(text, sizeof text, "%s3 0 1 4\n", verts);
+    expect_refused(write_file("face_range.off", text), "out of range");
+    snprintf(text, sizeof text, "%s3 0 1\n", verts);
+    expect_refused(write_file("face_short.off", text), "fewer vertex indices");
+    snprintf(text, sizeof text, "%s10 0 1 2 3 0 1 2 3 0 1\n10 0 1 2 3 0 1 2 3 0 1\n", verts);
+    expect_refused(write_file("face_wrap.off", text), "wraps its face count");
+    expect_refused(write_file("verts_short.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n"), "ends after 2 vertex lines");
+    /* (With 3 vertex lines, the face line is read as the fourth vertex.) */
+    expect_refused(write_file("faces_short.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+                   "declares 1 faces but its text ends after 0");
+    /* A line of 4096 bytes: Assimp writes one byte past its line buffer. */
+    size_t n = (size_t)snprintf(text, sizeof text, "OFF\n4 1 0\n0 0 0");
+    while (n < 4096 + 16) text[n++] = ' ';
+    snprintf(text + n, sizeof text - n, "\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
+    expect_refused(write_file("long_line.off", text), "line of 4096 bytes");
+    /* Valid: a 10-gon (Assimp drops the face, its vertices stay). */
+    snprintf(text, sizeof text, "%s10 0 1 2 3 0 1 2 3 0 1\n", verts);
+    expect_tetrahedron(write_file("face10.off", text));
+}
+
 int main(void) {
     snprintf(g_dir, sizeof g_dir, "/tmp/proxima_test_io_%ld", (long)getpid());
     char cmd[300];
@@ -733,6 +764,7 @@ int main(void) {
     test_ply_magic();
     test_ply_lists();
     test_referenced_files();
+    test_off_faces();
 #if !PX_TEST_ASAN
     struct rusage usage;
     CHECK(getrusage(RUSAGE_SELF, &usage) == 0);

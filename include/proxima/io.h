@@ -39,8 +39,8 @@
 /// malformed file cannot make the import allocate memory the file cannot
 /// back, loop forever, or crash Assimp 5.2 (Debian bookworm's 5.2.5, whose
 /// readers the checks follow). Headers are read from the first 64 KiB; PLY
-/// bodies are walked through once. Refused with PX_ERR_IO, the message naming
-/// the file and the problem:
+/// and OFF bodies are walked through once. Refused with PX_ERR_IO, the
+/// message naming the file and the problem:
 /// - anything but a regular file (directory, device, pipe), an empty file,
 ///   or a file of more than PX_IO_MAX_FILE_BYTES;
 /// - an OFF, PLY or binary STL file whose header declares more vertices,
@@ -63,6 +63,12 @@
 ///   its line (ascii) can hold, or more than PX_IO_MAX_PLY_LIST, lists
 ///   holding more than 4 * PX_IO_MAX_ELEMENTS values in all, and a face whose
 ///   6 to 8 texcoord values outnumber its vertex indices;
+/// - OFF: the vertex and face lines are read as Assimp reads them: refused
+///   are a text that ends before its declared vertices and faces, a line of
+///   4096 bytes or more, a face of fewer than 3 vertices, with an index that
+///   is not a number below the vertex count or with fewer indices than its
+///   count, more faces of 10 or more vertices (which Assimp drops) than the
+///   declared face count, and a UTF-16 byte-order mark;
 /// - DirectX (.x), ASE (.ase, .ask), MD5 (.md5mesh, .md5anim, .md5camera),
 ///   NFF (.nff, .enff) and Caligari (.cob, .scn) files, also X, ASE and MD5
 ///   content under another name: Assimp 5.2 sizes arrays by counts written

@@ -8,16 +8,16 @@
  * a PLY header without end_header makes it loop forever (measured with
  * Debian bookworm's Assimp 5.2.5). So before the import, the declared
  * counts are compared with the size of the file, each element at the
- * smallest size its format allows, and the bodies of PLY files are walked
- * the way Assimp walks them (ply.c): a file refused here cannot be a valid
- * file of its format, would make Assimp 5.2 hang or read outside its
- * buffers, or exceeds a documented limit (io.h).
+ * smallest size its format allows, and the bodies of PLY and OFF files are
+ * walked the way Assimp walks them (ply.c; off_walk below): a file refused
+ * here cannot be a valid file of its format, would make Assimp 5.2 crash,
+ * hang or read outside its buffers, or exceeds a documented limit (io.h).
  * Passing is no proof of validity: Assimp still parses the file.
  *
  * The file is opened once, without blocking (stat() first, then O_NONBLOCK),
  * and identified (device, inode, size, modification time): fs.c makes
  * Assimp's own opens of it find this same file. The first 64 KiB (the head)
- * are read for the headers; the PLY walk streams through the rest.
+ * are read for the headers; the walks stream through the rest.
  *
  * Which checks run. Assimp 5.2 picks the importer by the extension of the
  * file name when exactly one importer claims it; otherwise it asks each
@@ -91,17 +91,6 @@ static int has_utf8_bom(const io_head *h) {
     return h->len >= 3 && h->data[0] == 0xEF && h->data[1] == 0xBB && h->data[2] == 0xBF;
 }
 
-/* Reads the decimal digits at data[*pos] on (none: 0), saturating, like
- * Assimp's strtoul10 but without its 32-bit wrap-around; advances *pos. */
-static u64 read_count(const io_head *h, size_t *pos) {
-    u64 v = 0;
-    size_t i = *pos;
-    for (; i < h->len && h->data[i] >= '0' && h->data[i] <= '9'; ++i)
-        v = sat_add(sat_mul(v, 10), (u64)(h->data[i] - '0'));
-    *pos = i;
-    return v;
-}
-
 /* The PX_ERR_IO for a total of declared elements above PX_IO_MAX_ELEMENTS. */
 static px_status err_too_many(const io_head *h, u64 total, px_error *err) {
     return pxi_error(err, PX_ERR_IO, "mesh file '%s' declares %llu elements, more than the limit of %llu",
@@ -110,72 +99,272 @@ static px_status err_too_many(const io_head *h, u64 total, px_error *err) {
 
 /* ------------------------------------------------------------------ OFF */
 
-/* Skips what Assimp's OFF NextToken skips: blank space and '#' comment
- * lines. Every byte up to ' ' counts as blank here (a superset of Assimp's
- * set), so the digits found next are the ones Assimp reads, or Assimp reads
- * none (count 0: it refuses the file). */
-static void off_skip(const io_head *h, size_t *pos) {
-    size_t i = *pos;
-    for (;;) {
-        while (i < h->len && h->data[i] <= ' ') ++i;
-        if (i >= h->len || h->data[i] != '#') break;
-        while (i < h->len && h->data[i] != '\n' && h->data[i] != '\r') ++i;
-    }
-    *pos = i;
+/* Assimp's OFF importer reads the file as one text buffer (TextFileToBuffer:
+ * a UTF-8 byte-order mark dropped, a NUL appended). `off_text` is that
+ * buffer as far as the head holds it; positions count from the text's
+ * start, `skip` bytes into the file. */
+typedef struct off_text {
+    const unsigned char *d;
+    size_t n;   /* bytes of the text in the head */
+    u64 total;  /* bytes of the text (the NUL at `total`) */
+    u64 skip;   /* byte-order mark bytes */
+    int beyond; /* a position past the head was needed */
+} off_text;
+
+static int off_at(off_text *t, u64 i) {
+    if (i < t->n) return t->d[i];
+    if (i >= t->total) return 0; /* the NUL Assimp appends */
+    t->beyond = 1;
+    return 0;
 }
 
-/* OFF: optional blank space and comments, the keyword [ST][C][N][4][n]OFF
- * ('n': a dimension follows; a headerless file, accepted by extension, has
- * none), then the vertex, face and edge counts, then one line per vertex and
- * per face. A line takes at least one byte and a line break, so the bytes
- * after the vertex count must number at least 2 (V + F) - 1. Files sniffed as
- * OFF (by_extension 0) that are not OFF are left to Assimp, which refuses them
- * before allocating, as it does a zero count. */
-static px_status check_off(const io_head *h, int by_extension, px_error *err) {
-    const unsigned char *d = h->data;
-    const size_t n = h->len;
-    size_t p = has_utf8_bom(h) ? 3 : 0; /* Assimp's TextFileToBuffer drops it */
-    off_skip(h, &p);
-    /* Assimp consumes these letters even when "OFF" does not follow. */
+/* ParsingUtils' SkipSpacesAndLineEnd and SkipLine, and OFFLoader's
+ * NextToken (blank space, then '#' comment lines). */
+static void off_skip_blank(off_text *t, u64 *c) {
+    int ch;
+    while ((ch = off_at(t, *c)) == ' ' || ch == '\t' || ch == '\r' || ch == '\n') ++*c;
+}
+static void off_next_token(off_text *t, u64 *c) {
+    off_skip_blank(t, c);
+    int ch;
+    while (*c < t->total + 1 && ((ch = off_at(t, *c)) == '#' || ch == '\n' || ch == '\r')) {
+        while ((ch = off_at(t, *c)) != '\r' && ch != '\n' && ch != 0) ++*c;
+        while ((ch = off_at(t, *c)) == '\r' || ch == '\n') ++*c;
+        off_skip_blank(t, c);
+    }
+}
+
+/* strtoul10: Assimp's value (32-bit, wrapping) and the saturated one. */
+static unsigned off_strtoul10(off_text *t, u64 *c, u64 *sat) {
+    unsigned v = 0;
+    u64 s = 0;
+    int ch;
+    while ((ch = off_at(t, *c)) >= '0' && ch <= '9') {
+        v = v * 10u + (unsigned)(ch - '0');
+        s = sat_add(sat_mul(s, 10), (u64)(ch - '0'));
+        ++*c;
+    }
+    if (sat) *sat = s;
+    return v;
+}
+
+static int is_line_end(int c) { return c == '\r' || c == '\n' || c == '\0' || c == '\f'; }
+
+#define OFF_LINE 4096 /* ParsingUtils' BufferSize: OFFImporter's char line[4096] */
+
+/* ParsingUtils' GetNextLine on the stream: 0 at the end of the text (or an
+ * embedded NUL). Returns -1 for a line of OFF_LINE bytes or more: Assimp
+ * copies 4096 of them and writes its terminating NUL one past its stack
+ * buffer. `line` gets the line, NUL-terminated. */
+static int off_next_line(io_reader *r, unsigned char *line, size_t *len) {
+    int c = pxi_rd_peek(r);
+    if (c <= 0) return 0;
+    size_t n = 0;
+    while ((c = pxi_rd_peek(r)) > 0 && !is_line_end(c)) {
+        if (n == OFF_LINE - 1) return -1;
+        line[n++] = (unsigned char)c;
+        r->at++;
+    }
+    line[n] = 0;
+    while ((c = pxi_rd_peek(r)) > 0 && is_line_end(c)) r->at++;
+    *len = n;
+    return 1;
+}
+
+/* The vertex and face lines, as OFFImporter::InternReadFile reads them from
+ * `start` (a text position): numVertices lines, then face lines until
+ * numFaces were taken. Assimp's face loop has no bound of its own: a line
+ * whose count is 0 or above 9 is skipped with --mesh->mNumFaces and without
+ * advancing, so two such lines in a one-face file wrap mNumFaces to 2^32 - 1
+ * over an array of one face, and ScenePreprocessor then reads far past it
+ * (SIGSEGV: the review's c_c.off, "0\n0 "). Refused here: a face count
+ * below 3, more skipped lines than faces (the wrap), a vertex index that is
+ * not a number below numVertices (Assimp clamps those silently), fewer
+ * indices than the count, a line of 4096 bytes or more, and a text that ends
+ * before its vertices and faces (Assimp leaves the missing vertices at the
+ * origin). Faces of 10 or more vertices are left to Assimp, which drops the
+ * face (its vertices stay). */
+static px_status off_walk(const io_head *h, const off_text *t, u64 start, unsigned nv, unsigned nf,
+                          px_error *err) {
+    io_reader *rd = h->rd;
+    unsigned char *line = pxi_alloc(h->alloc, OFF_LINE);
+    if (!line) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+    px_status st = PX_OK;
+    size_t len;
+    int got = 1;
+    pxi_rd_seek(rd, t->skip + start);
+    unsigned i = 0;
+    for (; i < nv && (got = off_next_line(rd, line, &len)) > 0; ++i) {
+    }
+    if (got < 0) goto long_line;
+    if (rd->error) goto read_error;
+    if (i < nv) {
+        st = pxi_error(err, PX_ERR_IO,
+                       "mesh file '%s' declares %u vertices but its text ends after %u vertex lines (Assimp "
+                       "5.2 would put the others at the origin)",
+                       h->path, nv, i);
+        goto done;
+    }
+    unsigned faces = 0, skipped = 0;
+    u64 lineno = 0;
+    while (faces < nf) {
+        got = off_next_line(rd, line, &len);
+        if (got < 0) goto long_line;
+        if (rd->error) goto read_error;
+        if (!got) {
+            /* Assimp stops here too; only the declared lines must exist
+             * (after skipped ones it reads on past them). */
+            if ((u64)faces + skipped < nf)
+                st = pxi_error(err, PX_ERR_IO, "mesh file '%s' declares %u faces but its text ends after %u",
+                               h->path, nf, faces + skipped);
+            goto done;
+        }
+        ++lineno;
+        size_t p = 0;
+        while (line[p] == ' ' || line[p] == '\t') ++p;
+        size_t q = p;
+        unsigned count = 0;
+        u64 count_sat = 0;
+        for (; line[q] >= '0' && line[q] <= '9'; ++q) {
+            count = count * 10u + (unsigned)(line[q] - '0');
+            count_sat = sat_add(sat_mul(count_sat, 10), (u64)(line[q] - '0'));
+        }
+        if (count == 0 || count > 9) {
+            /* Assimp skips the line: refused outright when the count is not
+             * a count, or once the skips would wrap mNumFaces. */
+            if (q == p || count_sat < 3) {
+                st = pxi_error(err, PX_ERR_IO,
+                               "mesh file '%s': face line %llu has %s vertices, and Assimp 5.2 mishandles "
+                               "such faces (a face needs at least 3)",
+                               h->path, lineno, q == p ? "no count of" : "0");
+                goto done;
+            }
+            if (++skipped > nf) {
+                st = pxi_error(err, PX_ERR_IO,
+                               "mesh file '%s': more face lines of 10 or more vertices than its %u faces "
+                               "(Assimp 5.2 drops them and wraps its face count)",
+                               h->path, nf);
+                goto done;
+            }
+            continue;
+        }
+        if (count < 3) {
+            st =
+                pxi_error(err, PX_ERR_IO, "mesh file '%s': face %u has %u vertices (a face needs at least 3)",
+                          h->path, faces, count);
+            goto done;
+        }
+        p = q;
+        for (unsigned m = 0; m < count; ++m) {
+            while (line[p] == ' ' || line[p] == '\t') ++p;
+            u64 idx = 0;
+            size_t d = p;
+            for (; line[p] >= '0' && line[p] <= '9'; ++p)
+                idx = sat_add(sat_mul(idx, 10), (u64)(line[p] - '0'));
+            if (p == d || idx >= nv) {
+                st = pxi_error(
+                    err, PX_ERR_IO,
+                    "mesh file '%s': face %u has %s (a face lists %u indices below the %u vertices)", h->path,
+                    faces, p == d ? "fewer vertex indices than its count" : "a vertex index out of range",
+                    count, nv);
+                goto done;
+            }
+        }
+        ++faces;
+    }
+    goto done;
+long_line:
+    st = pxi_error(err, PX_ERR_IO,
+                   "mesh file '%s' has a line of %d bytes or more (Assimp 5.2's OFF reader overflows its "
+                   "line buffer)",
+                   h->path, OFF_LINE);
+    goto done;
+read_error:
+    st = pxi_rd_error(h, err);
+done:
+    pxi_free(h->alloc, line, OFF_LINE);
+    return st;
+}
+
+/* OFF, parsed as OFFImporter::InternReadFile parses it: blank space and
+ * comments, the keyword [ST][C][N][4][n]OFF (the letters are consumed even
+ * when "OFF" does not follow; without "OFF" the file is headerless and must
+ * go on with a digit; 'n': a dimension follows), then the vertex, face and
+ * edge counts. Files Assimp refuses before allocating (no digit, a count of
+ * 0, a dimension above 3, less than 8 bytes) are left to it. Then the size
+ * check (a line takes at least one byte and a line break, so the bytes after
+ * the vertex count must number at least 2 (V + F) - 1), the element limit,
+ * and the walk over the vertex and face lines (off_walk). */
+static px_status check_off(const io_head *h, px_error *err) {
+    off_text t;
+    memset(&t, 0, sizeof t);
+    if (h->len >= 2 &&
+        ((h->data[0] == 0xFE && h->data[1] == 0xFF) || (h->data[0] == 0xFF && h->data[1] == 0xFE)))
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s' starts with a UTF-16 byte-order mark, which Assimp 5.2's OFF reader "
+                         "mishandles: save it as ASCII or UTF-8",
+                         h->path);
+    if (h->size < 8) return PX_OK; /* ConvertToUTF8: "File is too small" */
+    t.skip = has_utf8_bom(h) ? 3 : 0;
+    t.d = h->data + t.skip;
+    t.n = h->len - (size_t)t.skip;
+    t.total = h->size - t.skip;
+    const u64 end = t.total + 1;
+    u64 c = 0;
+    off_next_token(&t, &c);
     int has_dim = 0;
-    if (p + 2 < n && d[p] == 'S' && d[p + 1] == 'T') p += 2;
-    if (p + 1 < n && d[p] == 'C') ++p;
-    if (p + 1 < n && d[p] == 'N') ++p;
-    if (p + 1 < n && d[p] == '4') ++p;
-    if (p + 1 < n && d[p] == 'n') {
-        has_dim = 1;
-        ++p;
+    if (c + 2 < end && off_at(&t, c) == 'S' && off_at(&t, c + 1) == 'T') c += 2;
+    if (c + 1 < end && off_at(&t, c) == 'C') ++c;
+    if (c + 1 < end && off_at(&t, c) == 'N') ++c;
+    if (c + 1 < end && off_at(&t, c) == '4') ++c;
+    if (c + 1 < end && off_at(&t, c) == 'n') has_dim = 1, ++c;
+    unsigned dims = 3;
+    if (c + 3 < end && off_at(&t, c) == 'O' && off_at(&t, c + 1) == 'F' && off_at(&t, c + 2) == 'F') {
+        c += 3;
+        off_next_token(&t, &c);
+    } else {
+        /* Headerless: Assimp resets the dimension to 3 but still reads one
+         * after an 'n'. */
+        off_next_token(&t, &c);
+        if (c + 1 >= end || off_at(&t, c) < '0' || off_at(&t, c) > '9') goto head_or_ok;
     }
-    if (p + 3 <= n && memcmp(d + p, "OFF", 3) == 0)
-        p += 3;
-    else if (!by_extension)
-        return PX_OK;
-    off_skip(h, &p);
     if (has_dim) {
-        (void)read_count(h, &p);
-        off_skip(h, &p);
+        dims = off_strtoul10(&t, &c, NULL);
+        off_next_token(&t, &c);
     }
-    const u64 nv = read_count(h, &p);
-    const size_t after_nv = p;
-    off_skip(h, &p);
-    const u64 nf = read_count(h, &p);
-    if (p >= n && n < h->size)
+    if (dims > 3) goto head_or_ok;
+    off_next_token(&t, &c);
+    u64 nv_sat, nf_sat;
+    const unsigned nv = off_strtoul10(&t, &c, &nv_sat);
+    const u64 after_nv = t.skip + c;
+    off_next_token(&t, &c);
+    const unsigned nf = off_strtoul10(&t, &c, &nf_sat);
+    off_next_token(&t, &c);
+    (void)off_strtoul10(&t, &c, NULL);
+    off_next_token(&t, &c);
+    if (t.beyond)
         return pxi_error(err, PX_ERR_IO,
                          "mesh file '%s': the OFF header does not end within its first %d bytes", h->path,
                          HEAD_BYTES);
-    if (nv == 0 || nf == 0) return PX_OK;
+    if (nv_sat == 0 || nf_sat == 0) return PX_OK; /* Assimp: "There are no valid vertices/faces" */
     const u64 avail = h->size - after_nv;
-    if (sat_mul(2, nv) - 1 > avail)
+    if (sat_mul(2, nv_sat) - 1 > avail)
         return pxi_error(err, PX_ERR_IO,
                          "mesh file '%s' declares %llu vertices but has only %llu bytes "
                          "(an OFF vertex takes a line of at least 2 bytes)",
-                         h->path, nv, h->size);
-    if (sat_mul(2, sat_add(nv, nf)) - 1 > avail)
+                         h->path, nv_sat, h->size);
+    if (sat_mul(2, sat_add(nv_sat, nf_sat)) - 1 > avail)
         return pxi_error(err, PX_ERR_IO,
                          "mesh file '%s' declares %llu vertices and %llu faces but has only %llu bytes "
                          "(an OFF vertex or face takes a line of at least 2 bytes)",
-                         h->path, nv, nf, h->size);
-    if (sat_add(nv, nf) > PX_IO_MAX_ELEMENTS) return err_too_many(h, sat_add(nv, nf), err);
+                         h->path, nv_sat, nf_sat, h->size);
+    if (sat_add(nv_sat, nf_sat) > PX_IO_MAX_ELEMENTS) return err_too_many(h, sat_add(nv_sat, nf_sat), err);
+    return off_walk(h, &t, c, nv, nf, err);
+head_or_ok:
+    if (t.beyond)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': the OFF header does not end within its first %d bytes", h->path,
+                         HEAD_BYTES);
     return PX_OK;
 }
 
@@ -312,7 +501,7 @@ static px_status check_formats(const io_head *h, px_error *err) {
     const int off = strcmp(h->ext, "off") == 0, ply = strcmp(h->ext, "ply") == 0,
               stl = strcmp(h->ext, "stl") == 0;
     px_status st = check_unchecked(h, err);
-    if (st == PX_OK && (off || starts_with_ci(h, "off"))) st = check_off(h, off, err);
+    if (st == PX_OK && (off || starts_with_ci(h, "off"))) st = check_off(h, err);
     /* PLYImporter::CanRead: "ply" anywhere in the signature bytes. */
     if (st == PX_OK && (ply || signature_has(h, "ply"))) st = pxi_check_ply(h, err);
     if (st == PX_OK && (stl || signature_has(h, "solid") || signature_has(h, "stl")))

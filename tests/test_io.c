@@ -735,6 +735,100 @@ static void test_off_faces(void) {
     expect_tetrahedron(write_file("face10.off", text));
 }
 
+/* A COLLADA file: the tetrahedron geometry, library nodes `library`, and a
+ * visual scene whose node instances `root`. */
+static const char *write_dae(const char *name, const char *library, const char *root) {
+    static char text[65536];
+    snprintf(text, sizeof text,
+             "<?xml version=\"1.0\"?>\n"
+             "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+             "<asset><unit name=\"meter\" meter=\"1\"/><up_axis>Y_UP</up_axis></asset>\n"
+             "<library_geometries><geometry id=\"tet\"><mesh>\n"
+             "<source id=\"p\"><float_array id=\"pa\" count=\"12\">0 0 0 1 0 0 0 1 0 0 0 1</float_array>\n"
+             "<technique_common><accessor source=\"#pa\" count=\"4\" stride=\"3\">\n"
+             "<param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/>"
+             "<param name=\"Z\" type=\"float\"/>\n</accessor></technique_common></source>\n"
+             "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#p\"/></vertices>\n"
+             "<triangles count=\"4\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>\n"
+             "<p>0 2 1 0 1 3 0 3 2 1 2 3</p></triangles>\n</mesh></geometry></library_geometries>\n"
+             "<library_nodes>%s</library_nodes>\n"
+             "<library_visual_scenes><visual_scene id=\"s\"><node id=\"r\">%s</node></visual_scene>"
+             "</library_visual_scenes>\n<scene><instance_visual_scene url=\"#s\"/></scene>\n</COLLADA>\n",
+             library, root);
+    return write_file(name, text);
+}
+
+/* Finding 5: node graphs. A COLLADA node instancing itself made Assimp
+ * recurse until the stack overflowed (SIGSEGV); 20 levels of two instances
+ * of the level below (2.6 KB) built 2^20 nodes (2.8 GB), 40 levels 16 GB;
+ * the glTF equivalent (children [i+1, i+1]) 2.5 GB at 20 levels. */
+static void test_node_graphs(void) {
+    static char lib[32768], nodes[8192];
+    expect_refused(write_dae("cyclic.dae",
+                             "<node id=\"loop\"><instance_geometry url=\"#tet\"/>"
+                             "<instance_node url=\"#loop\"/></node>",
+                             "<instance_node url=\"#loop\"/>"),
+                   "cyclic ('loop'");
+    /* A visual scene instanced from inside itself. */
+    expect_refused(
+        write_dae("cyclic_scene.dae", "", "<instance_geometry url=\"#tet\"/><instance_node url=\"#s\"/>"),
+        "cyclic");
+    size_t n = 0;
+    for (int i = 0; i < 20; ++i)
+        n += (size_t)snprintf(
+            lib + n, sizeof lib - n,
+            "<node id=\"L%d\"><instance_node url=\"#L%d\"/><instance_node url=\"#L%d\"/></node>\n", i, i + 1,
+            i + 1);
+    snprintf(lib + n, sizeof lib - n, "<node id=\"L20\"><instance_geometry url=\"#tet\"/></node>\n");
+    expect_refused(write_dae("expo20.dae", lib, "<instance_node url=\"#L0\"/>"), "65536 node instances");
+    /* A chain of 300 nested nodes (Assimp recurses along it). */
+    n = 0;
+    for (int i = 0; i < 300; ++i) n += (size_t)snprintf(lib + n, sizeof lib - n, "<node id=\"C%d\">", i);
+    n += (size_t)snprintf(lib + n, sizeof lib - n, "<instance_geometry url=\"#tet\"/>");
+    for (int i = 0; i < 300; ++i) n += (size_t)snprintf(lib + n, sizeof lib - n, "</node>");
+    expect_refused(write_dae("chain.dae", lib, "<instance_node url=\"#C0\"/>"), "chain of more than 256");
+    /* Valid instancing: L0 instances L1 twice, translated by x = 0 and 10. */
+    double *xyz = NULL;
+    size_t count = 0;
+    px_error err;
+    const char *dag = write_dae("dag.dae",
+                                "<node id=\"L0\"><node><instance_node url=\"#L1\"/></node>"
+                                "<node><matrix>1 0 0 10 0 1 0 0 0 0 1 0 0 0 0 1</matrix>"
+                                "<instance_node url=\"#L1\"/></node></node>"
+                                "<node id=\"L1\"><instance_geometry url=\"#tet\"/></node>",
+                                "<instance_node url=\"#L0\"/>");
+    CHECK(px_load_points(dag, NULL, &xyz, &count, &err) == PX_OK);
+    CHECK(count == 8 && has_point(xyz, count, 10, 0, 0) && has_point(xyz, count, 0, 0, 1));
+    px_free_points(xyz, count, NULL);
+
+    /* glTF. */
+    expect_refused(write_gltf("cyclic.gltf", "[{\"children\": [1], \"mesh\": 0}, {\"children\": [0]}]",
+                              "[{\"nodes\": [0]}]", "tet.bin", 48),
+                   "cyclic");
+    n = (size_t)snprintf(nodes, sizeof nodes, "[");
+    for (int i = 0; i < 20; ++i)
+        n += (size_t)snprintf(nodes + n, sizeof nodes - n, "{\"children\": [%d, %d]}, ", i + 1, i + 1);
+    snprintf(nodes + n, sizeof nodes - n, "{\"mesh\": 0}]");
+    expect_refused(write_gltf("expo20.gltf", nodes, "[{\"nodes\": [0]}]", "tet.bin", 48),
+                   "65536 node instances");
+    /* JSON nested deeper than 128 levels (rapidjson's parser recurses). */
+    n = (size_t)snprintf(nodes, sizeof nodes, "[{\"mesh\": 0, \"extras\": ");
+    for (int i = 0; i < 200; ++i) nodes[n++] = '[';
+    for (int i = 0; i < 200; ++i) nodes[n++] = ']';
+    snprintf(nodes + n, sizeof nodes - n, "}]");
+    expect_refused(write_gltf("deep.gltf", nodes, "[{\"nodes\": [0]}]", "tet.bin", 48),
+                   "nested more than 128");
+    /* Valid: one mesh node instanced by two parents. */
+    xyz = NULL;
+    const char *shared = write_gltf("shared.gltf",
+                                    "[{\"children\": [2]}, {\"children\": [2], \"translation\": [10, 0, 0]}, "
+                                    "{\"mesh\": 0}]",
+                                    "[{\"nodes\": [0, 1]}]", "tet.bin", 48);
+    CHECK(px_load_points(shared, NULL, &xyz, &count, &err) == PX_OK);
+    CHECK(count == 8 && has_point(xyz, count, 10, 0, 0) && has_point(xyz, count, 0, 0, 1));
+    px_free_points(xyz, count, NULL);
+}
+
 int main(void) {
     snprintf(g_dir, sizeof g_dir, "/tmp/proxima_test_io_%ld", (long)getpid());
     char cmd[300];
@@ -765,6 +859,7 @@ int main(void) {
     test_ply_lists();
     test_referenced_files();
     test_off_faces();
+    test_node_graphs();
 #if !PX_TEST_ASAN
     struct rusage usage;
     CHECK(getrusage(RUSAGE_SELF, &usage) == 0);

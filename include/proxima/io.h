@@ -39,8 +39,9 @@
 /// malformed file cannot make the import allocate memory the file cannot
 /// back, loop forever, or crash Assimp 5.2 (Debian bookworm's 5.2.5, whose
 /// readers the checks follow). Headers are read from the first 64 KiB; PLY
-/// and OFF bodies are walked through once. Refused with PX_ERR_IO, the
-/// message naming the file and the problem:
+/// and OFF bodies are walked through once, COLLADA and glTF documents read
+/// whole. Refused with PX_ERR_IO, the message naming the file and the
+/// problem:
 /// - anything but a regular file (directory, device, pipe), an empty file,
 ///   or a file of more than PX_IO_MAX_FILE_BYTES;
 /// - an OFF, PLY or binary STL file whose header declares more vertices,
@@ -69,6 +70,19 @@
 ///   is not a number below the vertex count or with fewer indices than its
 ///   count, more faces of 10 or more vertices (which Assimp drops) than the
 ///   declared face count, and a UTF-16 byte-order mark;
+/// - COLLADA and glTF node graphs: a cycle (a node its own descendant,
+///   through nesting, <instance_node> or glTF "children"), a node expanding
+///   to more than PX_IO_MAX_NODES node instances or a file defining more
+///   than PX_IO_MAX_NODES nodes, a chain of more than 256 nodes, XML nested
+///   more than 512 elements or JSON more than 128 levels deep, and what the
+///   check does not decode: COLLADA node ids, names and instance_node urls
+///   with a character reference, tab or line break, glTF member names with
+///   escapes, duplicate glTF "nodes", "scenes" or "children" members, and
+///   glTF 1.0 nodes with children; a glTF or JSON file that is not valid
+///   JSON;
+/// - ZIP archives (.zae, .3mf, .pk3, .ifczip, and files ending like a ZIP
+///   archive under names that do not pin a non-ZIP format): Assimp inflates
+///   the files in them unchecked;
 /// - DirectX (.x), ASE (.ase, .ask), MD5 (.md5mesh, .md5anim, .md5camera),
 ///   NFF (.nff, .enff) and Caligari (.cob, .scn) files, also X, ASE and MD5
 ///   content under another name: Assimp 5.2 sizes arrays by counts written
@@ -108,6 +122,11 @@ extern "C" {
 /// Most values one PLY list may declare (2^24 = 16777216). All lists of a
 /// file together may hold at most 4 * PX_IO_MAX_ELEMENTS values.
 #define PX_IO_MAX_PLY_LIST (1ull << 24)
+
+/// Most node instances a COLLADA or glTF node may expand to, and most nodes
+/// such a file may define (2^16 = 65536): Assimp builds one node per path
+/// from the root through instances and children.
+#define PX_IO_MAX_NODES (1ull << 16)
 
 /// Convex hull of all vertices of all meshes in the file at `path`, with the
 /// node transforms applied (the file's root frame; see the header comment for

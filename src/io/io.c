@@ -20,8 +20,10 @@
  *   release) runs under one mutex, and the message is copied at once.
  * - Scenes flagged AI_SCENE_FLAGS_INCOMPLETE are rejected.
  * - Before Assimp sees a file, precheck.c checks its type, its size and the
- *   counts its header declares (Assimp allocates by them), and the walk
- *   stops at PX_IO_MAX_ELEMENTS vertices (instancing multiplies them).
+ *   counts its header declares (Assimp allocates by them), walks PLY and OFF
+ *   bodies and COLLADA and glTF node graphs the way Assimp would, and the
+ *   walk here stops at PX_IO_MAX_ELEMENTS vertices (instancing multiplies
+ *   them).
  * - Assimp opens files through fs.c (aiImportFileEx with our aiFileIO): the
  *   mesh file must still be the one the precheck read, and every file the
  *   import opens, the mesh file's references too, is a regular file within

@@ -9,7 +9,8 @@
  * Debian bookworm's Assimp 5.2.5). So before the import, the declared
  * counts are compared with the size of the file, each element at the
  * smallest size its format allows, and the bodies of PLY and OFF files are
- * walked the way Assimp walks them (ply.c; off_walk below): a file refused
+ * walked the way Assimp walks them (ply.c; off_walk below), and the node
+ * graphs of COLLADA and glTF files are scanned (graph.c): a file refused
  * here cannot be a valid file of its format, would make Assimp 5.2 crash,
  * hang or read outside its buffers, or exceeds a documented limit (io.h).
  * Passing is no proof of validity: Assimp still parses the file.
@@ -25,8 +26,8 @@
  * BaseImporter::SearchFileHeaderForToken: the first 200 bytes, lowercased,
  * NUL bytes removed, searched for tokens). A check runs when the extension
  * names its format, or when the head matches a superset of that importer's
- * signature test, so every file Assimp could hand to the OFF, PLY or STL
- * importer is checked.
+ * signature test, so every file Assimp could hand to the OFF, PLY, STL,
+ * COLLADA or glTF importer is checked.
  *
  * What each Assimp 5.2 importer allocates from the header:
  * - OFF (OFFLoader.cpp): numVertices positions (with normals, colours and
@@ -453,6 +454,23 @@ static const struct {
                    {"md5anim", "MD5"},      {"md5camera", "MD5"},   {"nff", "NFF"}, {"enff", "NFF"},
                    {"cob", "Caligari COB"}, {"scn", "Caligari COB"}};
 
+/* 1 if the file ends like a ZIP archive: minizip's unzOpen (behind Assimp's
+ * ZipArchiveIOSystem) looks for the end-of-central-directory signature
+ * PK 05 06 in the last 64 KiB + 22 bytes, wherever the archive starts. */
+static int zip_tail(const io_head *h) {
+    const u64 span = 65536 + 22;
+    u64 n = h->size < span ? h->size : span;
+    unsigned char *tail = pxi_alloc(h->alloc, (size_t)n);
+    int found = 0;
+    if (!tail) return 1; /* refused as if it were one: nothing unchecked passes */
+    pxi_rd_seek(h->rd, h->size - n);
+    if (pxi_rd_read(h->rd, tail, (size_t)n))
+        for (size_t i = 0; i + 4 <= n && !found; ++i)
+            found = tail[i] == 'P' && tail[i + 1] == 'K' && tail[i + 2] == 5 && tail[i + 3] == 6;
+    pxi_free(h->alloc, tail, (size_t)n);
+    return found;
+}
+
 /* Refuses the formats of k_unchecked, and files starting with 00 00 FE FF or
  * FE FF 00 00: Assimp 5.2's BaseImporter::ConvertToUTF8 (used by most text
  * importers) takes them for UTF-32 byte-order marks and then swaps or reads
@@ -464,6 +482,25 @@ static px_status check_unchecked(const io_head *h, px_error *err) {
     if (!format && starts_with_ci(h, "xof ")) format = "DirectX";
     if (!format && signature_has(h, "*3dsmax_asciiexport")) format = "ASE";
     if (!format && signature_has(h, "md5version")) format = "MD5";
+    /* ZIP containers: Assimp's COLLADA importer reads any archive with a
+     * .dae in it (also under .dae, or another name no importer claims), 3MF,
+     * Quake 3 BSP and IFC ones theirs; the files inside, inflated to the
+     * sizes the archive declares, are never seen here. */
+    static const char *const zip_exts[] = {"zae", "3mf", "pk3", "ifczip"};
+    int zip = 0;
+    for (size_t i = 0; i < sizeof zip_exts / sizeof zip_exts[0]; ++i) zip |= strcmp(h->ext, zip_exts[i]) == 0;
+    static const char *const plain_exts[] = {"obj", "stl", "ply", "off", "gltf", "glb", "fbx"};
+    int plain = 0;
+    for (size_t i = 0; i < sizeof plain_exts / sizeof plain_exts[0]; ++i)
+        plain |= strcmp(h->ext, plain_exts[i]) == 0;
+    if (!format && !zip)
+        zip = (h->len >= 4 && memcmp(h->data, "PK\x03\x04", 4) == 0) || (!plain && zip_tail(h));
+    if (h->rd->error) return pxi_rd_error(h, err);
+    if (!format && zip)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s' is a ZIP archive (ZAE, 3MF, ...), which is not accepted: the files "
+                         "Assimp 5.2 would inflate from it cannot be checked; extract the model",
+                         h->path);
     if (format)
         return pxi_error(
             err, PX_ERR_IO,
@@ -499,13 +536,25 @@ static void file_extension(const char *path, char *ext, size_t size) {
 /* Runs the checks of every format Assimp could read the file as. */
 static px_status check_formats(const io_head *h, px_error *err) {
     const int off = strcmp(h->ext, "off") == 0, ply = strcmp(h->ext, "ply") == 0,
-              stl = strcmp(h->ext, "stl") == 0;
+              stl = strcmp(h->ext, "stl") == 0, dae = strcmp(h->ext, "dae") == 0,
+              gltf = strcmp(h->ext, "gltf") == 0 || strcmp(h->ext, "glb") == 0;
     px_status st = check_unchecked(h, err);
     if (st == PX_OK && (off || starts_with_ci(h, "off"))) st = check_off(h, err);
     /* PLYImporter::CanRead: "ply" anywhere in the signature bytes. */
     if (st == PX_OK && (ply || signature_has(h, "ply"))) st = pxi_check_ply(h, err);
     if (st == PX_OK && (stl || signature_has(h, "solid") || signature_has(h, "stl")))
         st = check_stl(h, stl, err);
+    /* ColladaLoader::CanRead: "<collada" in the signature bytes. */
+    if (st == PX_OK && (dae || signature_has(h, "<collada"))) st = pxi_check_dae(h, err);
+    /* glTF: by name, "glTF" binary magic, or JSON with an "asset" member. */
+    /* glTF: by name, by the binary magic, or any JSON object (the glTF
+     * importers' signature test parses the whole document). */
+    size_t b = has_utf8_bom(h) ? 3 : 0;
+    while (b < h->len &&
+           (h->data[b] == ' ' || h->data[b] == '\t' || h->data[b] == '\n' || h->data[b] == '\r'))
+        ++b;
+    if (st == PX_OK && (gltf || starts_with_ci(h, "gltf") || (b < h->len && h->data[b] == '{')))
+        st = pxi_check_gltf(h, err);
     return st;
 }
 

@@ -14,11 +14,13 @@ typedef struct pxi_file_id {
 /* Checks the file at `path` (non-NULL, non-empty) before it is imported:
  * a regular, non-empty file of at most PX_IO_MAX_FILE_BYTES whose header
  * counts (OFF, PLY, binary STL) fit in its size and in PX_IO_MAX_ELEMENTS,
- * whose PLY or OFF body Assimp can read without the failures io.h lists; see
- * io.h for the rules and precheck.c and ply.c for why. Opens the file once
+ * whose PLY or OFF body Assimp can read without the failures io.h lists, and
+ * whose COLLADA or glTF node graph is acyclic and small enough; see io.h for
+ * the rules and precheck.c, ply.c and graph.c for why. Opens the file once
  * (without blocking: O_NONBLOCK, after stat() found a regular file) and
  * fills `id` with what identifies it. Streams through the file for PLY and
- * OFF (64 KiB and, for PLY, a 1 MiB cache at a time). Returns PX_OK, or PX_ERR_IO (PX_ERR_OUT_OF_MEMORY if a
+ * OFF (64 KiB and, for PLY, a 1 MiB cache at a time) and reads COLLADA and
+ * glTF files whole. Returns PX_OK, or PX_ERR_IO (PX_ERR_OUT_OF_MEMORY if a
  * buffer cannot be allocated) with `err` (may be NULL) naming the file.
  * Thread-safe: touches no global state and does not call Assimp. */
 px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, px_error *err);

@@ -79,11 +79,14 @@ px_status pxi_rd_error(const io_head *h, px_error *err);
 
 /* Reads the whole file into a buffer of size + 1 bytes (NUL-terminated),
  * allocated with h->alloc; release with pxi_free(h->alloc, *out, size + 1).
- */
+ * For the node-graph scans (Assimp's COLLADA and glTF importers hold the
+ * whole document in memory too). */
 px_status pxi_read_all(const io_head *h, unsigned char **out, px_error *err);
 
-/* The check of PLY files (ply.c); PX_OK or PX_ERR_IO naming the file. It
- * runs when the file may be a PLY file (see ply.c). */
+/* The checks of each format (ply.c, graph.c); PX_OK or PX_ERR_IO naming the
+ * file. check_ply runs when the file may be a PLY file (see ply.c). */
 px_status pxi_check_ply(const io_head *h, px_error *err);
+px_status pxi_check_dae(const io_head *h, px_error *err);
+px_status pxi_check_gltf(const io_head *h, px_error *err);
 
 #endif

@@ -1,0 +1,933 @@
+/* The node graphs of COLLADA and glTF files, checked before Assimp 5.2
+ * builds them.
+ *
+ * Both formats let a node appear under several parents: COLLADA by
+ * <instance_node url="#id"> (also of a whole <visual_scene>), glTF by a
+ * node index in several "children" arrays. Assimp turns the graph into a
+ * tree, one aiNode (over 1 KB: its name is an aiString) per path from the
+ * root: ColladaLoader::BuildHierarchy and glTF2Importer's BuildNode recurse
+ * through every instance. So 20 levels of two instances of the level below
+ * (2.6 KB of COLLADA) became 2^20 nodes, 2.8 GB, and 40 levels exhausted the
+ * machine; a COLLADA node instancing itself recursed until the stack
+ * overflowed (SIGSEGV), as does any chain deep enough (glTF2's
+ * LazyDict::Retrieve recurses along "children" while it reads the file, and
+ * rapidjson's parser along nested arrays and objects).
+ *
+ * The scan here reads the document once, collects the nodes and their edges
+ * (nesting and references), and walks the graph with an explicit stack:
+ * refused are a cycle, a graph in which some node expands to more than
+ * PX_IO_MAX_NODES instances (counted bottom-up, each node once, saturating),
+ * a longest path of more than PXI_MAX_NODE_DEPTH edges, and documents nested
+ * deeper than the parsers' limits below. The scanners read only inside their
+ * buffer (NUL-terminated, with explicit bounds), recurse at most
+ * JSON_MAX_DEPTH deep, and take time linear in the document plus the graph.
+ *
+ * What they do not decode: COLLADA ids, names and urls holding a character
+ * reference ('&') or a tab or line break, and escaped glTF member names,
+ * are refused rather than compared raw with what pugixml or rapidjson would
+ * make of them. glTF 1.0 files (nodes as an object of named nodes) are
+ * refused if a node has children. */
+#include "io/scan.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "core/core.h"
+
+#define PXI_MAX_NODE_DEPTH 256 /* longest chain of nodes (parent -> child, or instance) */
+#define XML_MAX_DEPTH 512      /* element nesting in a COLLADA file */
+#define JSON_MAX_DEPTH 128     /* array and object nesting in glTF JSON */
+#define MAX_EDGES (1u << 20)   /* child links and instances */
+
+typedef unsigned u32;
+
+/* ------------------------------------------------------------ the graph */
+
+typedef struct g_graph {
+    const px_allocator *alloc;
+    u32 n, ncap;             /* vertices */
+    u32 *from, *to, m, mcap; /* edges */
+    int oom, too_many;
+} g_graph;
+
+static int g_grow(g_graph *g, u32 **a, u32 *cap, u32 need) {
+    if (need <= *cap) return 1;
+    u32 c = *cap ? *cap : 64;
+    while (c < need) c *= 2;
+    u32 *b = pxi_alloc_array(g->alloc, c, sizeof(u32));
+    if (!b) return g->oom = 1, 0;
+    if (*a) {
+        memcpy(b, *a, (size_t)*cap * sizeof(u32));
+        pxi_free(g->alloc, *a, (size_t)*cap * sizeof(u32));
+    }
+    *a = b;
+    *cap = c;
+    return 1;
+}
+
+static int g_edge(g_graph *g, u32 a, u32 b) {
+    if (g->m >= MAX_EDGES) return g->too_many = 1, 0;
+    if (g->m == g->mcap) {
+        u32 cap = g->mcap ? g->mcap * 2 : 64;
+        u32 *f = pxi_alloc_array(g->alloc, cap, sizeof(u32)),
+            *t = pxi_alloc_array(g->alloc, cap, sizeof(u32));
+        if (!f || !t) {
+            if (f) pxi_free(g->alloc, f, (size_t)cap * sizeof(u32));
+            if (t) pxi_free(g->alloc, t, (size_t)cap * sizeof(u32));
+            return g->oom = 1, 0;
+        }
+        if (g->mcap) {
+            memcpy(f, g->from, (size_t)g->m * sizeof(u32));
+            memcpy(t, g->to, (size_t)g->m * sizeof(u32));
+            pxi_free(g->alloc, g->from, (size_t)g->mcap * sizeof(u32));
+            pxi_free(g->alloc, g->to, (size_t)g->mcap * sizeof(u32));
+        }
+        g->from = f;
+        g->to = t;
+        g->mcap = cap;
+    }
+    g->from[g->m] = a;
+    g->to[g->m] = b;
+    ++g->m;
+    return 1;
+}
+
+static void g_free(g_graph *g) {
+    if (g->from) pxi_free(g->alloc, g->from, (size_t)g->mcap * sizeof(u32));
+    if (g->to) pxi_free(g->alloc, g->to, (size_t)g->mcap * sizeof(u32));
+}
+
+/* The result of the walk: 0, or which limit the vertex `where` broke. */
+enum { G_OK, G_CYCLE, G_TOO_MANY, G_TOO_DEEP, G_OOM };
+
+/* Walks the graph depth-first with an explicit stack: colour, expansion
+ * count (instances of the subtree, saturated just above PX_IO_MAX_NODES) and
+ * height. count[] gets each vertex's expansion for the caller. */
+static int g_walk(g_graph *g, u64 *count, u32 *where) {
+    const u32 n = g->n, m = g->m;
+    int res = G_OOM;
+    u32 *start = pxi_alloc_array(g->alloc, (size_t)n + 1, sizeof(u32));
+    u32 *adj = pxi_alloc_array(g->alloc, m ? m : 1, sizeof(u32));
+    u32 *height = pxi_alloc_array(g->alloc, n ? n : 1, sizeof(u32));
+    u32 *stack = pxi_alloc_array(g->alloc, n ? n : 1, sizeof(u32));
+    u32 *next = pxi_alloc_array(g->alloc, n ? n : 1, sizeof(u32));
+    unsigned char *colour = pxi_alloc(g->alloc, n ? n : 1);
+    if (!start || !adj || !height || !stack || !next || !colour) goto done;
+    /* Adjacency by counting sort of the edges. */
+    memset(start, 0, ((size_t)n + 1) * sizeof(u32));
+    for (u32 e = 0; e < m; ++e) ++start[g->from[e] + 1];
+    for (u32 v = 0; v < n; ++v) start[v + 1] += start[v];
+    memcpy(next, start, (size_t)n * sizeof(u32));
+    for (u32 e = 0; e < m; ++e) adj[next[g->from[e]]++] = g->to[e];
+    memset(colour, 0, n ? n : 1);
+    const u64 cap = PX_IO_MAX_NODES + 1;
+    res = G_OK;
+    for (u32 root = 0; root < n && res == G_OK; ++root) {
+        if (colour[root]) continue;
+        u32 sp = 0;
+        stack[sp++] = root;
+        colour[root] = 1;
+        next[root] = start[root];
+        count[root] = 1;
+        height[root] = 0;
+        while (sp) {
+            u32 v = stack[sp - 1];
+            if (next[v] < start[v + 1]) {
+                u32 w = adj[next[v]++];
+                if (colour[w] == 1) {
+                    *where = w;
+                    res = G_CYCLE;
+                    break;
+                }
+                if (colour[w] == 0) {
+                    colour[w] = 1;
+                    next[w] = start[w];
+                    count[w] = 1;
+                    height[w] = 0;
+                    stack[sp++] = w;
+                    continue;
+                }
+                count[v] = count[v] + count[w] > cap ? cap : count[v] + count[w];
+                if (height[w] + 1 > height[v]) height[v] = height[w] + 1;
+                continue;
+            }
+            /* v is done: fold it into its parent on the stack. */
+            colour[v] = 2;
+            --sp;
+            if (count[v] > PX_IO_MAX_NODES) {
+                *where = v;
+                res = G_TOO_MANY;
+                break;
+            }
+            if (height[v] > PXI_MAX_NODE_DEPTH) {
+                *where = v;
+                res = G_TOO_DEEP;
+                break;
+            }
+            if (sp) {
+                u32 p = stack[sp - 1];
+                count[p] = count[p] + count[v] > cap ? cap : count[p] + count[v];
+                if (height[v] + 1 > height[p]) height[p] = height[v] + 1;
+            }
+        }
+    }
+done:
+    if (start) pxi_free(g->alloc, start, ((size_t)n + 1) * sizeof(u32));
+    if (adj) pxi_free(g->alloc, adj, (size_t)(m ? m : 1) * sizeof(u32));
+    if (height) pxi_free(g->alloc, height, (size_t)(n ? n : 1) * sizeof(u32));
+    if (stack) pxi_free(g->alloc, stack, (size_t)(n ? n : 1) * sizeof(u32));
+    if (next) pxi_free(g->alloc, next, (size_t)(n ? n : 1) * sizeof(u32));
+    if (colour) pxi_free(g->alloc, colour, n ? n : 1);
+    return res;
+}
+
+/* The refusal for a walk's result; `name` describes the vertex. */
+static px_status g_error(const io_head *h, int res, const char *format, const char *name, px_error *err) {
+    switch (res) {
+    case G_CYCLE:
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': its %s node graph is cyclic (%s is its own descendant; Assimp 5.2 "
+                         "would recurse until the stack overflows)",
+                         h->path, format, name);
+    case G_TOO_MANY:
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': %s node %s expands to more than %llu node instances "
+                         "(PX_IO_MAX_NODES; Assimp 5.2 builds one node per instance)",
+                         h->path, format, name, (u64)PX_IO_MAX_NODES);
+    case G_TOO_DEEP:
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': %s node %s starts a chain of more than %d nodes (Assimp 5.2 "
+                         "recurses along it)",
+                         h->path, format, name, PXI_MAX_NODE_DEPTH);
+    default: return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+    }
+}
+
+/* ---------------------------------------------------------------- COLLADA */
+
+/* A string in the document: offset and length. */
+typedef struct g_str {
+    u32 off, len;
+} g_str;
+
+typedef struct dae_vertex {
+    g_str id, name;
+} dae_vertex;
+
+typedef struct dae_ref {
+    u32 from;
+    g_str target;
+} dae_ref;
+
+typedef struct dae_scan {
+    const unsigned char *d;
+    size_t size;
+    g_graph g;
+    dae_vertex *v;
+    u32 vcap;
+    dae_ref *r;
+    u32 nref, rcap;
+    int bad_attr;
+} dae_scan;
+
+static u64 hash_str(const unsigned char *s, u32 len) {
+    u64 x = 1469598103934665603ull;
+    for (u32 i = 0; i < len; ++i) x = (x ^ s[i]) * 1099511628211ull;
+    return x;
+}
+
+static int str_eq(const dae_scan *s, g_str a, g_str b) {
+    return a.len == b.len && memcmp(s->d + a.off, s->d + b.off, a.len) == 0;
+}
+
+/* 1 if the attribute value can be compared raw: no character reference and
+ * no tab or line break (pugixml would decode or convert those). */
+static int plain_value(const unsigned char *p, size_t len) {
+    for (size_t i = 0; i < len; ++i)
+        if (p[i] == '&' || p[i] == '\t' || p[i] == '\n' || p[i] == '\r') return 0;
+    return 1;
+}
+
+static int is_xml_space(int c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+/* Finds `pat` at or after i; returns its offset or size. */
+static size_t find(const dae_scan *s, size_t i, const char *pat) {
+    size_t n = strlen(pat);
+    while (i + n <= s->size) {
+        const unsigned char *q = memchr(s->d + i, (unsigned char)pat[0], s->size - i);
+        if (!q) return s->size;
+        i = (size_t)(q - s->d);
+        if (i + n <= s->size && memcmp(q, pat, n) == 0) return i;
+        ++i;
+    }
+    return s->size;
+}
+
+static int dae_add_vertex(dae_scan *s, g_str id, g_str name, u32 *out) {
+    if (s->g.n >= PX_IO_MAX_NODES) return s->g.too_many = 1, 0;
+    if (s->g.n == s->vcap) {
+        u32 cap = s->vcap ? s->vcap * 2 : 64;
+        dae_vertex *nv = pxi_alloc_array(s->g.alloc, cap, sizeof *nv);
+        if (!nv) return s->g.oom = 1, 0;
+        if (s->v) {
+            memcpy(nv, s->v, (size_t)s->vcap * sizeof *nv);
+            pxi_free(s->g.alloc, s->v, (size_t)s->vcap * sizeof *nv);
+        }
+        s->v = nv;
+        s->vcap = cap;
+    }
+    s->v[s->g.n].id = id;
+    s->v[s->g.n].name = name;
+    *out = s->g.n++;
+    return 1;
+}
+
+static int dae_add_ref(dae_scan *s, u32 from, g_str target) {
+    if (s->nref >= MAX_EDGES) return s->g.too_many = 1, 0;
+    if (s->nref == s->rcap) {
+        u32 cap = s->rcap ? s->rcap * 2 : 64;
+        dae_ref *nr = pxi_alloc_array(s->g.alloc, cap, sizeof *nr);
+        if (!nr) return s->g.oom = 1, 0;
+        if (s->r) {
+            memcpy(nr, s->r, (size_t)s->rcap * sizeof *nr);
+            pxi_free(s->g.alloc, s->r, (size_t)s->rcap * sizeof *nr);
+        }
+        s->r = nr;
+        s->rcap = cap;
+    }
+    s->r[s->nref].from = from;
+    s->r[s->nref].target = target;
+    ++s->nref;
+    return 1;
+}
+
+/* Scans the document's tags. Returns 0 on a refusal (flags in s). */
+static int dae_tags(dae_scan *s, int *too_deep) {
+    /* Open elements: the graph vertex each is, or ~0u. */
+    static const u32 none = ~0u;
+    u32 open[XML_MAX_DEPTH];
+    u32 depth = 0, vtop = none; /* innermost open vertex */
+    size_t i = 0;
+    const unsigned char *d = s->d;
+    while (i < s->size) {
+        const unsigned char *lt = memchr(d + i, '<', s->size - i);
+        if (!lt) break;
+        i = (size_t)(lt - d);
+        if (s->size - i >= 4 && memcmp(d + i, "<!--", 4) == 0) {
+            i = find(s, i + 4, "-->") + 3;
+            continue;
+        }
+        if (s->size - i >= 9 && memcmp(d + i, "<![CDATA[", 9) == 0) {
+            i = find(s, i + 9, "]]>") + 3;
+            continue;
+        }
+        if (s->size - i >= 2 && d[i + 1] == '?') {
+            i = find(s, i + 2, "?>") + 2;
+            continue;
+        }
+        if (s->size - i >= 2 && d[i + 1] == '!') { /* DOCTYPE, with an internal subset in [] */
+            size_t j = i + 2;
+            int bracket = 0;
+            while (j < s->size && (d[j] != '>' || bracket)) {
+                if (d[j] == '[') bracket = 1;
+                if (d[j] == ']') bracket = 0;
+                ++j;
+            }
+            i = j + 1;
+            continue;
+        }
+        if (s->size - i >= 2 && d[i + 1] == '/') { /* end tag: closes the innermost element */
+            if (depth) {
+                --depth;
+                if (open[depth] != none) {
+                    vtop = none;
+                    for (u32 k = depth; k-- > 0;)
+                        if (open[k] != none) {
+                            vtop = open[k];
+                            break;
+                        }
+                }
+            }
+            const unsigned char *gt = memchr(d + i, '>', s->size - i);
+            i = gt ? (size_t)(gt - d) + 1 : s->size;
+            continue;
+        }
+        /* Start tag: name, attributes, "/>" or ">". */
+        size_t j = i + 1, name0 = j;
+        while (j < s->size && !is_xml_space(d[j]) && d[j] != '/' && d[j] != '>') ++j;
+        size_t name_len = j - name0;
+        g_str id = {0, 0}, name = {0, 0}, url = {0, 0};
+        int has_url = 0, self_closing = 0;
+        for (;;) {
+            while (j < s->size && is_xml_space(d[j])) ++j;
+            if (j >= s->size) break;
+            if (d[j] == '>') {
+                ++j;
+                break;
+            }
+            if (d[j] == '/') {
+                self_closing = j + 1 < s->size && d[j + 1] == '>';
+                j += self_closing ? 2 : 1;
+                if (self_closing) break;
+                continue;
+            }
+            size_t a0 = j;
+            while (j < s->size && d[j] != '=' && d[j] != '>' && d[j] != '/' && !is_xml_space(d[j])) ++j;
+            size_t a_len = j - a0;
+            while (j < s->size && is_xml_space(d[j])) ++j;
+            if (j >= s->size || d[j] != '=') continue;
+            ++j;
+            while (j < s->size && is_xml_space(d[j])) ++j;
+            if (j >= s->size || (d[j] != '"' && d[j] != '\'')) continue;
+            unsigned char q = d[j++];
+            size_t v0 = j;
+            const unsigned char *qe = memchr(d + j, q, s->size - j);
+            j = qe ? (size_t)(qe - d) : s->size;
+            g_str val = {(u32)v0, (u32)(j - v0)};
+            if (j < s->size) ++j;
+            int want = (a_len == 2 && memcmp(d + a0, "id", 2) == 0)     ? 1
+                       : (a_len == 4 && memcmp(d + a0, "name", 4) == 0) ? 2
+                       : (a_len == 3 && memcmp(d + a0, "url", 3) == 0)  ? 3
+                                                                        : 0;
+            if (!want) continue;
+            if (want == 1) id = val;
+            if (want == 2) name = val;
+            if (want == 3) url = val, has_url = 1;
+        }
+        i = j;
+        int is_node = (name_len == 4 && memcmp(d + name0, "node", 4) == 0) ||
+                      (name_len == 12 && memcmp(d + name0, "visual_scene", 12) == 0);
+        int is_inst = name_len == 13 && memcmp(d + name0, "instance_node", 13) == 0;
+        u32 vertex = none;
+        if (is_node) {
+            if (!plain_value(d + id.off, id.len) || !plain_value(d + name.off, name.len))
+                return s->bad_attr = 1, 0;
+            if (!dae_add_vertex(s, id, name, &vertex)) return 0;
+            if (vtop != none && !g_edge(&s->g, vtop, vertex)) return 0;
+        } else if (is_inst && has_url && vtop != none && url.len && d[url.off] == '#') {
+            if (!plain_value(d + url.off, url.len)) return s->bad_attr = 1, 0;
+            g_str target = {url.off + 1, url.len - 1};
+            if (!dae_add_ref(s, vtop, target)) return 0;
+        }
+        if (!self_closing) {
+            if (depth == XML_MAX_DEPTH) return *too_deep = 1, 0;
+            open[depth++] = vertex;
+            if (vertex != none) vtop = vertex;
+        }
+    }
+    return 1;
+}
+
+/* Resolves the references as ColladaLoader::ResolveNodeInstances does: by
+ * id, else (FindNode) by name or id; every match gets an edge. */
+static int dae_resolve(dae_scan *s) {
+    u32 n = s->g.n, size = 16;
+    while (size < 2 * n) size *= 2;
+    u32 *by_id = pxi_alloc_array(s->g.alloc, size, sizeof(u32));
+    u32 *by_name = pxi_alloc_array(s->g.alloc, size, sizeof(u32));
+    int ok = 0;
+    if (!by_id || !by_name) {
+        s->g.oom = 1;
+        goto done;
+    }
+    memset(by_id, 0xFF, (size_t)size * sizeof(u32));
+    memset(by_name, 0xFF, (size_t)size * sizeof(u32));
+    for (u32 v = 0; v < n; ++v) {
+        u32 k = (u32)hash_str(s->d + s->v[v].id.off, s->v[v].id.len) & (size - 1);
+        while (by_id[k] != ~0u) k = (k + 1) & (size - 1);
+        by_id[k] = v;
+        k = (u32)hash_str(s->d + s->v[v].name.off, s->v[v].name.len) & (size - 1);
+        while (by_name[k] != ~0u) k = (k + 1) & (size - 1);
+        by_name[k] = v;
+    }
+    for (u32 r = 0; r < s->nref; ++r) {
+        g_str t = s->r[r].target;
+        int found = 0;
+        for (int pass = 0; pass < 2 && !found; ++pass) {
+            u32 *table = pass ? by_name : by_id;
+            u32 k = (u32)hash_str(s->d + t.off, t.len) & (size - 1);
+            for (; table[k] != ~0u; k = (k + 1) & (size - 1)) {
+                const dae_vertex *w = &s->v[table[k]];
+                if (str_eq(s, pass ? w->name : w->id, t)) {
+                    if (!g_edge(&s->g, s->r[r].from, table[k])) goto done;
+                    found = 1;
+                }
+            }
+        }
+    }
+    ok = 1;
+done:
+    if (by_id) pxi_free(s->g.alloc, by_id, (size_t)size * sizeof(u32));
+    if (by_name) pxi_free(s->g.alloc, by_name, (size_t)size * sizeof(u32));
+    return ok;
+}
+
+/* Describes vertex v for a message: its id or name. */
+static void dae_name(const dae_scan *s, u32 v, char *out, size_t size) {
+    g_str a = s->v[v].id.len ? s->v[v].id : s->v[v].name;
+    snprintf(out, size, "'%.*s'", (int)(a.len < 60 ? a.len : 60), (const char *)s->d + a.off);
+}
+
+px_status pxi_check_dae(const io_head *h, px_error *err) {
+    unsigned char *doc;
+    px_status st = pxi_read_all(h, &doc, err);
+    if (st != PX_OK) return st;
+    dae_scan s;
+    memset(&s, 0, sizeof s);
+    s.d = doc;
+    s.size = (size_t)h->size;
+    s.g.alloc = h->alloc;
+    int too_deep = 0;
+    u64 *count = NULL;
+    if (h->size >= ~0u) {
+        st = pxi_error(err, PX_ERR_IO, "mesh file '%s': a COLLADA file of 4 GiB or more", h->path);
+        goto done;
+    }
+    if (!dae_tags(&s, &too_deep) || !dae_resolve(&s)) {
+        if (s.g.oom)
+            st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        else if (too_deep)
+            st = pxi_error(err, PX_ERR_IO, "mesh file '%s': its XML is nested more than %d elements deep",
+                           h->path, XML_MAX_DEPTH);
+        else if (s.bad_attr)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a COLLADA node id, name or instance_node url holds a character "
+                           "reference, tab or line break (not accepted: the node graph could not be checked)",
+                           h->path);
+        else
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': its COLLADA node graph has more than %llu nodes or %u links",
+                           h->path, (u64)PX_IO_MAX_NODES, MAX_EDGES);
+        goto done;
+    }
+    count = pxi_alloc_array(h->alloc, s.g.n ? s.g.n : 1, sizeof(u64));
+    if (!count) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        goto done;
+    }
+    u32 where = 0;
+    int res = g_walk(&s.g, count, &where);
+    if (res != G_OK) {
+        char name[80];
+        if (res != G_OOM) dae_name(&s, where, name, sizeof name);
+        st = g_error(h, res, "COLLADA", res == G_OOM ? "" : name, err);
+    }
+done:
+    if (count) pxi_free(h->alloc, count, (size_t)(s.g.n ? s.g.n : 1) * sizeof(u64));
+    if (s.v) pxi_free(h->alloc, s.v, (size_t)s.vcap * sizeof *s.v);
+    if (s.r) pxi_free(h->alloc, s.r, (size_t)s.rcap * sizeof *s.r);
+    g_free(&s.g);
+    pxi_free(h->alloc, doc, (size_t)h->size + 1);
+    return st;
+}
+
+/* ------------------------------------------------------------------- glTF */
+
+typedef struct json {
+    const unsigned char *p, *end;
+    int bad; /* not JSON (rapidjson would refuse it too), or too deep */
+    int deep;
+    int escaped_key;
+    int dup;         /* a member that matters given twice */
+    int bad_child;   /* a child that is not a node index */
+    int v1_children; /* glTF 1.0 nodes with children */
+    g_graph g;
+    u32 nodes; /* elements of "nodes" */
+    int have_nodes, have_scenes;
+    u32 *roots; /* scene roots, scene by scene: counts in roots_n */
+    u32 nroots, rcap;
+    u32 *scene_end; /* end index in roots of each scene */
+    u32 nscenes, scap;
+} json;
+
+static void j_ws(json *j) {
+    while (j->p < j->end && (*j->p == ' ' || *j->p == '\t' || *j->p == '\n' || *j->p == '\r')) ++j->p;
+}
+
+/* A string: sets *s, *n to its raw bytes (escapes not decoded), *esc when it
+ * has an escape. */
+static int j_string(json *j, const unsigned char **s, size_t *n, int *esc) {
+    j_ws(j);
+    if (j->p >= j->end || *j->p != '"') return j->bad = 1, 0;
+    const unsigned char *b = ++j->p;
+    int e = 0;
+    while (j->p < j->end && *j->p != '"') {
+        if (*j->p < 0x20) return j->bad = 1, 0;
+        if (*j->p == '\\') {
+            e = 1;
+            if (++j->p >= j->end) return j->bad = 1, 0;
+        }
+        ++j->p;
+    }
+    if (j->p >= j->end) return j->bad = 1, 0;
+    if (s) *s = b, *n = (size_t)(j->p - b);
+    if (esc) *esc = e;
+    ++j->p;
+    return 1;
+}
+
+static int j_value(json *j, int depth);
+
+/* A number (JSON grammar). *uint gets its value when it is a plain
+ * non-negative integer that fits in 32 bits, else stays ~0. */
+static int j_number(json *j, u64 *uint) {
+    const unsigned char *b = j->p;
+    if (uint) *uint = ~0ull;
+    if (j->p < j->end && *j->p == '-') ++j->p;
+    if (j->p >= j->end || *j->p < '0' || *j->p > '9') return j->bad = 1, 0;
+    u64 v = 0;
+    int plain = *b != '-';
+    if (*j->p == '0') {
+        ++j->p;
+    } else {
+        while (j->p < j->end && *j->p >= '0' && *j->p <= '9')
+            v = pxi_sat_add(pxi_sat_mul(v, 10), (u64)(*j->p++ - '0'));
+    }
+    if (j->p < j->end && *j->p == '.') {
+        plain = 0;
+        ++j->p;
+        if (j->p >= j->end || *j->p < '0' || *j->p > '9') return j->bad = 1, 0;
+        while (j->p < j->end && *j->p >= '0' && *j->p <= '9') ++j->p;
+    }
+    if (j->p < j->end && (*j->p == 'e' || *j->p == 'E')) {
+        plain = 0;
+        ++j->p;
+        if (j->p < j->end && (*j->p == '+' || *j->p == '-')) ++j->p;
+        if (j->p >= j->end || *j->p < '0' || *j->p > '9') return j->bad = 1, 0;
+        while (j->p < j->end && *j->p >= '0' && *j->p <= '9') ++j->p;
+    }
+    if (plain && uint && v <= 0xFFFFFFFFu) *uint = v;
+    return 1;
+}
+
+static int j_literal(json *j, const char *lit) {
+    size_t n = strlen(lit);
+    if ((size_t)(j->end - j->p) < n || memcmp(j->p, lit, n) != 0) return j->bad = 1, 0;
+    j->p += n;
+    return 1;
+}
+
+/* Skips any value (depth: nesting of the value's container). */
+static int j_value(json *j, int depth) {
+    j_ws(j);
+    if (j->p >= j->end) return j->bad = 1, 0;
+    if (depth > JSON_MAX_DEPTH) return j->deep = 1, j->bad = 1, 0;
+    switch (*j->p) {
+    case '{':
+        ++j->p;
+        j_ws(j);
+        if (j->p < j->end && *j->p == '}') return ++j->p, 1;
+        for (;;) {
+            if (!j_string(j, NULL, NULL, NULL)) return 0;
+            j_ws(j);
+            if (j->p >= j->end || *j->p != ':') return j->bad = 1, 0;
+            ++j->p;
+            if (!j_value(j, depth + 1)) return 0;
+            j_ws(j);
+            if (j->p < j->end && *j->p == ',') {
+                ++j->p;
+                continue;
+            }
+            if (j->p < j->end && *j->p == '}') return ++j->p, 1;
+            return j->bad = 1, 0;
+        }
+    case '[':
+        ++j->p;
+        j_ws(j);
+        if (j->p < j->end && *j->p == ']') return ++j->p, 1;
+        for (;;) {
+            if (!j_value(j, depth + 1)) return 0;
+            j_ws(j);
+            if (j->p < j->end && *j->p == ',') {
+                ++j->p;
+                continue;
+            }
+            if (j->p < j->end && *j->p == ']') return ++j->p, 1;
+            return j->bad = 1, 0;
+        }
+    case '"': return j_string(j, NULL, NULL, NULL);
+    case 't': return j_literal(j, "true");
+    case 'f': return j_literal(j, "false");
+    case 'n': return j_literal(j, "null");
+    default: return j_number(j, NULL);
+    }
+}
+
+/* Iterates over an object's members: calls `member` for each with its raw
+ * key; `member` must consume the value. */
+typedef int (*j_member_fn)(json *j, const unsigned char *key, size_t n, int depth, void *ctx);
+
+static int j_object(json *j, int depth, j_member_fn member, void *ctx) {
+    j_ws(j);
+    if (depth > JSON_MAX_DEPTH) return j->deep = 1, j->bad = 1, 0;
+    if (j->p >= j->end || *j->p != '{')
+        return j_value(j, depth); /* not an object: skipped (Assimp refuses) */
+    ++j->p;
+    j_ws(j);
+    if (j->p < j->end && *j->p == '}') return ++j->p, 1;
+    for (;;) {
+        const unsigned char *k;
+        size_t n;
+        int esc;
+        if (!j_string(j, &k, &n, &esc)) return 0;
+        j_ws(j);
+        if (j->p >= j->end || *j->p != ':') return j->bad = 1, 0;
+        ++j->p;
+        if (esc) j->escaped_key = 1;
+        if (!member(j, k, n, depth + 1, ctx)) return 0;
+        j_ws(j);
+        if (j->p < j->end && *j->p == ',') {
+            ++j->p;
+            continue;
+        }
+        if (j->p < j->end && *j->p == '}') return ++j->p, 1;
+        return j->bad = 1, 0;
+    }
+}
+
+/* Iterates over an array's elements: calls `element` with the index. */
+typedef int (*j_element_fn)(json *j, u32 index, int depth, void *ctx);
+
+static int j_array(json *j, int depth, j_element_fn element, void *ctx) {
+    j_ws(j);
+    if (depth > JSON_MAX_DEPTH) return j->deep = 1, j->bad = 1, 0;
+    if (j->p >= j->end || *j->p != '[') return j_value(j, depth); /* not an array: skipped */
+    ++j->p;
+    j_ws(j);
+    if (j->p < j->end && *j->p == ']') return ++j->p, 1;
+    for (u32 i = 0;; ++i) {
+        if (!element(j, i, depth + 1, ctx)) return 0;
+        j_ws(j);
+        if (j->p < j->end && *j->p == ',') {
+            ++j->p;
+            continue;
+        }
+        if (j->p < j->end && *j->p == ']') return ++j->p, 1;
+        return j->bad = 1, 0;
+    }
+}
+
+static int key_is(const unsigned char *k, size_t n, const char *s) {
+    return n == strlen(s) && memcmp(k, s, n) == 0;
+}
+
+static int push_u32(json *j, u32 **a, u32 *len, u32 *cap, u32 v) {
+    if (*len >= MAX_EDGES) return j->g.too_many = 1, 0;
+    if (!g_grow(&j->g, a, cap, *len + 1)) return 0;
+    (*a)[(*len)++] = v;
+    return 1;
+}
+
+/* An element of a "children" or a scene's "nodes" array: a node index. */
+typedef struct j_list_ctx {
+    u32 owner; /* the parent node, or ~0u for a scene */
+} j_list_ctx;
+
+static int child_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index;
+    j_list_ctx *c = ctx;
+    j_ws(j);
+    u64 v;
+    if (j->p >= j->end || ((*j->p < '0' || *j->p > '9') && *j->p != '-')) {
+        if (!j_value(j, depth)) return 0;
+        return j->bad_child = 1, 0;
+    }
+    if (!j_number(j, &v)) return 0;
+    if (v == ~0ull) return j->bad_child = 1, 0;
+    if (c->owner == ~0u) return push_u32(j, &j->roots, &j->nroots, &j->rcap, (u32)v);
+    return g_edge(&j->g, c->owner, (u32)v);
+}
+
+typedef struct j_node_ctx {
+    u32 index;
+    int children_seen;
+    int v1; /* glTF 1.0: nodes is an object */
+} j_node_ctx;
+
+static int node_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    j_node_ctx *c = ctx;
+    if (!key_is(k, n, "children")) return j_value(j, depth);
+    if (c->v1) {
+        j->v1_children = 1;
+        return 0;
+    }
+    if (c->children_seen++) return j->dup = 1, 0;
+    j_list_ctx lc = {c->index};
+    return j_array(j, depth, child_element, &lc);
+}
+
+static int node_element(json *j, u32 index, int depth, void *ctx) {
+    (void)ctx;
+    if (index >= PX_IO_MAX_NODES) return j->g.too_many = 1, 0;
+    j->nodes = index + 1;
+    j_node_ctx c = {index, 0, 0};
+    return j_object(j, depth, node_member, &c);
+}
+
+/* glTF 1.0: "nodes": {"name": {...}, ...}. */
+static int node_v1_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    (void)k, (void)n, (void)ctx;
+    j_node_ctx c = {0, 0, 1};
+    return j_object(j, depth, node_member, &c);
+}
+
+static int scene_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    (void)ctx;
+    if (!key_is(k, n, "nodes")) return j_value(j, depth);
+    j_list_ctx lc = {~0u};
+    return j_array(j, depth, child_element, &lc);
+}
+
+static int scene_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index, (void)ctx;
+    if (!j_object(j, depth, scene_member, NULL)) return 0;
+    return push_u32(j, &j->scene_end, &j->nscenes, &j->scap, j->nroots);
+}
+
+static int top_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    (void)ctx;
+    if (key_is(k, n, "nodes")) {
+        if (j->have_nodes++) return j->dup = 1, 0;
+        j_ws(j);
+        if (j->p < j->end && *j->p == '{') return j_object(j, depth, node_v1_member, NULL);
+        return j_array(j, depth, node_element, NULL);
+    }
+    if (key_is(k, n, "scenes")) {
+        if (j->have_scenes++) return j->dup = 1, 0;
+        j_ws(j);
+        if (j->p < j->end && *j->p == '{') return j_value(j, depth); /* glTF 1.0 scenes: roots only */
+        return j_array(j, depth, scene_element, NULL);
+    }
+    return j_value(j, depth);
+}
+
+/* The JSON of a .gltf file, or of the first chunk of a binary glTF
+ * (.glb: "glTF", version, length, then the JSON chunk's length and type). */
+static px_status gltf_json(const io_head *h, unsigned char **out, size_t *len, px_error *err) {
+    if (h->len >= 4 && memcmp(h->data, "glTF", 4) == 0) {
+        if (h->len < 20)
+            return pxi_error(err, PX_ERR_IO, "mesh file '%s': a binary glTF file shorter than its header",
+                             h->path);
+        u64 n = (u64)h->data[12] | (u64)h->data[13] << 8 | (u64)h->data[14] << 16 | (u64)h->data[15] << 24;
+        if (n > h->size - 20) n = h->size - 20; /* Assimp refuses a chunk past the end */
+        unsigned char *buf = pxi_alloc(h->alloc, (size_t)n + 1);
+        if (!buf)
+            return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        pxi_rd_seek(h->rd, 20);
+        if (!pxi_rd_read(h->rd, buf, (size_t)n)) {
+            pxi_free(h->alloc, buf, (size_t)n + 1);
+            return pxi_rd_error(h, err);
+        }
+        buf[n] = 0;
+        *out = buf;
+        *len = (size_t)n;
+        return PX_OK;
+    }
+    *len = (size_t)h->size;
+    return pxi_read_all(h, out, err);
+}
+
+px_status pxi_check_gltf(const io_head *h, px_error *err) {
+    unsigned char *doc = NULL;
+    size_t len = 0;
+    px_status st = gltf_json(h, &doc, &len, err);
+    if (st != PX_OK) return st;
+    json j;
+    memset(&j, 0, sizeof j);
+    j.p = doc;
+    j.end = doc + len;
+    j.g.alloc = h->alloc;
+    u64 *count = NULL;
+    /* A binary glTF 1.0 or anything that is not an object: left to Assimp. */
+    j_ws(&j);
+    if (j.p >= j.end || *j.p != '{') goto done;
+    int ok = j_object(&j, 1, top_member, NULL);
+    if (ok) {
+        j_ws(&j);
+        if (j.p != j.end && !(j.end - j.p == 1 && *j.p == 0)) ok = 0, j.bad = 1;
+    }
+    if (!ok) {
+        if (j.g.oom)
+            st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        else if (j.v1_children)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a glTF 1.0 node with children (not accepted: convert the file to "
+                           "glTF 2.0)",
+                           h->path);
+        else if (j.deep)
+            st = pxi_error(err, PX_ERR_IO, "mesh file '%s': its JSON is nested more than %d levels deep",
+                           h->path, JSON_MAX_DEPTH);
+        else if (j.dup)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a glTF \"nodes\", \"scenes\" or \"children\" member "
+                           "appears twice",
+                           h->path);
+        else if (j.bad_child)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a glTF node's \"children\" or a scene's \"nodes\" "
+                           "holds something other than a node index",
+                           h->path);
+        else if (j.g.too_many)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': its glTF node graph has more than %llu nodes or %u "
+                           "links",
+                           h->path, (u64)PX_IO_MAX_NODES, MAX_EDGES);
+        else
+            st = pxi_error(err, PX_ERR_IO, "mesh file '%s' is not valid JSON (glTF)", h->path);
+        goto done;
+    }
+    if (j.escaped_key) {
+        st = pxi_error(
+            err, PX_ERR_IO,
+            "mesh file '%s': a glTF member name has an escape sequence (not accepted: the node graph "
+            "could not be checked)",
+            h->path);
+        goto done;
+    }
+    /* Children and roots must name nodes (Assimp: "out of bounds"). */
+    j.g.n = j.nodes;
+    for (u32 e = 0; e < j.g.m; ++e)
+        if (j.g.to[e] >= j.nodes) {
+            st = pxi_error(err, PX_ERR_IO, "mesh file '%s': glTF node %u has child %u, which does not exist",
+                           h->path, j.g.from[e], j.g.to[e]);
+            goto done;
+        }
+    for (u32 r = 0; r < j.nroots; ++r)
+        if (j.roots[r] >= j.nodes) {
+            st = pxi_error(err, PX_ERR_IO, "mesh file '%s': a glTF scene lists node %u, which does not exist",
+                           h->path, j.roots[r]);
+            goto done;
+        }
+    count = pxi_alloc_array(h->alloc, j.nodes ? j.nodes : 1, sizeof(u64));
+    if (!count) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        goto done;
+    }
+    u32 where = 0;
+    int res = g_walk(&j.g, count, &where);
+    char name[32];
+    snprintf(name, sizeof name, "%u", where);
+    if (res != G_OK) {
+        st = g_error(h, res, "glTF", name, err);
+        goto done;
+    }
+    /* A scene instances its roots: their instances add up. */
+    for (u32 s = 0, r = 0; s < j.nscenes; ++s) {
+        u64 total = 0;
+        for (; r < j.scene_end[s]; ++r) total += count[j.roots[r]];
+        if (total > PX_IO_MAX_NODES) {
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': glTF scene %u expands to more than %llu node instances "
+                           "(PX_IO_MAX_NODES; Assimp 5.2 builds one node per instance)",
+                           h->path, s, (u64)PX_IO_MAX_NODES);
+            goto done;
+        }
+    }
+done:
+    if (count) pxi_free(h->alloc, count, (size_t)(j.nodes ? j.nodes : 1) * sizeof(u64));
+    if (j.roots) pxi_free(h->alloc, j.roots, (size_t)j.rcap * sizeof(u32));
+    if (j.scene_end) pxi_free(h->alloc, j.scene_end, (size_t)j.scap * sizeof(u32));
+    g_free(&j.g);
+    pxi_free(h->alloc, doc, len + 1);
+    return st;
+}

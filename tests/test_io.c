@@ -829,6 +829,79 @@ static void test_node_graphs(void) {
     px_free_points(xyz, count, NULL);
 }
 
+/* Finding 6: which formats keep vertices no face uses (io.h). Assimp's OBJ
+ * and COLLADA readers build meshes from faces; PLY, OFF and glTF keep every
+ * listed vertex. A tetrahedron file whose one face leaves (0,0,1) out. */
+static void test_unreferenced_vertices(void) {
+    struct {
+        const char *name, *text;
+        size_t expected;
+    } cases[] = {
+        {"unused.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", 3},
+        {"unused.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n", 4},
+        {"unused.ply",
+         "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+         "3 0 1 2\n",
+         4},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        double *xyz = NULL;
+        size_t n = 0;
+        px_error err;
+        CHECK(px_load_points(write_file(cases[i].name, cases[i].text), NULL, &xyz, &n, &err) == PX_OK);
+        if (n != cases[i].expected) {
+            fprintf(stderr, "  %s: %zu points, expected %zu\n", cases[i].name, n, cases[i].expected);
+            g_failures++;
+        }
+        px_free_points(xyz, n, NULL);
+    }
+    /* COLLADA: one triangle of the four. */
+    static char dae[4096];
+    const char *full = write_dae("unused_tmp.dae", "", "<instance_geometry url=\"#tet\"/>");
+    FILE *f = fopen(full, "rb");
+    size_t len = f ? fread(dae, 1, sizeof dae - 1, f) : 0;
+    if (f) fclose(f);
+    dae[len] = '\0';
+    char *tri = strstr(dae, "<triangles count=\"4\">");
+    char *p = strstr(dae, "<p>0 2 1 0 1 3 0 3 2 1 2 3</p>");
+    CHECK(tri && p);
+    if (tri && p) {
+        memcpy(tri, "<triangles count=\"1\">", 21);
+        memset(p + strlen("<p>0 2 1"), ' ', strlen(" 0 1 3 0 3 2 1 2 3"));
+        double *xyz = NULL;
+        size_t n = 0;
+        px_error err;
+        CHECK(px_load_points(write_file("unused.dae", dae), NULL, &xyz, &n, &err) == PX_OK);
+        CHECK(n == 3);
+        px_free_points(xyz, n, NULL);
+    }
+    /* glTF: a triangle of indices 0 1 2 (uint16, after the positions). */
+    static unsigned char bin[56];
+    for (int v = 0; v < 4; ++v)
+        for (int c = 0; c < 3; ++c) put_f32(bin + 12 * v + 4 * c, k_tet[v][c], 0);
+    bin[48] = 0, bin[50] = 1, bin[52] = 2;
+    write_bytes("tet_idx.bin", bin, sizeof bin);
+    const char *gltf = write_file(
+        "unused.gltf",
+        "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}], \"nodes\": "
+        "[{\"mesh\": 0}],\n"
+        "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 1, \"mode\": "
+        "4}]}],\n"
+        "\"buffers\": [{\"uri\": \"tet_idx.bin\", \"byteLength\": 56}],\n"
+        "\"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48},\n"
+        "{\"buffer\": 0, \"byteOffset\": 48, \"byteLength\": 6}],\n"
+        "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\",\n"
+        "\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n"
+        "{\"bufferView\": 1, \"componentType\": 5123, \"count\": 3, \"type\": \"SCALAR\"}]}\n");
+    double *xyz = NULL;
+    size_t n = 0;
+    px_error err;
+    CHECK(px_load_points(gltf, NULL, &xyz, &n, &err) == PX_OK);
+    CHECK(n == 4);
+    px_free_points(xyz, n, NULL);
+}
+
 int main(void) {
     snprintf(g_dir, sizeof g_dir, "/tmp/proxima_test_io_%ld", (long)getpid());
     char cmd[300];
@@ -860,6 +933,7 @@ int main(void) {
     test_referenced_files();
     test_off_faces();
     test_node_graphs();
+    test_unreferenced_vertices();
 #if !PX_TEST_ASAN
     struct rusage usage;
     CHECK(getrusage(RUSAGE_SELF, &usage) == 0);

@@ -131,7 +131,12 @@ extern "C" {
 /// Convex hull of all vertices of all meshes in the file at `path`, with the
 /// node transforms applied (the file's root frame; see the header comment for
 /// units). A mesh referenced by several nodes contributes one copy per node.
-/// Points, lines and faces all count; vertices no face uses count too.
+/// Points, lines and faces all count. Vertices no face uses count for PLY,
+/// OFF and glTF (whose readers keep every vertex listed) and for files that
+/// have only vertices (an OBJ point cloud), but not for OBJ and COLLADA files
+/// with faces: Assimp 5.2 builds their meshes from the faces and drops the
+/// other vertices, and offers no option to keep them (STL has no vertex
+/// list).
 /// `options` (may be NULL) is passed to `px_convex_create`.
 ///
 /// Returns NULL and fills `err` (may be NULL) on:

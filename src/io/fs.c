@@ -16,7 +16,8 @@
  * - any other file may hold at most PX_IO_MAX_FILE_BYTES, and the files one
  *   import reads may hold PX_IO_MAX_IMPORT_BYTES together: each opening of a
  *   file counts its whole size when Assimp first reads it or asks its size
- *   (the mesh file once); an opening Assimp only tests (Exists) is free;
+ *   (the mesh file once); an opening Assimp only tests (Exists) is free, and
+ *   a file too large for what is left is refused when opened;
  * - reads stop at the size the file had when it was opened (a file growing
  *   meanwhile is read as it was, and a regular file that reports size 0,
  *   such as those under /proc, reads as empty, never blocking);
@@ -49,6 +50,7 @@ typedef unsigned long long u64;
 typedef struct fs_file {
     struct aiFile ai;
     pxi_io_fs *fs;
+    struct fs_file *prev, *next; /* fs->open_files */
     int fd;
     int is_main;
     int charged; /* its size was counted */
@@ -196,6 +198,16 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name, const char 
         refuse(fs, name, "it has %llu bytes, more than the limit of %llu", size, (u64)PX_IO_MAX_FILE_BYTES);
         return NULL;
     }
+    /* Refused here already when it cannot fit, rather than on first use:
+     * glTF2's Buffer::Read leaks its stream when loading from it throws. */
+    if (!is_main && size > PX_IO_MAX_IMPORT_BYTES - fs->charged) {
+        close(fd);
+        refuse(fs, name,
+               "its %llu bytes and the %llu the import read before exceed the limit of %llu bytes for one "
+               "import (PX_IO_MAX_IMPORT_BYTES)",
+               size, fs->charged, (u64)PX_IO_MAX_IMPORT_BYTES);
+        return NULL;
+    }
     fs_file *h = pxi_alloc(fs->alloc, sizeof *h);
     if (!h) {
         close(fd);
@@ -215,15 +227,31 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name, const char 
     h->is_main = is_main;
     h->size = size;
     snprintf(h->name, sizeof h->name, "%s", name);
+    h->next = fs->open_files;
+    if (h->next) h->next->prev = h;
+    fs->open_files = h;
     return &h->ai;
 }
 
-static void fs_close(struct aiFileIO *io, struct aiFile *f) {
-    pxi_io_fs *fs = (pxi_io_fs *)(void *)io->UserData;
-    if (!f) return;
-    fs_file *h = handle(f);
+static void release(pxi_io_fs *fs, fs_file *h) {
+    if (h->prev)
+        h->prev->next = h->next;
+    else
+        fs->open_files = h->next;
+    if (h->next) h->next->prev = h->prev;
     close(h->fd);
     pxi_free(fs->alloc, h, sizeof *h);
+}
+
+static void fs_close(struct aiFileIO *io, struct aiFile *f) {
+    if (f) release((pxi_io_fs *)(void *)io->UserData, handle(f));
+}
+
+/* Assimp 5.2 leaks a stream where loading from it throws (glTF2's
+ * Buffer::Read: a buffer shorter than its byteLength): its descriptor would
+ * stay open for the life of the process. */
+void pxi_io_fs_finish(pxi_io_fs *fs) {
+    while (fs->open_files) release(fs, fs->open_files);
 }
 
 void pxi_io_fs_init(pxi_io_fs *fs, const char *path, const pxi_file_id *main, const px_allocator *alloc) {

@@ -20,10 +20,15 @@ typedef struct pxi_io_fs {
     unsigned long long charged; /* bytes counted against PX_IO_MAX_IMPORT_BYTES */
     int main_charged;
     int refused;       /* an open or a read was refused: the import fails */
+    void *open_files;  /* the openings not closed yet (a list, fs.c) */
     char message[480]; /* the first refusal: "'name' was refused: why" */
 } pxi_io_fs;
 
 /* Sets up `fs` for importing `path`, whose precheck found `main`. */
 void pxi_io_fs_init(pxi_io_fs *fs, const char *path, const pxi_file_id *main, const px_allocator *alloc);
+
+/* Closes the files Assimp left open. Call once the importer is gone: after
+ * aiReleaseImport, or after aiImportFileEx returned NULL. */
+void pxi_io_fs_finish(pxi_io_fs *fs);
 
 #endif

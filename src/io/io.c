@@ -198,9 +198,11 @@ static px_status import_points_locked(const char *path, const pxi_file_id *id, c
     if (fs.refused) {
         /* Also after a success: Assimp goes on without a material library. */
         if (scene) aiReleaseImport(scene);
+        pxi_io_fs_finish(&fs);
         return pxi_error(err, PX_ERR_IO, "cannot import mesh file '%s': %s", path, fs.message);
     }
     if (!scene) {
+        pxi_io_fs_finish(&fs);
         char msg[160];
         const char *ai = aiGetErrorString();
         snprintf(msg, sizeof msg, "%s", ai && ai[0] ? ai : "unknown error");
@@ -217,6 +219,7 @@ static px_status import_points_locked(const char *path, const pxi_file_id *id, c
     }
     if (st != PX_OK) {
         aiReleaseImport(scene);
+        pxi_io_fs_finish(&fs);
         return st;
     }
 
@@ -240,6 +243,7 @@ static px_status import_points_locked(const char *path, const pxi_file_id *id, c
     }
     if (st != PX_OK) {
         aiReleaseImport(scene);
+        pxi_io_fs_finish(&fs);
         return st;
     }
 
@@ -247,6 +251,7 @@ static px_status import_points_locked(const char *path, const pxi_file_id *id, c
     double *xyz = pxi_alloc_array(alloc, total, 3 * sizeof(double));
     if (!xyz) {
         aiReleaseImport(scene);
+        pxi_io_fs_finish(&fs);
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s' (%zu vertices)",
                          path, total);
     }
@@ -261,6 +266,7 @@ static px_status import_points_locked(const char *path, const pxi_file_id *id, c
                        w.bad_vertex, node);
     }
     aiReleaseImport(scene);
+    pxi_io_fs_finish(&fs);
     if (st != PX_OK) {
         pxi_free(alloc, xyz, total * 3 * sizeof(double));
         return st;

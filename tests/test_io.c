@@ -764,6 +764,16 @@ static void test_off_faces(void) {
     expect_tetrahedron(write_file("face10.off", text));
 }
 
+/* The contents of a file written by this test (a static buffer). */
+static const char *read_back(const char *path) {
+    static char text[65536];
+    FILE *f = fopen(path, "rb");
+    size_t len = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[len] = '\0';
+    return text;
+}
+
 /* A COLLADA file: the tetrahedron geometry, library nodes `library`, and a
  * visual scene whose node instances `root`. */
 static const char *write_dae(const char *name, const char *library, const char *root) {
@@ -856,6 +866,23 @@ static void test_node_graphs(void) {
     CHECK(px_load_points(shared, NULL, &xyz, &count, &err) == PX_OK);
     CHECK(count == 8 && has_point(xyz, count, 10, 0, 0) && has_point(xyz, count, 0, 0, 1));
     px_free_points(xyz, count, NULL);
+}
+
+/* Found by fuzzing the COLLADA scan: ColladaParser::ReadPrimitives reads a
+ * <p> list with strtol10 and SkipSpacesAndLineEnd while bytes remain, and
+ * never passes a byte that is neither: a 0x1D in seed.dae's <p> (1 KB) made
+ * it push 0 indices until std::bad_alloc (60 s, many GB). */
+static void test_dae_index_list(void) {
+    static char text[65536];
+    snprintf(text, sizeof text, "%s",
+             read_back(write_dae("p_tmp.dae", "", "<instance_geometry url=\"#tet\"/>")));
+    char *p = strstr(text, "<p>0 2 1 0");
+    CHECK(p != NULL);
+    if (!p) return;
+    p[8] = 'x';
+    expect_refused(write_file("p_junk.dae", text), "<p> index list");
+    p[8] = ' ';
+    expect_tetrahedron(write_file("p_ok.dae", text));
 }
 
 /* Finding 6: which formats keep vertices no face uses (io.h). Assimp's OBJ
@@ -962,6 +989,7 @@ int main(void) {
     test_referenced_files();
     test_off_faces();
     test_node_graphs();
+    test_dae_index_list();
     test_unreferenced_vertices();
 #if !PX_TEST_ASAN
     struct rusage usage;

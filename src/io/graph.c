@@ -228,6 +228,7 @@ typedef struct dae_scan {
     dae_ref *r;
     u32 nref, rcap;
     int bad_attr;
+    int bad_p; /* a <p> index list with a byte Assimp's reader never passes */
 } dae_scan;
 
 static u64 hash_str(const unsigned char *s, u32 len) {
@@ -298,6 +299,26 @@ static int dae_add_ref(dae_scan *s, u32 from, g_str target) {
     s->r[s->nref].from = from;
     s->r[s->nref].target = target;
     ++s->nref;
+    return 1;
+}
+
+/* The text of a <p> element (from `i`) as ColladaParser::ReadPrimitives
+ * reads it: its first text or CDATA child. ReadPrimitives loops while the
+ * text has bytes, strtol10 then SkipSpacesAndLineEnd: a byte that is neither
+ * a digit, a sign nor ' ', '\t', '\r', '\n' is never passed, and a 0 index is
+ * pushed for ever (a 1-byte corruption of a 1 KB file took 60 s and ended in
+ * std::bad_alloc). A character reference is refused too (pugixml would
+ * decode it to anything). */
+static int p_content_ok(const dae_scan *s, size_t i) {
+    const unsigned char *d = s->d;
+    size_t j = i, end = s->size;
+    while (j < end && is_xml_space(d[j])) ++j;
+    if (end - j >= 9 && memcmp(d + j, "<![CDATA[", 9) == 0) { /* whitespace text is dropped */
+        i = j + 9;
+        end = find(s, i, "]]>");
+    }
+    for (j = i; j < end && !(d[j] == '<' && end == s->size); ++j)
+        if (!(d[j] >= '0' && d[j] <= '9') && d[j] != '-' && d[j] != '+' && !is_xml_space(d[j])) return 0;
     return 1;
 }
 
@@ -395,6 +416,7 @@ static int dae_tags(dae_scan *s, int *too_deep) {
             if (want == 3) url = val, has_url = 1;
         }
         i = j;
+        if (name_len == 1 && d[name0] == 'p' && !self_closing && !p_content_ok(s, i)) return s->bad_p = 1, 0;
         int is_node = (name_len == 4 && memcmp(d + name0, "node", 4) == 0) ||
                       (name_len == 12 && memcmp(d + name0, "visual_scene", 12) == 0);
         int is_inst = name_len == 13 && memcmp(d + name0, "instance_node", 13) == 0;
@@ -489,6 +511,11 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
         else if (too_deep)
             st = pxi_error(err, PX_ERR_IO, "mesh file '%s': its XML is nested more than %d elements deep",
                            h->path, XML_MAX_DEPTH);
+        else if (s.bad_p)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a COLLADA <p> index list holds something other than integers and "
+                           "blanks (Assimp 5.2 would push 0 indices for ever)",
+                           h->path);
         else if (s.bad_attr)
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': a COLLADA node id, name or instance_node url holds a character "

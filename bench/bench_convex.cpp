@@ -1347,11 +1347,11 @@ int write_markdown(const std::string &path, const std::vector<Row> &rows, const 
         "bench/bench_convex.cpp and in convex.md.\n",
         command.c_str(), seconds, read_first_line("/proc/cpuinfo", "model name").c_str(), load_start.c_str(),
         load_average().c_str());
-    std::fprintf(
-        f, "\n## Distance\n\nproxima `px_distance` (lin-canny, gjk, hybrid; NULL cache from scratch, "
-           "one cache per sequence incremental) against `fcl::distance` (GJK in libccd) with tolerance "
-           "1e-9 (`fcl-gjk-libccd`) and the default 1e-6 (`fcl-gjk-libccd-tol1e-6`); reference: CGAL's "
-           "exact distance.\n");
+    std::fprintf(f,
+                 "\n## Distance\n\nproxima `px_distance` (lin-canny, gjk, hybrid; NULL cache from scratch, "
+                 "one cache per sequence incremental) against `fcl::distance` (GJK in libccd) with tolerance "
+                 "1e-9 (`fcl-gjk-libccd`) and the default 1e-6 (`fcl-gjk-libccd-tol1e-6`); reference: CGAL's "
+                 "exact distance.\n");
     md_table(f, rows, "distance", "scratch", kDistanceMethods);
     md_table(f, rows, "distance", "incremental", kDistanceMethods);
     std::fprintf(
@@ -1371,7 +1371,8 @@ int write_markdown(const std::string &path, const std::vector<Row> &rows, const 
     std::fprintf(
         f,
         "\n## Collision translation\n\nA moves along d, B stays; τ_min is the least τ with A + τd "
-        "touching B. proxima `px_translate` with `PX_QUERY_BOTH_WAYS` (`raycast-advance`: GJK ray cast with a NULL cache from "
+        "touching B. proxima `px_translate` with `PX_QUERY_BOTH_WAYS` (`raycast-advance`: GJK ray cast with "
+        "a NULL cache from "
         "scratch; with one cache per sequence, conservative advancement with Lin–Canny from the "
         "previous contact, the ray cast as fallback) against FCL's `fcl::continuousCollide` with a "
         "translation motion "

@@ -1413,9 +1413,10 @@ int main(int argc, char **argv) {
     body puma[2];
     if (!body_init(&puma[0], "Puma link 2 (STL, in)", load_or_die(models, k_puma_stl))) return 1;
     if (!body_init(&puma[1], "Puma link 3 (DAE, m)", load_or_die(models, k_puma_dae))) return 1;
-    printf("    Puma links (px_convex_create_from_file): link2.stl hull %u V / %u E / %u F (inches) from %s;\n"
-           "    link3.dae hull %u V / %u E / %u F (metres) from %s.\n",
-           puma[0].nv, puma[0].ne, puma[0].nf, k_puma_stl, puma[1].nv, puma[1].ne, puma[1].nf, k_puma_dae);
+    printf(
+        "    Puma links (px_convex_create_from_file): link2.stl hull %u V / %u E / %u F (inches) from %s;\n"
+        "    link3.dae hull %u V / %u E / %u F (metres) from %s.\n",
+        puma[0].nv, puma[0].ne, puma[0].nf, k_puma_stl, puma[1].nv, puma[1].ne, puma[1].nf, k_puma_dae);
     printf("\n    %-34s %17s %9s %10s %9s %7s %7s %7s\n", "pair (A / B)", "M1 + M2 = N", "track med",
            "random med", "cold med", "chg trk", "chg rnd", "chg cld");
     struct {

@@ -27,10 +27,9 @@
 #define NQ 1000 /* per half (cold, warm) of each kind */
 
 enum { K_DIST = 0, K_TRANSLATE = 6, K_INTERSECT = 8, K_COUNT = 9 };
-static const char *const k_names[K_COUNT] = {
-    "distance.lin-canny",        "distance.gjk",         "distance.hybrid",    "signed.lin-canny",
-    "signed.gjk",                "signed.hybrid",        "translate.forward",  "translate.both-ways",
-    "intersect"};
+static const char *const k_names[K_COUNT] = {"distance.lin-canny", "distance.gjk",        "distance.hybrid",
+                                             "signed.lin-canny",   "signed.gjk",          "signed.hybrid",
+                                             "translate.forward",  "translate.both-ways", "intersect"};
 
 typedef struct hashes {
     uint64_t shapes, geom[K_COUNT], diag[K_COUNT];
@@ -199,13 +198,14 @@ int main(int argc, char **argv) {
     run(1, &h2);
     CHECK(h1.shapes == h2.shapes, "polytopes differ between two builds");
     for (int k = 0; k < K_COUNT; ++k) {
-        CHECK(h1.geom[k] == h2.geom[k] && h1.diag[k] == h2.diag[k], "%s differs between two runs", k_names[k]);
-        CHECK(h1.yes[k] > 20 && h1.no[k] > 20, "%s: %ld yes and %ld no answers, not a mixed workload", k_names[k],
-              h1.yes[k], h1.no[k]);
+        CHECK(h1.geom[k] == h2.geom[k] && h1.diag[k] == h2.diag[k], "%s differs between two runs",
+              k_names[k]);
+        CHECK(h1.yes[k] > 20 && h1.no[k] > 20, "%s: %ld yes and %ld no answers, not a mixed workload",
+              k_names[k], h1.yes[k], h1.no[k]);
     }
     CHECK(h1.bad_status == 0, "%ld of %ld queries returned an error", h1.bad_status, h1.queries);
-    printf("  %d polytopes, %ld queries of %d kinds twice: identical, every status PX_OK\n", NSHAPES, h1.queries,
-           K_COUNT);
+    printf("  %d polytopes, %ld queries of %d kinds twice: identical, every status PX_OK\n", NSHAPES,
+           h1.queries, K_COUNT);
     if (argc < 2) {
         printf("  (no golden file given: hashes not compared)\n");
         return tu_finish();
@@ -223,8 +223,8 @@ int main(int argc, char **argv) {
           argv[1], got, K_COUNT + 1);
     CHECK(shapes == h1.shapes, "polytopes differ from the golden hashes of %s", argv[1]);
     for (int k = 0; k < K_COUNT; ++k) {
-        CHECK(g.geom[k] == h1.geom[k], "%s: answers %016llx, golden %016llx (a behaviour change?)", k_names[k],
-              (unsigned long long)h1.geom[k], (unsigned long long)g.geom[k]);
+        CHECK(g.geom[k] == h1.geom[k], "%s: answers %016llx, golden %016llx (a behaviour change?)",
+              k_names[k], (unsigned long long)h1.geom[k], (unsigned long long)g.geom[k]);
         CHECK(g.diag[k] == h1.diag[k], "%s: diagnostics %016llx, golden %016llx", k_names[k],
               (unsigned long long)h1.diag[k], (unsigned long long)g.diag[k]);
     }

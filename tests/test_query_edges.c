@@ -322,9 +322,10 @@ static int load_case(const char *name, px_convex **a, px_pose *pa, px_convex **b
         ok = ok && fscanf(f, "%la %la %la", &ps[q]->t.x, &ps[q]->t.y, &ps[q]->t.z) == 3;
     }
     ok = ok && fscanf(f, "%la %la %la", &dir->x, &dir->y, &dir->z) == 3;
-    char hex[2 * sizeof *cache + 8];
+    char hex[1024]; /* the width below must stay under its size */
+    _Static_assert(2 * sizeof *cache < 1000, "a cache's hex string must fit the buffer");
     memset(cache, 0, sizeof *cache);
-    if (ok && fscanf(f, "%200s", hex) == 1 && strlen(hex) >= 2 * sizeof *cache) {
+    if (ok && fscanf(f, "%1000s", hex) == 1 && strlen(hex) >= 2 * sizeof *cache) {
         unsigned char *bytes = (unsigned char *)cache;
         for (size_t i = 0; i < sizeof *cache; ++i) {
             unsigned v = 0;

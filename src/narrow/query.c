@@ -283,18 +283,27 @@ static void try_feature_edges(const px_convex *a, const px_convex *b, const px_p
     }
 }
 
-static void refine_miss(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                        pxi_translation *out) {
-    double dd = pxi_dot(dir, dir);
-    px_pose tt = *t_ab;
-    tt.t = pxi_madd(tt.t, dir, pxi_dot(dir, pxi_sub(out->pb, pxi_xform(t_ab, out->pa))) / dd);
+/* Lin-Canny with A moved by s along dir (the pose in *tt), started from the
+ * features of the translation answer, whose iteration count it adds to. */
+static void lin_canny_moved(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                            double s, pxi_translation *out, px_pose *tt, pxi_answer *ans) {
+    *tt = *t_ab;
+    tt->t = pxi_madd(tt->t, dir, s);
     pxi_lc_start start;
     memset(&start, 0, sizeof start);
     start.fa = out->fa;
     start.fb = out->fb;
+    pxi_lin_canny(a, b, tt, &start, ans);
+    out->iterations += ans->iterations;
+}
+
+static void refine_miss(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
+                        pxi_translation *out) {
+    double dd = pxi_dot(dir, dir);
+    px_pose tt;
     pxi_answer ans;
-    pxi_lin_canny(a, b, &tt, &start, &ans);
-    out->iterations += ans.iterations;
+    lin_canny_moved(a, b, t_ab, dir, pxi_dot(dir, pxi_sub(out->pb, pxi_xform(t_ab, out->pa))) / dd, out, &tt,
+                    &ans);
     if (ans.outcome != PXI_DONE || ans.intersecting) return;
     px_vec3 approx = pxi_sub(ans.pb, pxi_xform(&tt, ans.pa));
     miss_best best = {0.0, {0, 0, 0}, 0, 0};
@@ -321,15 +330,9 @@ static void refine_miss(const px_convex *a, const px_convex *b, const px_pose *t
 static void check_floor_hit(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
                             pxi_translation *out) {
     double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
-    px_pose tt = *t_ab;
-    tt.t = pxi_madd(tt.t, dir, out->tau);
-    pxi_lc_start start;
-    memset(&start, 0, sizeof start);
-    start.fa = out->fa;
-    start.fb = out->fb;
+    px_pose tt;
     pxi_answer ans;
-    pxi_lin_canny(a, b, &tt, &start, &ans);
-    out->iterations += ans.iterations;
+    lin_canny_moved(a, b, t_ab, dir, out->tau, out, &tt, &ans);
     if (ans.outcome == PXI_DONE && (ans.intersecting || ans.distance <= band)) return;
     pxi_translation miss;
     pxi_ray_miss(a, b, t_ab, dir, &miss);

@@ -31,7 +31,7 @@ rank() {
   case $1 in
     core/*) echo 0 ;;
     math/*) echo 1 ;;
-    convex/*) echo 2 ;;
+    convex/* | mesh/*) echo 2 ;;
     narrow/tolerance.* | narrow/simplex.* | narrow/closest.* | narrow/feature.*) echo 3 ;;
     narrow/lin_canny.* | narrow/gjk.* | narrow/hybrid.* | narrow/epa.* | narrow/raycast.*) echo 4 ;;
     narrow/advance.*) echo 5 ;;

@@ -4,8 +4,9 @@
 ///   proxima/base.h    export macro, version, statuses and errors, allocator
 ///   proxima/math.h    vectors and poses
 ///   proxima/convex.h  convex polytopes
+///   proxima/mesh.h    triangle meshes with their part tree (assemblies)
 ///   proxima/query.h   distance, intersection and collision translation
-///   proxima/io.h      polytopes from mesh files (Assimp; link proxima-io)
+///   proxima/io.h      meshes and polytopes from files (Assimp; link proxima-io)
 ///
 /// C11, no global state beyond the file-import lock of io.h. Geometry
 /// objects are immutable after creation and may be shared between threads;
@@ -17,6 +18,7 @@
 #include "proxima/convex.h"
 #include "proxima/io.h"
 #include "proxima/math.h"
+#include "proxima/mesh.h"
 #include "proxima/query.h"
 
 #endif /* PROXIMA_PROXIMA_H */

@@ -16,3 +16,11 @@ _Static_assert(sizeof(px_diagnostics) == 16, "px_diagnostics");
 _Static_assert(sizeof(px_distance_result) == 136, "px_distance_result");
 _Static_assert(sizeof(px_intersect_result) == 24, "px_intersect_result");
 _Static_assert(sizeof(px_translate_result) == 136, "px_translate_result");
+_Static_assert(sizeof(px_mesh_node_desc) == sizeof(void *) + 8, "px_mesh_node_desc");
+_Static_assert(sizeof(px_mesh_part_desc) == sizeof(void *) + 24, "px_mesh_part_desc");
+_Static_assert(sizeof(px_mesh_options) == sizeof(void *) + 32, "px_mesh_options");
+_Static_assert(sizeof(px_mesh_part) == sizeof(void *) + 24, "px_mesh_part");
+_Static_assert(sizeof(px_mesh_node) == 2 * sizeof(void *), "px_mesh_node");
+_Static_assert(sizeof(px_mesh_info) == 72, "px_mesh_info");
+/* pointers, sizes and a double: fixed where pointers are 64-bit */
+_Static_assert(sizeof(px_mesh_desc) == 88 || sizeof(void *) != 8, "px_mesh_desc");

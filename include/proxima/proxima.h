@@ -19,6 +19,7 @@
 #include "proxima/io.h"
 #include "proxima/math.h"
 #include "proxima/mesh.h"
+#include "proxima/model.h"
 #include "proxima/query.h"
 
 #endif /* PROXIMA_PROXIMA_H */

@@ -1,0 +1,213 @@
+/// proxima/model.h: non-convex models as sub-part hierarchy trees.
+///
+/// A `px_model` is a union of convex pieces (its leaves) arranged in a
+/// binary tree whose inner nodes bound their subtree: the sub-part hierarchy
+/// of M. Lin's thesis ("Efficient collision detection for animation and
+/// robotics", Berkeley 1993, ch. 4). Leaves are of two kinds:
+/// - exact: the mesh's own triangles (`PX_PIECES_TRIANGLES`), or convex
+///   pieces given as point sets (`px_model_create_from_points`); distances
+///   between such models are the exact distances of the geometry;
+/// - coarse: one convex hull per part (`PX_PIECES_PARTS`). Each coarse leaf
+///   carries a certified bound `h` on how far its hull reaches outside the
+///   part it stands for, and distance results bracket the true distance of
+///   the original meshes: [distance, distance + h_a + h_b].
+///
+/// Inner nodes hold the convex hull of their subtree (a `px_convex`, tracked
+/// by Lin-Canny with a per-node-pair cache) and a bounding sphere. In
+/// triangle trees, nodes of fewer than PX_MODEL_HULL_MIN_LEAVES triangles
+/// keep only the sphere: a hull costs ~450 bytes per vertex, which a
+/// triangle must not pay (docs/model.md).
+///
+/// Solids and surfaces: a part that is closed (px_mesh_part.closed) bounds a
+/// solid, and a convex piece is a solid. Collision and tolerance queries
+/// treat solids as filled: a model wholly inside another's solid
+/// intersects it. An open part is a surface: only its triangles count.
+/// Distances are always between the pieces themselves (surfaces for
+/// triangle leaves): two disjoint triangle surfaces have a positive distance
+/// even when one lies inside the other's solid, and the collision query is
+/// the one that says they intersect.
+///
+/// Models are immutable after creation and safe to share across threads.
+/// Queries never allocate except through a caller-owned `px_model_cache`.
+#ifndef PROXIMA_MODEL_H
+#define PROXIMA_MODEL_H
+
+#include "proxima/base.h"
+#include "proxima/convex.h"
+#include "proxima/math.h"
+#include "proxima/mesh.h"
+#include "proxima/query.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct px_model px_model;
+
+/// In triangle trees, inner nodes with at least this many triangles below
+/// them hold a convex hull; smaller ones only a bounding sphere.
+#define PX_MODEL_HULL_MIN_LEAVES 32u
+
+/// How a mesh becomes leaves.
+typedef enum px_pieces {
+    /// One convex hull per part of the mesh (coarse leaves with a bound h).
+    PX_PIECES_PARTS = 0,
+    /// One leaf per triangle (exact leaves, h = 0).
+    PX_PIECES_TRIANGLES = 1,
+    /// Pieces given as point sets (px_model_create_from_points), h = 0.
+    PX_PIECES_POINTS = 2
+} px_pieces;
+
+/// Options of model creation; zero-initialise, zero means default.
+typedef struct px_model_options {
+    /// Allocator for everything the model owns (NULL: malloc/free).
+    const px_allocator *allocator;
+    /// px_model_create_from_mesh: a px_pieces value (PARTS or TRIANGLES).
+    uint32_t pieces;
+    uint32_t reserved[5]; ///< must be zero
+} px_model_options;
+
+/// A model from convex pieces given as point sets, the seed's "union of
+/// convex polyhedra": piece i is the convex hull of points
+/// [piece_end[i-1], piece_end[i]) of `xyz` (3 doubles each; piece_end[-1]
+/// is 0). Errors as `px_convex_create` for each piece (the message names the
+/// piece), PX_ERR_INVALID_ARGUMENT for NULL arrays, zero pieces or ends
+/// that decrease.
+PX_API px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_end, uint32_t piece_count,
+                                             const px_model_options *options, px_error *err);
+
+/// A model from a mesh, with leaves as `options->pieces` says. Parts without
+/// triangles become point-set pieces (h = 0). The mesh may be destroyed
+/// afterwards. PX_ERR_DEGENERATE names a part whose hull cannot be built;
+/// PX_ERR_INVALID_ARGUMENT for a mesh without triangles with
+/// PX_PIECES_TRIANGLES.
+PX_API px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options *options, px_error *err);
+
+/// Frees the model with its allocator; NULL is a no-op.
+PX_API void px_model_destroy(px_model *model);
+
+/// Facts about a model.
+typedef struct px_model_info {
+    uint32_t pieces;      ///< px_pieces
+    uint32_t leaves;      ///< leaf count
+    uint32_t nodes;       ///< node count, leaves included (2 * leaves - 1)
+    uint32_t hull_nodes;  ///< inner nodes holding a hull
+    uint32_t depth;       ///< longest root-to-leaf path, in edges
+    uint32_t solid;       ///< 1 when every leaf stands for a solid (closed parts, convex pieces)
+    uint32_t solid_parts; ///< closed parts (triangle trees) whose inside counts in collisions
+    uint32_t reserved;
+    double max_h;         ///< largest leaf bound h (0 for exact leaves)
+    px_vec3 min, max;     ///< axis-aligned box of the model (body frame)
+    size_t memory_bytes;  ///< everything the model owns
+} px_model_info;
+
+PX_API px_status px_model_get_info(const px_model *model, px_model_info *out);
+
+/// Leaf `i`: the part it came from (the piece index for point sets), its
+/// bounds, and for triangle leaves the triangle's index in the mesh.
+/// For a part hull, `h` bounds the distance from any point of the hull's
+/// boundary to the part's triangles, and `h_overlap` from any point of the
+/// hull, inside included (used when two pieces overlap). Both are
+/// certified: the largest distance found at the centres of a grid of cells
+/// covering the hull, plus each cell's half-diagonal (the distance to a set
+/// is 1-Lipschitz), refined where it matters. 0 for exact leaves and for
+/// parts without triangles (a point set stands for its hull).
+typedef struct px_model_leaf {
+    uint32_t part;
+    uint32_t triangle; ///< UINT32_MAX for convex leaves
+    double h;
+    double h_overlap;
+} px_model_leaf;
+
+PX_API px_status px_model_get_leaf(const px_model *model, uint32_t i, px_model_leaf *out);
+
+/// Caller-owned coherence cache for one pair of models (A, B), in that
+/// order. Zero-initialise it: zero means cold. It keeps the last best leaf
+/// pair and one small Lin-Canny cache per node pair a query visited, created
+/// on first use through `allocator` (NULL: malloc) up to `max_bytes` (0:
+/// 1 MiB); when full, further node pairs run cold (counted in `cold_runs`).
+/// Release it with px_model_cache_release. A cache used with another pair
+/// of models is reset (detected by the models' identities).
+typedef struct px_model_cache {
+    const px_allocator *allocator;
+    size_t max_bytes;
+    /// Read-only statistics.
+    size_t memory_bytes;
+    uint64_t cold_runs;
+    /// Private.
+    void *impl;
+} px_model_cache;
+
+/// Frees what the cache holds and zeroes its private state (the allocator
+/// and max_bytes are kept). NULL is a no-op.
+PX_API void px_model_cache_release(px_model_cache *cache);
+
+/// Result of px_model_distance.
+typedef struct px_model_distance_result {
+    /// Exact minimum distance over leaf pairs (pieces as solids for convex
+    /// leaves, triangles for triangle leaves); 0 when two pieces touch.
+    double distance;
+    /// distance + h_a + h_b of the leaves realising it (h_overlap when the
+    /// distance is 0): with coarse leaves, the distance of the original
+    /// meshes' triangles lies in [distance, upper_bound]. Equal to distance
+    /// for exact leaves.
+    double upper_bound;
+    /// Closest points in the world frame.
+    px_vec3 point_a, point_b;
+    /// The leaves realising the distance, and their features (`piece` holds
+    /// the leaf index; for triangle leaves, vertex k / edge k (vertices k,
+    /// k+1) / face 0 of the triangle).
+    uint32_t leaf_a, leaf_b;
+    px_feature feature_a, feature_b;
+    /// Node pairs bounded and leaf pairs measured by this query.
+    uint32_t node_pairs, leaf_pairs;
+    px_diagnostics diag;
+} px_model_distance_result;
+
+/// Distance between model A at pose_a and model B at pose_b: best-first
+/// descent with hull distances as lower bounds (seed 000 ch. 4), started
+/// from the cache's previous best pair. `cache` may be NULL (cold).
+/// PX_ERR_INVALID_ARGUMENT for NULL models, poses or result; a bad pose as
+/// px_pose_check.
+PX_API px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_model *b,
+                                   const px_pose *pose_b, px_model_cache *cache,
+                                   px_model_distance_result *out);
+
+/// Result of px_model_collide and px_model_within.
+typedef struct px_model_collide_result {
+    /// 1 when the models intersect (collide) or are closer than the
+    /// tolerance (within); 0 otherwise.
+    int hit;
+    /// 1 when the hit is a containment: a piece of one model lies inside a
+    /// solid of the other without touching its surface.
+    int contained;
+    /// A leaf pair that proves the hit (UINT32_MAX for containment or none).
+    uint32_t leaf_a, leaf_b;
+    uint32_t node_pairs, leaf_pairs;
+    px_diagnostics diag;
+} px_model_collide_result;
+
+/// Boolean collision with early exit, solids counted as filled.
+PX_API px_status px_model_collide(const px_model *a, const px_pose *pose_a, const px_model *b,
+                                  const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out);
+
+/// Tolerance verification: are the models closer than `tolerance` (>= 0,
+/// finite)? Prunes every node pair farther than it; solids as in collide.
+PX_API px_status px_model_within(const px_model *a, const px_pose *pose_a, const px_model *b,
+                                 const px_pose *pose_b, double tolerance, px_model_cache *cache,
+                                 px_model_collide_result *out);
+
+/// Model A against one convex polytope B: the same queries, B seen as a
+/// model of one leaf (leaf_b is 0).
+PX_API px_status px_model_distance_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
+                                          const px_pose *pose_b, px_model_cache *cache,
+                                          px_model_distance_result *out);
+PX_API px_status px_model_collide_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
+                                         const px_pose *pose_b, px_model_cache *cache,
+                                         px_model_collide_result *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PROXIMA_MODEL_H */

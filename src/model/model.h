@@ -1,0 +1,82 @@
+/* Sub-part hierarchy trees (internal). See include/proxima/model.h. */
+#ifndef PXI_MODEL_H
+#define PXI_MODEL_H
+
+#include <stdint.h>
+
+#include "math/vec3.h"
+#include "proxima/model.h"
+
+#define PXI_NONE UINT32_MAX
+
+/* A tree node. Leaves have child[0] = leaf index and child[1] = PXI_NONE.
+ * `hull` is the node's convex hull (for convex leaves: the piece itself), or
+ * NULL where only the sphere bounds the subtree (triangle leaves, small
+ * triangle subtrees, flat subtrees whose hull has no volume). */
+typedef struct pxi_mnode {
+    px_vec3 center; /* bounding sphere, body frame */
+    double radius;
+    uint32_t child[2];
+    uint32_t leaf_count;
+    uint32_t depth;
+    px_convex *hull;
+} pxi_mnode;
+
+typedef struct pxi_mleaf {
+    uint32_t part;
+    uint32_t tri; /* triangle index into the model's copy, or PXI_NONE */
+    double h, h_overlap;
+} pxi_mleaf;
+
+struct px_model {
+    uint32_t pieces; /* px_pieces */
+    uint32_t n_nodes, n_leaves, n_hulls, depth;
+    pxi_mnode *nodes; /* root is node 0 */
+    pxi_mleaf *leaves;
+    /* Triangle trees: the vertices and triangles (indices into v). */
+    px_vec3 *v;
+    uint32_t nv;
+    uint32_t *tri; /* 3 per triangle */
+    uint32_t nt;
+    /* Solids for containment: one flag per triangle (1 when it belongs to a
+     * closed part), and a representative vertex per connected piece of the
+     * model (every piece of the model is tested for lying inside the other
+     * model's solids). */
+    uint8_t *tri_solid;
+    uint32_t solid_parts;
+    px_vec3 *reps;
+    uint32_t n_reps;
+    double max_h;
+    px_vec3 lo, hi;
+    size_t bytes;
+    px_allocator alloc;
+};
+
+/* Builds a triangle tree (internal entry for the tests and
+ * px_model_create_from_mesh): nv vertices, nt triangles, part[t] the part
+ * of triangle t, closed[p] whether part p bounds a solid. */
+px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_t *tri, uint32_t nt,
+                                   const uint32_t *part, const uint8_t *closed, uint32_t n_parts,
+                                   const px_allocator *alloc, px_error *err);
+
+/* Triangle geometry (tri.c). Closest point of triangle (a, b, c) to p,
+ * with the feature realising it (vertex k, edge k from vertex k to k+1, or
+ * face 0). Zero-area triangles are treated as their edges. */
+px_vec3 pxi_tri_closest(px_vec3 p, const px_vec3 t[3], px_feature *feature);
+
+/* Distance between triangles s and t with closest points and features;
+ * 0 with a common point when they intersect. */
+double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 *pt, px_feature *fs,
+                   px_feature *ft);
+
+/* 1 when the segment [p, q] crosses the triangle (proper crossing of the
+ * plane inside the triangle); coplanar contact is left to the distances. */
+int pxi_segment_crosses_tri(px_vec3 p, px_vec3 q, const px_vec3 t[3]);
+
+/* Ray parity: 1 when p lies inside the solid bounded by the model's closed
+ * parts, 0 outside, found by casting rays and counting crossings with the
+ * closed triangles; a ray that grazes an edge or vertex is cast again in
+ * another direction. */
+int pxi_model_point_inside(const px_model *m, px_vec3 p);
+
+#endif

@@ -1,0 +1,592 @@
+/* Model queries: distance, collision and tolerance verification between
+ * sub-part hierarchy trees (M. Lin, Berkeley 1993, ch. 4). A depth-first
+ * branch and bound over node pairs: each pair is bounded below by its
+ * spheres, then by the exact distance of its hulls (Lin-Canny, tracked with
+ * a per-node-pair cache), and pairs whose bound is not below the best leaf
+ * distance found are pruned. Children are visited nearest first, so the
+ * order is best-first along every path, and the previous query's best leaf
+ * pair seeds the bound (temporal coherence). */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "convex/convex.h"
+#include "core/core.h"
+#include "model/model.h"
+
+/* ---- The cache ---------------------------------------------------------- */
+
+typedef struct mc_entry {
+    uint32_t a, b; /* node ids; a == PXI_NONE: empty */
+    px_pair_cache pc;
+} mc_entry;
+
+typedef struct mc_impl {
+    const void *ida, *idb; /* the models (or convex polytope) the cache serves */
+    uint32_t na, nb;       /* their node counts, part of the identity */
+    uint32_t best_a, best_b;
+    uint32_t cap, count;
+    mc_entry *table;
+    px_allocator alloc;
+    size_t bytes;
+} mc_impl;
+
+#define MC_DEFAULT_MAX_BYTES ((size_t)1 << 20)
+
+void px_model_cache_release(px_model_cache *cache) {
+    if (!cache) return;
+    mc_impl *mc = cache->impl;
+    if (mc) {
+        px_allocator a = mc->alloc;
+        pxi_free(&a, mc->table, (size_t)mc->cap * sizeof *mc->table);
+        pxi_free(&a, mc, sizeof *mc);
+    }
+    cache->impl = NULL;
+    cache->memory_bytes = 0;
+}
+
+static size_t cache_limit(const px_model_cache *cache) {
+    return cache->max_bytes ? cache->max_bytes : MC_DEFAULT_MAX_BYTES;
+}
+
+/* The cache's state for models (a, b), created or reset as needed; NULL
+ * when there is no cache or no memory for it (the query runs cold). */
+static mc_impl *cache_open(px_model_cache *cache, const px_model *a, const px_model *b, const void *ida,
+                           const void *idb) {
+    if (!cache) return NULL;
+    mc_impl *mc = cache->impl;
+    if (mc && (mc->ida != ida || mc->idb != idb || mc->na != a->n_nodes || mc->nb != b->n_nodes)) {
+        px_model_cache_release(cache);
+        mc = NULL;
+    }
+    if (!mc) {
+        px_allocator alloc;
+        if (pxi_allocator_resolve(cache->allocator, &alloc, NULL) != PX_OK) return NULL;
+        if (sizeof *mc > cache_limit(cache)) return NULL;
+        mc = pxi_alloc(&alloc, sizeof *mc);
+        if (!mc) return NULL;
+        memset(mc, 0, sizeof *mc);
+        mc->alloc = alloc;
+        mc->ida = ida;
+        mc->idb = idb;
+        mc->na = a->n_nodes;
+        mc->nb = b->n_nodes;
+        mc->best_a = mc->best_b = PXI_NONE;
+        mc->bytes = sizeof *mc;
+        cache->impl = mc;
+        cache->memory_bytes = mc->bytes;
+    }
+    return mc;
+}
+
+static uint32_t mc_hash(uint32_t a, uint32_t b, uint32_t cap) {
+    uint64_t h = ((uint64_t)a * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)b * 0xC2B2AE3D27D4EB4Full);
+    return (uint32_t)(h >> 32) & (cap - 1);
+}
+
+static int mc_grow(px_model_cache *cache, mc_impl *mc) {
+    uint32_t cap = mc->cap ? 2 * mc->cap : 64;
+    size_t bytes = mc->bytes - (size_t)mc->cap * sizeof *mc->table + (size_t)cap * sizeof *mc->table;
+    if (bytes > cache_limit(cache) || cap > (1u << 30)) return 0;
+    mc_entry *t = pxi_alloc_array(&mc->alloc, cap, sizeof *t);
+    if (!t) return 0;
+    for (uint32_t i = 0; i < cap; ++i) t[i].a = PXI_NONE;
+    for (uint32_t i = 0; i < mc->cap; ++i) {
+        if (mc->table[i].a == PXI_NONE) continue;
+        uint32_t h = mc_hash(mc->table[i].a, mc->table[i].b, cap);
+        while (t[h].a != PXI_NONE) h = (h + 1) & (cap - 1);
+        t[h] = mc->table[i];
+    }
+    pxi_free(&mc->alloc, mc->table, (size_t)mc->cap * sizeof *mc->table);
+    mc->table = t;
+    mc->cap = cap;
+    mc->bytes = bytes;
+    cache->memory_bytes = bytes;
+    return 1;
+}
+
+/* The pair cache of node pair (a, b), created zeroed on first use; NULL
+ * when the cache is full or absent (the caller runs cold). */
+static px_pair_cache *mc_pair(px_model_cache *cache, mc_impl *mc, uint32_t a, uint32_t b) {
+    if (!mc) return NULL;
+    if (mc->cap) {
+        uint32_t h = mc_hash(a, b, mc->cap);
+        while (mc->table[h].a != PXI_NONE) {
+            if (mc->table[h].a == a && mc->table[h].b == b) return &mc->table[h].pc;
+            h = (h + 1) & (mc->cap - 1);
+        }
+    }
+    if ((mc->count + 1) * 2 > mc->cap && !mc_grow(cache, mc)) {
+        cache->cold_runs++;
+        return NULL;
+    }
+    uint32_t h = mc_hash(a, b, mc->cap);
+    while (mc->table[h].a != PXI_NONE) h = (h + 1) & (mc->cap - 1);
+    mc->table[h].a = a;
+    mc->table[h].b = b;
+    memset(&mc->table[h].pc, 0, sizeof mc->table[h].pc);
+    mc->count++;
+    return &mc->table[h].pc;
+}
+
+/* ---- The descent -------------------------------------------------------- */
+
+enum { Q_DISTANCE, Q_COLLIDE, Q_WITHIN };
+
+typedef struct qctx {
+    const px_model *a, *b;
+    const px_pose *pa, *pb;
+    px_pose t_ab; /* B's frame to A's frame */
+    px_model_cache *cache;
+    mc_impl *mc;
+    int kind;
+    double tol;  /* Q_WITHIN */
+    double ub;   /* best leaf distance so far (Q_DISTANCE) */
+    int hit;     /* Q_COLLIDE / Q_WITHIN */
+    uint32_t leaf_a, leaf_b, node_a, node_b;
+    px_vec3 pt_a, pt_b; /* world */
+    px_feature fa, fb;
+    uint32_t node_pairs, leaf_pairs;
+    px_diagnostics diag;
+    px_status status;
+} qctx;
+
+typedef struct qpair {
+    uint32_t a, b;
+    double lb;
+} qpair;
+
+static int is_leaf(const pxi_mnode *n) { return n->child[1] == PXI_NONE; }
+
+static double sphere_bound(const qctx *q, const pxi_mnode *na, const pxi_mnode *nb) {
+    px_vec3 cb = pxi_xform(&q->t_ab, nb->center);
+    return pxi_len(pxi_sub(cb, na->center)) - na->radius - nb->radius;
+}
+
+/* Contact band of a pair of nodes (the convex query's formula, with the
+ * nodes' spheres). */
+static double node_band(const qctx *q, const pxi_mnode *na, const pxi_mnode *nb) {
+    px_vec3 cb = pxi_xform(&q->t_ab, nb->center);
+    return 64.0 * DBL_EPSILON * (na->radius + nb->radius + pxi_len(pxi_sub(cb, na->center)));
+}
+
+static void add_diag(qctx *q, const px_diagnostics *d) {
+    q->diag.iterations += d->iterations;
+    q->diag.fallbacks += d->fallbacks;
+    q->diag.quality |= d->quality;
+}
+
+/* Exact distance between two hulls (convex leaves or inner nodes). */
+static int hull_distance(qctx *q, uint32_t ia, uint32_t ib, px_distance_result *r) {
+    px_pair_cache *pc = mc_pair(q->cache, q->mc, ia, ib);
+    px_status st = px_distance(q->a->nodes[ia].hull, q->pa, q->b->nodes[ib].hull, q->pb, NULL, pc, r);
+    if (st != PX_OK) {
+        q->status = st;
+        return 0;
+    }
+    add_diag(q, &r->diag);
+    return 1;
+}
+
+static void tri_of(const px_model *m, uint32_t leaf, px_vec3 out[3]) {
+    const uint32_t *t = m->tri + 3 * (size_t)m->leaves[leaf].tri;
+    for (int k = 0; k < 3; ++k) out[k] = m->v[t[k]];
+}
+
+static void record(qctx *q, double d, uint32_t ia, uint32_t ib, px_vec3 pa, px_vec3 pb, px_feature fa,
+                   px_feature fb) {
+    uint32_t la = q->a->nodes[ia].child[0], lb = q->b->nodes[ib].child[0];
+    q->ub = d;
+    q->node_a = ia;
+    q->node_b = ib;
+    q->leaf_a = la;
+    q->leaf_b = lb;
+    q->pt_a = pa;
+    q->pt_b = pb;
+    fa.piece = la;
+    fb.piece = lb;
+    q->fa = fa;
+    q->fb = fb;
+}
+
+/* Measures a leaf pair; for Q_DISTANCE updates the best, for the boolean
+ * queries sets hit. */
+static void leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
+    const pxi_mnode *na = &q->a->nodes[ia], *nb = &q->b->nodes[ib];
+    uint32_t la = na->child[0], lb = nb->child[0];
+    q->leaf_pairs++;
+    double d;
+    px_vec3 pa, pb;
+    px_feature fa, fb;
+    if (na->hull && nb->hull) {
+        px_distance_result r;
+        if (!hull_distance(q, ia, ib, &r)) return;
+        d = r.distance;
+        pa = r.point_a;
+        pb = r.point_b;
+        fa = r.feature_a;
+        fb = r.feature_b;
+        if (r.intersecting) d = 0.0;
+    } else if (!na->hull && !nb->hull) {
+        px_vec3 s[3], t[3];
+        tri_of(q->a, la, s);
+        tri_of(q->b, lb, t);
+        for (int k = 0; k < 3; ++k) t[k] = pxi_xform(&q->t_ab, t[k]);
+        d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
+        pa = pxi_xform(q->pa, pa);
+        pb = pxi_xform(q->pa, pb);
+    } else {
+        /* A triangle against a convex piece needs lower-dimensional convex
+         * pieces (issue 9 section 1), not built yet. */
+        q->status = PX_ERR_DEGENERATE;
+        return;
+    }
+    if (q->kind == Q_DISTANCE) {
+        if (d < q->ub) record(q, d, ia, ib, pa, pb, fa, fb);
+        return;
+    }
+    double limit = q->kind == Q_COLLIDE ? node_band(q, na, nb) : q->tol;
+    if (d <= limit) {
+        q->hit = 1;
+        record(q, d, ia, ib, pa, pb, fa, fb);
+    }
+}
+
+/* Lower bound of node pair (ia, ib) for pruning against `limit`: the
+ * sphere bound, then the hull distance when both nodes have hulls. */
+static double pair_bound(qctx *q, uint32_t ia, uint32_t ib, double limit) {
+    const pxi_mnode *na = &q->a->nodes[ia], *nb = &q->b->nodes[ib];
+    q->node_pairs++;
+    double lb = sphere_bound(q, na, nb);
+    if (lb > limit || !na->hull || !nb->hull) return lb;
+    px_distance_result r;
+    if (!hull_distance(q, ia, ib, &r)) return INFINITY;
+    return r.intersecting ? 0.0 : fmax(lb, r.distance);
+}
+
+static double current_limit(const qctx *q) { return q->kind == Q_DISTANCE ? q->ub : q->tol; }
+
+static int done(const qctx *q) {
+    return q->status != PX_OK || (q->kind == Q_DISTANCE ? q->ub == 0.0 : q->hit);
+}
+
+/* Pruning: Q_DISTANCE keeps pairs whose bound is below the best; the
+ * boolean queries pairs whose bound is at most the tolerance (plus the
+ * contact band for collisions, so that touching pairs are not pruned). */
+static int keep(const qctx *q, double lb, uint32_t ia, uint32_t ib) {
+    if (q->kind == Q_DISTANCE) return lb < q->ub;
+    double band = node_band(q, &q->a->nodes[ia], &q->b->nodes[ib]);
+    return lb <= current_limit(q) + band;
+}
+
+static void descend(qctx *q) {
+    qpair stack[512];
+    uint32_t top = 0;
+    const px_model *a = q->a, *b = q->b;
+    if (is_leaf(&a->nodes[0]) && is_leaf(&b->nodes[0])) {
+        leaf_pair(q, 0, 0);
+        return;
+    }
+    double lb0 = pair_bound(q, 0, 0, current_limit(q));
+    if (!keep(q, lb0, 0, 0)) return;
+    stack[top++] = (qpair){0, 0, lb0};
+    while (top > 0 && !done(q)) {
+        qpair e = stack[--top];
+        if (!keep(q, e.lb, e.a, e.b)) continue;
+        const pxi_mnode *na = &a->nodes[e.a], *nb = &b->nodes[e.b];
+        int split_a = !is_leaf(na) && (is_leaf(nb) || na->radius >= nb->radius);
+        qpair kids[2];
+        uint32_t nk = 0;
+        for (int k = 0; k < 2 && !done(q); ++k) {
+            uint32_t ca = split_a ? na->child[k] : e.a, cb = split_a ? e.b : nb->child[k];
+            if (is_leaf(&a->nodes[ca]) && is_leaf(&b->nodes[cb])) {
+                double lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
+                if (keep(q, lb, ca, cb)) leaf_pair(q, ca, cb);
+                continue;
+            }
+            double lb = pair_bound(q, ca, cb, current_limit(q));
+            if (keep(q, lb, ca, cb)) kids[nk++] = (qpair){ca, cb, lb};
+        }
+        if (nk == 2 && kids[0].lb < kids[1].lb) {
+            qpair t = kids[0];
+            kids[0] = kids[1];
+            kids[1] = t;
+        }
+        for (uint32_t k = 0; k < nk; ++k) {
+            if (top == sizeof stack / sizeof stack[0]) {
+                q->status = PX_ERR_INTERNAL;
+                return;
+            }
+            stack[top++] = kids[k];
+        }
+    }
+}
+
+/* ---- Containment -------------------------------------------------------- */
+
+/* Directions for the ray casts: fixed, irrational-looking, not along axes,
+ * so that rays rarely graze the edges of axis-aligned CAD geometry. */
+static const double ray_dirs[8][3] = {
+    {0.5773502691896258, 0.5773502691896257, 0.5773502691896259},
+    {-0.3162277660168379, 0.8944271909999159, 0.3162277660168380},
+    {0.8017837257372732, -0.2672612419124244, 0.5345224838248488},
+    {-0.6666666666666666, -0.3333333333333333, 0.6666666666666667},
+    {0.2182178902359924, 0.4364357804719848, -0.8728715609439696},
+    {-0.5345224838248488, 0.8017837257372732, -0.2672612419124244},
+    {0.9128709291752769, 0.3651483716701107, -0.1825741858350554},
+    {-0.1690308509457033, -0.5070925528371099, -0.8451542547285166},
+};
+
+typedef struct ray_state {
+    px_vec3 o, d;
+    int winding;
+    int grazed;
+} ray_state;
+
+/* Moller-Trumbore with a margin: a hit too close to an edge or vertex of
+ * the triangle, or a ray nearly in its plane, marks the ray as grazing. */
+static void ray_triangle(ray_state *r, const px_vec3 t[3]) {
+    px_vec3 e1 = pxi_sub(t[1], t[0]), e2 = pxi_sub(t[2], t[0]);
+    px_vec3 p = pxi_cross(r->d, e2);
+    double det = pxi_dot(e1, p);
+    double scale = pxi_len(e1) * pxi_len(e2);
+    if (!(scale > 0.0)) return; /* a zero-area triangle bounds nothing */
+    const double margin = 1e-9;
+    if (fabs(det) <= margin * scale) {
+        /* The ray runs (nearly) in the triangle's plane: grazing if it
+         * passes near it at all. */
+        px_vec3 n = pxi_cross(e1, e2);
+        double off = pxi_dot(n, pxi_sub(r->o, t[0]));
+        if (fabs(off) <= margin * scale * (1.0 + pxi_len(pxi_sub(r->o, t[0])))) r->grazed = 1;
+        return;
+    }
+    double inv = 1.0 / det;
+    px_vec3 s = pxi_sub(r->o, t[0]);
+    double u = pxi_dot(s, p) * inv;
+    px_vec3 qv = pxi_cross(s, e1);
+    double v = pxi_dot(r->d, qv) * inv;
+    double tt = pxi_dot(e2, qv) * inv;
+    double w = 1.0 - u - v;
+    if (u < -margin || v < -margin || w < -margin || tt < 0.0) return;
+    if (u < margin || v < margin || w < margin) {
+        r->grazed = 1;
+        return;
+    }
+    /* Exits through an outward face count +1, entries -1. */
+    r->winding += det > 0.0 ? 1 : -1;
+}
+
+static void ray_walk(const px_model *m, uint32_t id, ray_state *r) {
+    const pxi_mnode *n = &m->nodes[id];
+    px_vec3 oc = pxi_sub(n->center, r->o);
+    double along = pxi_dot(oc, r->d);
+    if (along < -n->radius) return;
+    if (pxi_len2(pxi_sub(oc, pxi_scale(r->d, along))) > n->radius * n->radius * (1.0 + 1e-12)) return;
+    if (is_leaf(n)) {
+        uint32_t leaf = n->child[0];
+        if (m->leaves[leaf].tri == PXI_NONE || !m->tri_solid[m->leaves[leaf].tri]) return;
+        px_vec3 t[3];
+        tri_of(m, leaf, t);
+        ray_triangle(r, t);
+        return;
+    }
+    ray_walk(m, n->child[0], r);
+    if (!r->grazed) ray_walk(m, n->child[1], r);
+}
+
+int pxi_model_point_inside(const px_model *m, px_vec3 p) {
+    if (m->pieces != PX_PIECES_TRIANGLES || m->solid_parts == 0) return 0;
+    if (p.x < m->lo.x || p.y < m->lo.y || p.z < m->lo.z || p.x > m->hi.x || p.y > m->hi.y || p.z > m->hi.z)
+        return 0;
+    ray_state r;
+    for (int k = 0; k < 8; ++k) {
+        r.o = p;
+        r.d = pxi_v(ray_dirs[k][0], ray_dirs[k][1], ray_dirs[k][2]);
+        r.winding = 0;
+        r.grazed = 0;
+        ray_walk(m, 0, &r);
+        if (!r.grazed) return r.winding != 0;
+    }
+    /* Every ray grazed an edge: the point is within rounding of the
+     * surface, where the surface queries already decide. */
+    return r.winding != 0;
+}
+
+/* A piece of `in` lying inside a solid of `out` (poses: world). */
+static int contained(const qctx *q, const px_model *in, const px_pose *pose_in, const px_model *out,
+                     const px_pose *pose_out) {
+    if (out->pieces != PX_PIECES_TRIANGLES || out->solid_parts == 0) return 0;
+    for (uint32_t i = 0; i < in->n_reps; ++i) {
+        px_vec3 w = pxi_xform(pose_in, in->reps[i]);
+        if (pxi_model_point_inside(out, pxi_xform_inv(pose_out, w))) return 1;
+    }
+    (void)q;
+    return 0;
+}
+
+/* ---- Entry points ------------------------------------------------------- */
+
+static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_model *b, const px_pose *pb,
+                       px_model_cache *cache, int kind, const void *idb) {
+    memset(q, 0, sizeof *q);
+    if (!a || !b || !pa || !pb) return PX_ERR_INVALID_ARGUMENT;
+    px_status st = px_pose_check(pa, NULL);
+    if (st == PX_OK) st = px_pose_check(pb, NULL);
+    if (st != PX_OK) return st;
+    q->a = a;
+    q->b = b;
+    q->pa = pa;
+    q->pb = pb;
+    q->t_ab = pxi_relative(pb, pa);
+    if (!pxi_is_finite3(q->t_ab.t)) return PX_ERR_NON_FINITE;
+    q->cache = cache;
+    q->mc = cache_open(cache, a, b, a, idb ? idb : b);
+    q->kind = kind;
+    q->ub = INFINITY;
+    q->leaf_a = q->leaf_b = PXI_NONE;
+    q->status = PX_OK;
+    return PX_OK;
+}
+
+static px_status run_distance(qctx *q, px_model_distance_result *out) {
+    /* Seed from the previous best leaf pair. */
+    if (q->mc && q->mc->best_a < q->a->n_nodes && q->mc->best_b < q->b->n_nodes &&
+        is_leaf(&q->a->nodes[q->mc->best_a]) && is_leaf(&q->b->nodes[q->mc->best_b])) {
+        leaf_pair(q, q->mc->best_a, q->mc->best_b);
+    }
+    if (q->status == PX_OK && q->ub > 0.0) descend(q);
+    if (q->status != PX_OK) return q->status;
+    if (q->leaf_a == PXI_NONE) return PX_ERR_INTERNAL;
+    /* The best pair's node ids, for the next query's seed. */
+    if (q->mc) {
+        q->mc->best_a = q->node_a;
+        q->mc->best_b = q->node_b;
+    }
+    out->distance = q->ub;
+    const pxi_mleaf *la = &q->a->leaves[q->leaf_a], *lb = &q->b->leaves[q->leaf_b];
+    out->upper_bound = q->ub + (q->ub > 0.0 ? la->h + lb->h : la->h_overlap + lb->h_overlap);
+    out->point_a = q->pt_a;
+    out->point_b = q->pt_b;
+    out->leaf_a = q->leaf_a;
+    out->leaf_b = q->leaf_b;
+    out->feature_a = q->fa;
+    out->feature_b = q->fb;
+    out->node_pairs = q->node_pairs;
+    out->leaf_pairs = q->leaf_pairs;
+    out->diag = q->diag;
+    return PX_OK;
+}
+
+static px_status run_boolean(qctx *q, px_model_collide_result *out) {
+    descend(q);
+    if (q->status != PX_OK) return q->status;
+    out->leaf_a = out->leaf_b = PXI_NONE;
+    if (q->hit) {
+        out->hit = 1;
+        out->leaf_a = q->leaf_a;
+        out->leaf_b = q->leaf_b;
+    } else if (contained(q, q->b, q->pb, q->a, q->pa) || contained(q, q->a, q->pa, q->b, q->pb)) {
+        out->hit = 1;
+        out->contained = 1;
+    }
+    out->node_pairs = q->node_pairs;
+    out->leaf_pairs = q->leaf_pairs;
+    out->diag = q->diag;
+    return PX_OK;
+}
+
+static px_status model_distance(const px_model *a, const px_pose *pose_a, const px_model *b,
+                                const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out,
+                                const void *ident) {
+    if (out) memset(out, 0, sizeof *out);
+    if (!out) return PX_ERR_INVALID_ARGUMENT;
+    qctx q;
+    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_DISTANCE, ident);
+    if (st == PX_OK) st = run_distance(&q, out);
+    if (st != PX_OK) memset(out, 0, sizeof *out);
+    return st;
+}
+
+static px_status model_collide(const px_model *a, const px_pose *pose_a, const px_model *b,
+                               const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out,
+                               const void *ident) {
+    if (out) memset(out, 0, sizeof *out);
+    if (!out) return PX_ERR_INVALID_ARGUMENT;
+    qctx q;
+    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_COLLIDE, ident);
+    if (st == PX_OK) st = run_boolean(&q, out);
+    if (st != PX_OK) memset(out, 0, sizeof *out);
+    return st;
+}
+
+px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
+                            px_model_cache *cache, px_model_distance_result *out) {
+    return model_distance(a, pose_a, b, pose_b, cache, out, NULL);
+}
+
+px_status px_model_collide(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
+                           px_model_cache *cache, px_model_collide_result *out) {
+    return model_collide(a, pose_a, b, pose_b, cache, out, NULL);
+}
+
+px_status px_model_within(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
+                          double tolerance, px_model_cache *cache, px_model_collide_result *out) {
+    if (out) memset(out, 0, sizeof *out);
+    if (!out) return PX_ERR_INVALID_ARGUMENT;
+    if (!isfinite(tolerance) || tolerance < 0.0) return PX_ERR_INVALID_ARGUMENT;
+    qctx q;
+    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_WITHIN, NULL);
+    q.tol = tolerance;
+    if (st == PX_OK) st = run_boolean(&q, out);
+    if (st != PX_OK) memset(out, 0, sizeof *out);
+    return st;
+}
+
+/* A convex polytope seen as a model of one leaf, without allocating. */
+typedef struct convex_view {
+    px_model m;
+    pxi_mnode node;
+    pxi_mleaf leaf;
+    px_vec3 rep;
+} convex_view;
+
+static px_status view_convex(convex_view *v, const px_convex *c) {
+    if (!c) return PX_ERR_INVALID_ARGUMENT;
+    memset(v, 0, sizeof *v);
+    px_bounds bd;
+    px_status st = px_convex_bounds(c, NULL, &bd);
+    if (st != PX_OK) return st;
+    v->node.center = bd.center;
+    v->node.radius = bd.radius * (1.0 + 4.0 * DBL_EPSILON);
+    v->node.child[0] = 0;
+    v->node.child[1] = PXI_NONE;
+    v->node.leaf_count = 1;
+    v->node.hull = (px_convex *)c;
+    v->leaf.tri = PXI_NONE;
+    px_convex_vertex(c, 0, &v->rep);
+    v->m.pieces = PX_PIECES_POINTS;
+    v->m.n_nodes = v->m.n_leaves = 1;
+    v->m.nodes = &v->node;
+    v->m.leaves = &v->leaf;
+    v->m.reps = &v->rep;
+    v->m.n_reps = 1;
+    v->m.lo = bd.min;
+    v->m.hi = bd.max;
+    return PX_OK;
+}
+
+px_status px_model_distance_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
+                                   const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out) {
+    if (out) memset(out, 0, sizeof *out);
+    convex_view v;
+    if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;
+    return model_distance(a, pose_a, &v.m, pose_b, cache, out, b);
+}
+
+px_status px_model_collide_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
+                                  const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out) {
+    if (out) memset(out, 0, sizeof *out);
+    convex_view v;
+    if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;
+    return model_collide(a, pose_a, &v.m, pose_b, cache, out, b);
+}

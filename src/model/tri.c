@@ -1,0 +1,168 @@
+/* Triangle geometry for exact triangle leaves: closest points between
+ * triangles and the crossing test that detects intersecting ones.
+ * Closest point on a triangle: the Voronoi-region walk of C. Ericson,
+ * "Real-Time Collision Detection" (2005), section 5.1.5. Triangle-triangle
+ * distance: the minimum over the 6 vertex-triangle and 9 edge-edge pairs,
+ * which is exact for disjoint triangles (the closest pair of two disjoint
+ * convex polygons involves a vertex or two edges, ibid. 5.1.9), and 0 when
+ * an edge of one crosses the other. */
+#include <math.h>
+
+#include "model/model.h"
+#include "narrow/closest.h"
+
+static px_feature tri_feature(uint32_t type, uint32_t index) {
+    px_feature f = {type, index, 0};
+    return f;
+}
+
+/* Closest point on segment [a, b] to p, as a parameter in [0, 1]. */
+static double segment_param(px_vec3 p, px_vec3 a, px_vec3 b) {
+    px_vec3 ab = pxi_sub(b, a);
+    double l2 = pxi_len2(ab);
+    if (!(l2 > 0.0)) return 0.0;
+    return pxi_clamp01(pxi_dot(pxi_sub(p, a), ab) / l2);
+}
+
+static px_vec3 edge_point(px_vec3 a, px_vec3 b, double s, uint32_t k, px_feature *f) {
+    if (s <= 0.0) {
+        *f = tri_feature(PX_FEATURE_VERTEX, k);
+        return a;
+    }
+    if (s >= 1.0) {
+        *f = tri_feature(PX_FEATURE_VERTEX, (k + 1) % 3);
+        return b;
+    }
+    *f = tri_feature(PX_FEATURE_EDGE, k);
+    return pxi_madd(a, pxi_sub(b, a), s);
+}
+
+/* Zero-area (or NaN-area) triangles: the closest point of its three edges. */
+static px_vec3 closest_on_edges(px_vec3 p, const px_vec3 t[3], px_feature *feature) {
+    px_vec3 best = t[0];
+    double best_d2 = INFINITY;
+    for (uint32_t k = 0; k < 3; ++k) {
+        px_feature f;
+        px_vec3 q = edge_point(t[k], t[(k + 1) % 3], segment_param(p, t[k], t[(k + 1) % 3]), k, &f);
+        double d2 = pxi_len2(pxi_sub(p, q));
+        if (d2 < best_d2) {
+            best_d2 = d2;
+            best = q;
+            *feature = f;
+        }
+    }
+    return best;
+}
+
+px_vec3 pxi_tri_closest(px_vec3 p, const px_vec3 t[3], px_feature *feature) {
+    px_vec3 a = t[0], b = t[1], c = t[2];
+    px_vec3 ab = pxi_sub(b, a), ac = pxi_sub(c, a), ap = pxi_sub(p, a);
+    px_vec3 n = pxi_cross(ab, ac);
+    double n2 = pxi_len2(n);
+    /* A triangle whose area is lost to rounding against its edges has no
+     * reliable interior region. */
+    if (!(n2 > 1e-24 * pxi_len2(ab) * pxi_len2(ac))) return closest_on_edges(p, t, feature);
+    double d1 = pxi_dot(ab, ap), d2 = pxi_dot(ac, ap);
+    if (d1 <= 0.0 && d2 <= 0.0) {
+        *feature = tri_feature(PX_FEATURE_VERTEX, 0);
+        return a;
+    }
+    px_vec3 bp = pxi_sub(p, b);
+    double d3 = pxi_dot(ab, bp), d4 = pxi_dot(ac, bp);
+    if (d3 >= 0.0 && d4 <= d3) {
+        *feature = tri_feature(PX_FEATURE_VERTEX, 1);
+        return b;
+    }
+    double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return edge_point(a, b, segment_param(p, a, b), 0, feature);
+    px_vec3 cp = pxi_sub(p, c);
+    double d5 = pxi_dot(ab, cp), d6 = pxi_dot(ac, cp);
+    if (d6 >= 0.0 && d5 <= d6) {
+        *feature = tri_feature(PX_FEATURE_VERTEX, 2);
+        return c;
+    }
+    double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return edge_point(c, a, segment_param(p, c, a), 2, feature);
+    double va = d3 * d6 - d5 * d4;
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return edge_point(b, c, segment_param(p, b, c), 1, feature);
+    /* Inside the face region: project onto the plane (more accurate than
+     * the barycentric combination far from the origin of the frame). */
+    *feature = tri_feature(PX_FEATURE_FACE, 0);
+    return pxi_sub(p, pxi_scale(n, pxi_dot(ap, n) / n2));
+}
+
+int pxi_segment_crosses_tri(px_vec3 p, px_vec3 q, const px_vec3 t[3]) {
+    px_vec3 n = pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]));
+    double dp = pxi_dot(n, pxi_sub(p, t[0])), dq = pxi_dot(n, pxi_sub(q, t[0]));
+    if ((dp > 0.0 && dq > 0.0) || (dp < 0.0 && dq < 0.0) || dp == dq) return 0;
+    px_vec3 x = pxi_madd(p, pxi_sub(q, p), dp / (dp - dq));
+    /* Inside when x is on the inner side of all three edges (seen along n). */
+    for (int k = 0; k < 3; ++k) {
+        px_vec3 e = pxi_sub(t[(k + 1) % 3], t[k]);
+        if (pxi_dot(pxi_cross(e, pxi_sub(x, t[k])), n) < 0.0) return 0;
+    }
+    return 1;
+}
+
+double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 *pt, px_feature *fs,
+                   px_feature *ft) {
+    /* An edge of one crossing the other: they intersect. */
+    for (int k = 0; k < 3; ++k) {
+        if (pxi_segment_crosses_tri(s[k], s[(k + 1) % 3], t)) {
+            px_vec3 n = pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]));
+            double dp = pxi_dot(n, pxi_sub(s[k], t[0])), dq = pxi_dot(n, pxi_sub(s[(k + 1) % 3], t[0]));
+            *ps = *pt = pxi_madd(s[k], pxi_sub(s[(k + 1) % 3], s[k]), dp / (dp - dq));
+            *fs = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
+            *ft = tri_feature(PX_FEATURE_FACE, 0);
+            return 0.0;
+        }
+        if (pxi_segment_crosses_tri(t[k], t[(k + 1) % 3], s)) {
+            px_vec3 n = pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]));
+            double dp = pxi_dot(n, pxi_sub(t[k], s[0])), dq = pxi_dot(n, pxi_sub(t[(k + 1) % 3], s[0]));
+            *ps = *pt = pxi_madd(t[k], pxi_sub(t[(k + 1) % 3], t[k]), dp / (dp - dq));
+            *fs = tri_feature(PX_FEATURE_FACE, 0);
+            *ft = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
+            return 0.0;
+        }
+    }
+    double best = INFINITY;
+    for (uint32_t k = 0; k < 3; ++k) {
+        px_feature f;
+        px_vec3 q = pxi_tri_closest(s[k], t, &f);
+        double d = pxi_len(pxi_sub(q, s[k]));
+        if (d < best) {
+            best = d;
+            *ps = s[k];
+            *pt = q;
+            *fs = tri_feature(PX_FEATURE_VERTEX, k);
+            *ft = f;
+        }
+        q = pxi_tri_closest(t[k], s, &f);
+        d = pxi_len(pxi_sub(q, t[k]));
+        if (d < best) {
+            best = d;
+            *ps = q;
+            *pt = t[k];
+            *fs = f;
+            *ft = tri_feature(PX_FEATURE_VERTEX, k);
+        }
+    }
+    for (uint32_t i = 0; i < 3; ++i) {
+        for (uint32_t j = 0; j < 3; ++j) {
+            double a, b;
+            pxi_segment_closest(s[i], s[(i + 1) % 3], t[j], t[(j + 1) % 3], &a, &b);
+            px_feature fa, fb;
+            px_vec3 p = edge_point(s[i], s[(i + 1) % 3], a, i, &fa);
+            px_vec3 q = edge_point(t[j], t[(j + 1) % 3], b, j, &fb);
+            double d = pxi_len(pxi_sub(q, p));
+            if (d < best) {
+                best = d;
+                *ps = p;
+                *pt = q;
+                *fs = fa;
+                *ft = fb;
+            }
+        }
+    }
+    return best;
+}

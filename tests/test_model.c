@@ -1,0 +1,557 @@
+/* px_model: sub-part hierarchy trees against independent oracles.
+ * - distance vs brute force over all leaf pairs (convex pieces: GJK on every
+ *   pair; triangles: the oracle's face-face distance), cold, warm along
+ *   coherent sequences, and with a cache too small to hold the pairs;
+ * - collide and within vs the same brute force, and containment of closed
+ *   and open models;
+ * - part hulls: the exact triangle distance of the same meshes lies in the
+ *   bracket [distance, upper_bound];
+ * - argument checks. */
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "oracle.h"
+#include "proxima/proxima.h"
+#include "px_gen.h"
+#include "test_util.h"
+
+/* ---- Shapes ------------------------------------------------------------- */
+
+/* A torus (major R, minor r) as a closed triangle mesh, n x m quads. */
+typedef struct tri_mesh {
+    double *xyz;
+    uint32_t nv;
+    uint32_t *tri;
+    uint32_t nt;
+} tri_mesh;
+
+static void torus(tri_mesh *t, double R, double r, int n, int m, px_vec3 at) {
+    t->nv = (uint32_t)(n * m);
+    t->nt = (uint32_t)(2 * n * m);
+    t->xyz = malloc(3 * sizeof(double) * t->nv);
+    t->tri = malloc(3 * sizeof(uint32_t) * t->nt);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
+            double *p = t->xyz + 3 * (i * m + j);
+            p[0] = at.x + (R + r * cos(v)) * cos(u);
+            p[1] = at.y + (R + r * cos(v)) * sin(u);
+            p[2] = at.z + r * sin(v);
+        }
+    uint32_t k = 0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < m; ++j) {
+            uint32_t a = (uint32_t)(i * m + j), b = (uint32_t)(((i + 1) % n) * m + j);
+            uint32_t c = (uint32_t)(((i + 1) % n) * m + (j + 1) % m), d = (uint32_t)(i * m + (j + 1) % m);
+            uint32_t *q = t->tri + 3 * k;
+            q[0] = a, q[1] = b, q[2] = c;
+            q[3] = a, q[4] = c, q[5] = d;
+            k += 2;
+        }
+}
+
+/* A UV sphere (closed, outward), nlat bands x nlon. */
+static void sphere(tri_mesh *t, double rad, int nlat, int nlon, px_vec3 at) {
+    t->nv = (uint32_t)(2 + (nlat - 1) * nlon);
+    t->nt = (uint32_t)(2 * nlon * (nlat - 1));
+    t->xyz = malloc(3 * sizeof(double) * t->nv);
+    t->tri = malloc(3 * sizeof(uint32_t) * t->nt);
+    double *p = t->xyz;
+    p[0] = at.x, p[1] = at.y, p[2] = at.z + rad;
+    p[3] = at.x, p[4] = at.y, p[5] = at.z - rad;
+    for (int i = 1; i < nlat; ++i)
+        for (int j = 0; j < nlon; ++j) {
+            double th = M_PI * i / nlat, ph = 2 * M_PI * j / nlon;
+            double *q = t->xyz + 3 * (2 + (i - 1) * nlon + j);
+            q[0] = at.x + rad * sin(th) * cos(ph);
+            q[1] = at.y + rad * sin(th) * sin(ph);
+            q[2] = at.z + rad * cos(th);
+        }
+    uint32_t k = 0;
+#define V(i, j) ((uint32_t)(2 + ((i) - 1) * nlon + ((j) % nlon)))
+    for (int j = 0; j < nlon; ++j) {
+        uint32_t *q = t->tri + 3 * k++;
+        q[0] = 0, q[1] = V(1, j), q[2] = V(1, j + 1);
+        q = t->tri + 3 * k++;
+        q[0] = 1, q[1] = V(nlat - 1, j + 1), q[2] = V(nlat - 1, j);
+    }
+    for (int i = 1; i < nlat - 1; ++i)
+        for (int j = 0; j < nlon; ++j) {
+            uint32_t *q = t->tri + 3 * k++;
+            q[0] = V(i, j), q[1] = V(i + 1, j), q[2] = V(i + 1, j + 1);
+            q = t->tri + 3 * k++;
+            q[0] = V(i, j), q[1] = V(i + 1, j + 1), q[2] = V(i, j + 1);
+        }
+#undef V
+}
+
+static void mesh_free(tri_mesh *t) {
+    free(t->xyz);
+    free(t->tri);
+}
+
+/* Appends mesh s to t (as another component). */
+static void mesh_append(tri_mesh *t, const tri_mesh *s) {
+    t->xyz = realloc(t->xyz, 3 * sizeof(double) * (t->nv + s->nv));
+    t->tri = realloc(t->tri, 3 * sizeof(uint32_t) * (t->nt + s->nt));
+    memcpy(t->xyz + 3 * t->nv, s->xyz, 3 * sizeof(double) * s->nv);
+    for (uint32_t i = 0; i < 3 * s->nt; ++i) t->tri[3 * t->nt + i] = s->tri[i] + t->nv;
+    t->nv += s->nv;
+    t->nt += s->nt;
+}
+
+/* A px_mesh of one or more parts (each a tri_mesh). */
+static px_mesh *make_mesh(const tri_mesh *parts, uint32_t n) {
+    tri_mesh all = {0};
+    px_mesh_part_desc pd[8];
+    memset(pd, 0, sizeof pd);
+    for (uint32_t i = 0; i < n; ++i) {
+        pd[i].first_vertex = all.nv;
+        pd[i].vertex_count = parts[i].nv;
+        pd[i].first_triangle = all.nt;
+        pd[i].triangle_count = parts[i].nt;
+        pd[i].node = -1;
+        mesh_append(&all, &parts[i]);
+    }
+    px_mesh_desc d;
+    memset(&d, 0, sizeof d);
+    d.xyz = all.xyz;
+    d.vertex_count = all.nv;
+    d.triangles = all.tri;
+    d.triangle_count = all.nt;
+    d.parts = pd;
+    d.part_count = n;
+    px_error e;
+    px_mesh *m = px_mesh_create(&d, NULL, &e);
+    if (!m) fprintf(stderr, "make_mesh: %s\n", e.message);
+    mesh_free(&all);
+    return m;
+}
+
+static px_pose random_pose(pg_rng *rng, double spread) {
+    double q[4], t[3];
+    pg_quat_uniform(rng, q);
+    for (int k = 0; k < 3; ++k) t[k] = pg_range(rng, -spread, spread);
+    px_pose p;
+    px_pose_from_quat(q, t, &p);
+    return p;
+}
+
+/* A small motion of p: rotation by up to `ang` and translation up to `step`. */
+static px_pose nudge(pg_rng *rng, px_pose p, double ang, double step) {
+    px_vec3 ax = pg_unit(rng);
+    double a = pg_range(rng, -ang, ang);
+    double q[4] = {cos(a / 2), sin(a / 2) * ax.x, sin(a / 2) * ax.y, sin(a / 2) * ax.z}, r[9];
+    pg_rot_from_unit_quat(q, r);
+    px_pose out = p;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            out.r[3 * i + j] = r[3 * i] * p.r[j] + r[3 * i + 1] * p.r[3 + j] + r[3 * i + 2] * p.r[6 + j];
+    px_vec3 d = pg_unit(rng);
+    out.t.x += step * d.x, out.t.y += step * d.y, out.t.z += step * d.z;
+    return out;
+}
+
+/* ---- Oracles ------------------------------------------------------------ */
+
+/* Brute force over the convex pieces: GJK on every pair (a second method). */
+static double brute_convex(px_convex *const *pa, uint32_t na, const px_pose *posa, px_convex *const *pb, uint32_t nb,
+                           const px_pose *posb) {
+    px_query_options o;
+    memset(&o, 0, sizeof o);
+    o.method = PX_METHOD_GJK;
+    double best = INFINITY;
+    for (uint32_t i = 0; i < na; ++i)
+        for (uint32_t j = 0; j < nb; ++j) {
+            px_distance_result r;
+            if (px_distance(pa[i], posa, pb[j], posb, &o, NULL, &r) == PX_OK) best = fmin(best, r.distance);
+        }
+    return best;
+}
+
+/* The world-frame triangles of a mesh as oracle polygons. */
+typedef struct or_tris {
+    or_poly *p;
+    uint32_t n;
+} or_tris;
+
+static void or_tris_init(or_tris *o, const tri_mesh *t, const px_pose *pose) {
+    o->n = t->nt;
+    o->p = calloc(t->nt, sizeof *o->p);
+    uint32_t first[2] = {0, 3}, vert[3] = {0, 1, 2};
+    for (uint32_t k = 0; k < t->nt; ++k) {
+        double xyz[9];
+        for (int c = 0; c < 3; ++c) {
+            const double *s = t->xyz + 3 * t->tri[3 * k + c];
+            px_vec3 w = px_pose_apply(pose, (px_vec3){s[0], s[1], s[2]});
+            xyz[3 * c] = w.x, xyz[3 * c + 1] = w.y, xyz[3 * c + 2] = w.z;
+        }
+        or_poly_init_raw(&o->p[k], xyz, 3, first, vert, 1);
+    }
+}
+
+static void or_tris_free(or_tris *o) {
+    for (uint32_t k = 0; k < o->n; ++k) or_poly_free(&o->p[k]);
+    free(o->p);
+}
+
+static double vlen(px_vec3 a, px_vec3 b) {
+    double x = a.x - b.x, y = a.y - b.y, z = a.z - b.z;
+    return sqrt(x * x + y * y + z * z);
+}
+
+/* Brute force over all triangle pairs: the oracle's face-face distance
+ * (0 when they cross), pruned only by exact sphere bounds. */
+static double brute_tris(const or_tris *a, const or_tris *b) {
+    double best = INFINITY;
+    for (uint32_t i = 0; i < a->n; ++i)
+        for (uint32_t j = 0; j < b->n; ++j) {
+            const or_poly *A = &a->p[i], *B = &b->p[j];
+            if (vlen(A->center, B->center) - A->radius - B->radius >= best) continue;
+            best = fmin(best, or_face_face(A, 0, B, 0, NULL, NULL));
+        }
+    return best;
+}
+
+/* ---- Convex-piece models ------------------------------------------------ */
+
+typedef struct pieces {
+    double *xyz;
+    uint32_t *end;
+    uint32_t n;
+    px_convex **c; /* the same pieces, for the oracle */
+} pieces;
+
+/* n random pieces scattered in a ball of radius `spread`. */
+static void make_pieces(pg_rng *rng, pieces *p, uint32_t n, double spread) {
+    p->n = n;
+    p->xyz = malloc(3 * sizeof(double) * 64 * n);
+    p->end = malloc(sizeof(uint32_t) * n);
+    p->c = malloc(sizeof(px_convex *) * n);
+    uint32_t at = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        pg_kind kind = (pg_kind)pg_below(rng, PG_KIND_COUNT);
+        double buf[3 * 64];
+        size_t k = pg_shape(rng, kind, 24, pg_range(rng, 0.1, 0.5), buf);
+        px_vec3 off = pg_unit(rng);
+        double s = spread * pg_uniform(rng);
+        for (size_t j = 0; j < k; ++j) {
+            p->xyz[3 * (at + j)] = buf[3 * j] + s * off.x;
+            p->xyz[3 * (at + j) + 1] = buf[3 * j + 1] + s * off.y;
+            p->xyz[3 * (at + j) + 2] = buf[3 * j + 2] + s * off.z;
+        }
+        p->c[i] = px_convex_create(p->xyz + 3 * at, k, NULL, NULL);
+        at += (uint32_t)k;
+        p->end[i] = at;
+    }
+}
+
+static void free_pieces(pieces *p) {
+    for (uint32_t i = 0; i < p->n; ++i) px_convex_destroy(p->c[i]);
+    free(p->xyz);
+    free(p->end);
+    free(p->c);
+}
+
+static void test_points(void) {
+    pg_rng rng;
+    pg_seed(&rng, 9001);
+    int rounds = tu_scaled(tu_sanitized() ? 4 : 20);
+    double worst = 0.0;
+    int checked = 0;
+    for (int round = 0; round < rounds; ++round) {
+        pieces pa, pb;
+        make_pieces(&rng, &pa, 2 + pg_below(&rng, 30), 2.0);
+        make_pieces(&rng, &pb, 1 + pg_below(&rng, 20), 1.5);
+        px_error e;
+        px_model *ma = px_model_create_from_points(pa.xyz, pa.end, pa.n, NULL, &e);
+        px_model *mb = px_model_create_from_points(pb.xyz, pb.end, pb.n, NULL, &e);
+        CHECK(ma && mb, "create: %s", e.message);
+        if (!ma || !mb) return;
+        px_model_info info;
+        px_model_get_info(ma, &info);
+        CHECK(info.leaves == pa.n && info.nodes == 2 * pa.n - 1 && info.solid == 1 && info.max_h == 0.0,
+              "info leaves %u nodes %u", info.leaves, info.nodes);
+        px_model_cache warm = {0}, tiny = {0};
+        tiny.max_bytes = 200; /* holds the state, never a pair: every pair runs cold */
+        px_pose posa = random_pose(&rng, 1.0), posb = random_pose(&rng, 6.0);
+        for (int step = 0; step < 40; ++step) {
+            posb = nudge(&rng, posb, 0.05, 0.08);
+            if (step % 10 == 0) posb = random_pose(&rng, 6.0);
+            double bf = brute_convex(pa.c, pa.n, &posa, pb.c, pb.n, &posb);
+            px_model_distance_result cold, hot, small;
+            CHECK(px_model_distance(ma, &posa, mb, &posb, NULL, &cold) == PX_OK, "cold");
+            CHECK(px_model_distance(ma, &posa, mb, &posb, &warm, &hot) == PX_OK, "warm");
+            CHECK(px_model_distance(ma, &posa, mb, &posb, &tiny, &small) == PX_OK, "tiny");
+            double tol = 1e-12 * (1.0 + bf);
+            CHECK(fabs(cold.distance - bf) <= tol, "cold %.17g brute %.17g", cold.distance, bf);
+            CHECK(fabs(hot.distance - bf) <= tol, "warm %.17g brute %.17g", hot.distance, bf);
+            CHECK(fabs(small.distance - bf) <= tol, "tiny cache %.17g brute %.17g", small.distance, bf);
+            CHECK(cold.upper_bound == cold.distance, "exact leaves: bracket closed");
+            worst = fmax(worst, fabs(hot.distance - bf) / (1.0 + bf));
+            /* The witnesses: |pa - pb| = d, and the leaf pair realises it. */
+            px_vec3 d = {hot.point_b.x - hot.point_a.x, hot.point_b.y - hot.point_a.y, hot.point_b.z - hot.point_a.z};
+            CHECK(fabs(sqrt(d.x * d.x + d.y * d.y + d.z * d.z) - hot.distance) <= 1e-12 * (1.0 + bf) || bf == 0.0,
+                  "witness gap");
+            CHECK(hot.leaf_a < pa.n && hot.leaf_b < pb.n && hot.feature_a.piece == hot.leaf_a, "leaves");
+            if (hot.leaf_a < pa.n && hot.leaf_b < pb.n) {
+                double lp = brute_convex(&pa.c[hot.leaf_a], 1, &posa, &pb.c[hot.leaf_b], 1, &posb);
+                CHECK(fabs(lp - bf) <= tol, "leaf pair %u,%u gives %.17g, brute %.17g", hot.leaf_a, hot.leaf_b, lp, bf);
+            }
+            /* collide and within agree with the brute force (away from ties). */
+            px_model_collide_result c;
+            CHECK(px_model_collide(ma, &posa, mb, &posb, &warm, &c) == PX_OK, "collide");
+            if (bf > 1e-9) CHECK(c.hit == 0, "collide says hit at distance %g", bf);
+            if (bf == 0.0) CHECK(c.hit == 1, "collide misses an overlap");
+            double t = 0.3;
+            CHECK(px_model_within(ma, &posa, mb, &posb, t, NULL, &c) == PX_OK, "within");
+            if (fabs(bf - t) > 1e-9) CHECK(c.hit == (bf < t), "within %g at distance %g says %d", t, bf, c.hit);
+            /* Model against one convex: piece 0 of B alone. */
+            px_model_distance_result rc;
+            CHECK(px_model_distance_convex(ma, &posa, pb.c[0], &posb, NULL, &rc) == PX_OK, "vs convex");
+            double bc = brute_convex(pa.c, pa.n, &posa, pb.c, 1, &posb);
+            CHECK(fabs(rc.distance - bc) <= 1e-12 * (1.0 + bc), "vs convex %.17g brute %.17g", rc.distance, bc);
+            ++checked;
+        }
+        CHECK(tiny.cold_runs > 0 && tiny.memory_bytes <= 200, "tiny cache: cold runs %llu, %zu bytes",
+              (unsigned long long)tiny.cold_runs, tiny.memory_bytes);
+        CHECK(warm.memory_bytes > 0 && warm.memory_bytes <= ((size_t)1 << 20), "warm cache %zu bytes",
+              warm.memory_bytes);
+        px_model_cache_release(&warm);
+        px_model_cache_release(&tiny);
+        CHECK(warm.impl == NULL && warm.memory_bytes == 0, "released");
+        px_model_destroy(ma);
+        px_model_destroy(mb);
+        free_pieces(&pa);
+        free_pieces(&pb);
+    }
+    printf("points: %d poses, worst relative error %.3g\n", checked, worst);
+}
+
+/* ---- Triangle models ---------------------------------------------------- */
+
+static void test_triangles(void) {
+    pg_rng rng;
+    pg_seed(&rng, 4242);
+    tri_mesh ta, tb;
+    torus(&ta, 1.0, 0.3, 24, 10, (px_vec3){0, 0, 0});
+    sphere(&tb, 0.4, 8, 12, (px_vec3){0.1, 0, 0});
+    px_mesh *mesh_a = make_mesh(&ta, 1), *mesh_b = make_mesh(&tb, 1);
+    CHECK(mesh_a && mesh_b, "meshes");
+    if (!mesh_a || !mesh_b) return;
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_TRIANGLES;
+    px_error e;
+    px_model *ma = px_model_create_from_mesh(mesh_a, &o, &e);
+    CHECK(ma != NULL, "torus: %s", e.message);
+    px_model *mb = px_model_create_from_mesh(mesh_b, &o, &e);
+    CHECK(mb != NULL, "sphere: %s", e.message);
+    if (!ma || !mb) return;
+    px_model_info info;
+    px_model_get_info(ma, &info);
+    CHECK(info.leaves == ta.nt && info.solid == 1 && info.solid_parts == 1, "torus info: %u leaves solid %u",
+          info.leaves, info.solid);
+    CHECK(info.hull_nodes > 0, "torus has hull nodes");
+    printf("triangles: torus %u triangles, %u hull nodes, depth %u, %zu bytes (%.0f per triangle)\n", info.leaves,
+           info.hull_nodes, info.depth, info.memory_bytes, (double)info.memory_bytes / info.leaves);
+    int n = tu_scaled(tu_sanitized() ? 20 : 150);
+    px_model_cache warm = {0};
+    px_pose posa = px_pose_identity(), posb = random_pose(&rng, 1.5);
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) {
+        posb = i % 15 == 0 ? random_pose(&rng, 1.5) : nudge(&rng, posb, 0.03, 0.05);
+        or_tris oa, ob;
+        or_tris_init(&oa, &ta, &posa);
+        or_tris_init(&ob, &tb, &posb);
+        double bf = brute_tris(&oa, &ob);
+        px_model_distance_result r, rc;
+        CHECK(px_model_distance(ma, &posa, mb, &posb, &warm, &r) == PX_OK, "distance");
+        CHECK(px_model_distance(ma, &posa, mb, &posb, NULL, &rc) == PX_OK, "distance cold");
+        double tol = 1e-12 * (1.0 + bf);
+        CHECK(fabs(r.distance - bf) <= tol, "pose %d: warm %.17g brute %.17g", i, r.distance, bf);
+        CHECK(fabs(rc.distance - bf) <= tol, "pose %d: cold %.17g brute %.17g", i, rc.distance, bf);
+        worst = fmax(worst, fabs(r.distance - bf) / (1.0 + bf));
+        if (r.leaf_a < oa.n && r.leaf_b < ob.n) {
+            double lp = or_face_face(&oa.p[r.leaf_a], 0, &ob.p[r.leaf_b], 0, NULL, NULL);
+            CHECK(fabs(lp - bf) <= tol, "leaf pair distance %.17g brute %.17g", lp, bf);
+            double w = vlen(r.point_a, r.point_b);
+            CHECK(fabs(w - r.distance) <= tol, "witness gap %.17g vs %.17g", w, r.distance);
+        }
+        px_model_collide_result c;
+        CHECK(px_model_collide(ma, &posa, mb, &posb, &warm, &c) == PX_OK, "collide");
+        if (bf > 1e-9 && !c.contained) CHECK(c.hit == 0, "collide hit at distance %g", bf);
+        if (bf == 0.0) CHECK(c.hit == 1 && !c.contained, "collide misses a crossing");
+        double t = 0.05;
+        CHECK(px_model_within(ma, &posa, mb, &posb, t, &warm, &c) == PX_OK, "within");
+        if (fabs(bf - t) > 1e-9 && !c.contained) CHECK(c.hit == (bf < t), "within says %d at %g", c.hit, bf);
+        or_tris_free(&oa);
+        or_tris_free(&ob);
+    }
+    printf("triangles: %d poses, worst relative error %.3g, cache %zu bytes\n", n, worst, warm.memory_bytes);
+    px_model_cache_release(&warm);
+    px_model_destroy(ma);
+    px_model_destroy(mb);
+    px_mesh_destroy(mesh_a);
+    px_mesh_destroy(mesh_b);
+    mesh_free(&ta);
+    mesh_free(&tb);
+}
+
+/* A small sphere inside a big one: closed, it collides (containment); the
+ * big one opened (a triangle removed), it does not. Distances stay the
+ * surfaces' distance either way. */
+static void test_containment(void) {
+    tri_mesh big, small;
+    sphere(&big, 2.0, 10, 16, (px_vec3){0, 0, 0});
+    sphere(&small, 0.3, 6, 8, (px_vec3){0, 0, 0});
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_TRIANGLES;
+    px_mesh *mb = make_mesh(&big, 1), *ms = make_mesh(&small, 1);
+    px_model *a = px_model_create_from_mesh(mb, &o, NULL), *b = px_model_create_from_mesh(ms, &o, NULL);
+    CHECK(a && b, "containment models");
+    if (!a || !b) return;
+    px_pose id = px_pose_identity(), off = px_pose_identity();
+    off.t = (px_vec3){0.5, -0.3, 0.2};
+    px_model_collide_result c;
+    CHECK(px_model_collide(a, &id, b, &off, NULL, &c) == PX_OK && c.hit && c.contained, "inner sphere collides");
+    CHECK(px_model_collide(b, &off, a, &id, NULL, &c) == PX_OK && c.hit && c.contained, "either order");
+    CHECK(px_model_within(a, &id, b, &off, 0.0, NULL, &c) == PX_OK && c.hit, "within 0 of a solid");
+    px_model_distance_result r;
+    CHECK(px_model_distance(a, &id, b, &off, NULL, &r) == PX_OK && r.distance > 1.0, "surface distance %g",
+          r.distance);
+    off.t = (px_vec3){4.0, 0, 0};
+    CHECK(px_model_collide(a, &id, b, &off, NULL, &c) == PX_OK && !c.hit, "outside: no hit");
+    /* Open the big sphere. */
+    big.nt -= 1;
+    px_mesh *mo = make_mesh(&big, 1);
+    px_model *open = px_model_create_from_mesh(mo, &o, NULL);
+    px_model_info info;
+    px_model_get_info(open, &info);
+    CHECK(info.solid == 0 && info.solid_parts == 0, "open mesh is a surface");
+    off.t = (px_vec3){0.5, -0.3, 0.2};
+    CHECK(px_model_collide(open, &id, b, &off, NULL, &c) == PX_OK && !c.hit, "inside an open surface: no hit");
+    px_model_destroy(open);
+    px_mesh_destroy(mo);
+    px_model_destroy(a);
+    px_model_destroy(b);
+    px_mesh_destroy(mb);
+    px_mesh_destroy(ms);
+    mesh_free(&big);
+    mesh_free(&small);
+}
+
+/* ---- Part hulls: the bracket --------------------------------------------- */
+
+static void test_bracket(void) {
+    pg_rng rng;
+    pg_seed(&rng, 77);
+    tri_mesh parts_a[2], parts_b[2];
+    torus(&parts_a[0], 0.8, 0.2, 16, 8, (px_vec3){0, 0, 0});
+    torus(&parts_a[1], 0.5, 0.15, 12, 6, (px_vec3){2.0, 0, 0});
+    torus(&parts_b[0], 0.6, 0.25, 14, 8, (px_vec3){0, 0, 0});
+    sphere(&parts_b[1], 0.3, 6, 8, (px_vec3){0, 1.5, 0});
+    px_mesh *ma = make_mesh(parts_a, 2), *mb = make_mesh(parts_b, 2);
+    px_model_options hull_opt, tri_opt;
+    memset(&hull_opt, 0, sizeof hull_opt);
+    memset(&tri_opt, 0, sizeof tri_opt);
+    tri_opt.pieces = PX_PIECES_TRIANGLES;
+    px_error e;
+    px_model *ha = px_model_create_from_mesh(ma, &hull_opt, &e);
+    CHECK(ha != NULL, "part hulls: %s", e.message);
+    px_model *hb = px_model_create_from_mesh(mb, &hull_opt, &e);
+    px_model *ta = px_model_create_from_mesh(ma, &tri_opt, &e), *tb = px_model_create_from_mesh(mb, &tri_opt, &e);
+    CHECK(ha && hb && ta && tb, "bracket models");
+    if (!ha || !hb || !ta || !tb) return;
+    px_model_leaf leaf;
+    px_model_get_leaf(ha, 0, &leaf);
+    /* A torus hull reaches out by at least the hole's radius minus the tube. */
+    CHECK(leaf.h >= 0.2 && leaf.h_overlap >= 0.6 - 1e-9 && leaf.h_overlap <= 1.0,
+          "torus part: h %.4g h_overlap %.4g", leaf.h, leaf.h_overlap);
+    px_model_get_leaf(hb, 1, &leaf);
+    CHECK(leaf.h < 0.05, "a UV sphere's hull is nearly the sphere: h %.4g", leaf.h);
+    int n = tu_scaled(tu_sanitized() ? 30 : 300), in = 0;
+    double worst_gap = 0.0;
+    for (int i = 0; i < n; ++i) {
+        px_pose pa = random_pose(&rng, 0.5), pb = random_pose(&rng, 3.0);
+        px_model_distance_result rh, rt;
+        CHECK(px_model_distance(ha, &pa, hb, &pb, NULL, &rh) == PX_OK, "hull distance");
+        CHECK(px_model_distance(ta, &pa, tb, &pb, NULL, &rt) == PX_OK, "triangle distance");
+        int ok = rh.distance <= rt.distance + 1e-12 && rt.distance <= rh.upper_bound + 1e-12;
+        CHECK(ok, "pose %d: exact %.9g outside [%.9g, %.9g]", i, rt.distance, rh.distance, rh.upper_bound);
+        in += ok;
+        worst_gap = fmax(worst_gap, rh.upper_bound - rh.distance);
+    }
+    printf("bracket: %d of %d poses inside, widest bracket %.3g\n", in, n, worst_gap);
+    px_model_destroy(ha);
+    px_model_destroy(hb);
+    px_model_destroy(ta);
+    px_model_destroy(tb);
+    px_mesh_destroy(ma);
+    px_mesh_destroy(mb);
+    for (int k = 0; k < 2; ++k) {
+        mesh_free(&parts_a[k]);
+        mesh_free(&parts_b[k]);
+    }
+}
+
+/* ---- Arguments ---------------------------------------------------------- */
+
+static void test_arguments(void) {
+    double box[24];
+    pg_box(1, 1, 1, box);
+    uint32_t end[1] = {8};
+    px_error e;
+    px_model *m = px_model_create_from_points(box, end, 1, NULL, &e);
+    CHECK(m != NULL, "one box");
+    CHECK(px_model_create_from_points(NULL, end, 1, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "NULL");
+    CHECK(px_model_create_from_points(box, end, 0, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "none");
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.reserved[2] = 1;
+    CHECK(px_model_create_from_points(box, end, 1, &o, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "reserved");
+    uint32_t bad_end[2] = {8, 8};
+    CHECK(px_model_create_from_points(box, bad_end, 2, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT &&
+              strstr(e.message, "piece 1"),
+          "empty piece named: %s", e.message);
+    double flat[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+    uint32_t two[2] = {8, 12};
+    double both[36];
+    memcpy(both, box, sizeof box);
+    memcpy(both + 24, flat, sizeof flat);
+    px_model *f = px_model_create_from_points(both, two, 2, NULL, &e);
+    if (!f) CHECK(strstr(e.message, "piece 1") != NULL, "a piece that fails is named: %s", e.message);
+    px_model_destroy(f);
+    double nan_pts[24];
+    memcpy(nan_pts, box, sizeof box);
+    nan_pts[5] = NAN;
+    CHECK(px_model_create_from_points(nan_pts, end, 1, NULL, &e) == NULL && e.code == PX_ERR_NON_FINITE, "NaN");
+    px_pose id = px_pose_identity(), bad = id;
+    bad.r[0] = 2.0;
+    px_model_distance_result r;
+    px_model_collide_result c;
+    CHECK(px_model_distance(NULL, &id, m, &id, NULL, &r) == PX_ERR_INVALID_ARGUMENT, "NULL model");
+    CHECK(px_model_distance(m, &id, m, &id, NULL, NULL) == PX_ERR_INVALID_ARGUMENT, "NULL result");
+    CHECK(px_model_distance(m, &bad, m, &id, NULL, &r) == PX_ERR_INVALID_POSE, "bad pose");
+    CHECK(px_model_within(m, &id, m, &id, -1.0, NULL, &c) == PX_ERR_INVALID_ARGUMENT, "negative tolerance");
+    CHECK(px_model_within(m, &id, m, &id, NAN, NULL, &c) == PX_ERR_INVALID_ARGUMENT, "NaN tolerance");
+    CHECK(px_model_distance_convex(m, &id, NULL, &id, NULL, &r) == PX_ERR_INVALID_ARGUMENT, "NULL convex");
+    CHECK(px_model_create_from_mesh(NULL, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "NULL mesh");
+    px_model_destroy(m);
+    px_model_destroy(NULL);
+    px_model_cache_release(NULL);
+}
+
+int main(void) {
+    tu_init("test_model");
+    test_arguments();
+    test_points();
+    test_triangles();
+    test_containment();
+    test_bracket();
+    return tu_finish();
+}

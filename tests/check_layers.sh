@@ -36,7 +36,8 @@ rank() {
     narrow/lin_canny.* | narrow/gjk.* | narrow/hybrid.* | narrow/epa.* | narrow/raycast.*) echo 4 ;;
     narrow/advance.*) echo 5 ;;
     narrow/query.* | narrow/narrow.h) echo 6 ;;
-    io/*) echo 7 ;;
+    model/*) echo 7 ;;
+    io/*) echo 8 ;;
     *) echo 99 ;;
   esac
 }

@@ -46,7 +46,7 @@ typedef struct px_model px_model;
 
 /// In triangle trees, inner nodes with at least this many triangles below
 /// them hold a convex hull; smaller ones only a bounding sphere.
-#define PX_MODEL_HULL_MIN_LEAVES 32u
+#define PX_MODEL_HULL_MIN_LEAVES 128u
 
 /// How a mesh becomes leaves.
 typedef enum px_pieces {

@@ -28,6 +28,7 @@ typedef struct builder {
     px_vec3 *points; /* scratch for hull inputs */
     size_t points_cap;
     uint32_t next_node;
+    int hulls; /* triangle trees: build inner hulls (0 for the scratch trees of part_reach) */
     px_error *err;
     px_status status;
 } builder;
@@ -88,7 +89,7 @@ static uint32_t build_node(builder *b, uint32_t lo, uint32_t hi, uint32_t depth)
     uint32_t id = b->next_node++;
     pxi_mnode *node = &m->nodes[id];
     node->leaf_count = hi - lo;
-    node->depth = depth;
+    node->flags = 0;
     node->hull = NULL;
     if (depth > m->depth) m->depth = depth;
     if (hi - lo == 1) {
@@ -145,7 +146,12 @@ static uint32_t build_node(builder *b, uint32_t lo, uint32_t hi, uint32_t depth)
         m->lo = bl;
         m->hi = bh;
     }
-    int wants_hull = hi - lo > 1 && (b->convex || hi - lo >= PX_MODEL_HULL_MIN_LEAVES);
+    int wants_hull = hi - lo > 1 && (b->convex || (b->hulls && hi - lo >= PX_MODEL_HULL_MIN_LEAVES));
+    if (!b->convex && hi - lo > 1 &&
+        ((m->nodes[node->child[0]].flags | m->nodes[node->child[1]].flags) & PXI_NODE_OVERSIZE)) {
+        node->flags |= PXI_NODE_OVERSIZE;
+        wants_hull = 0;
+    }
     if (wants_hull) {
         /* From the children's hull vertices where they have hulls. */
         n = 0;
@@ -167,163 +173,14 @@ static uint32_t build_node(builder *b, uint32_t lo, uint32_t hi, uint32_t depth)
             return id;
         }
         node->hull = hull_of_points(b, n);
+        if (node->hull && !b->convex && px_convex_vertex_count(node->hull) > PXI_HULL_MAX_VERTICES) {
+            px_convex_destroy(node->hull);
+            node->hull = NULL;
+            node->flags |= PXI_NODE_OVERSIZE;
+        }
         if (node->hull) m->n_hulls++;
     }
     return id;
-}
-
-/* ---- Certified bounds h of part hulls ------------------------------------
- * h bounds max dist(p, part) over the points p of a hull's boundary
- * (h_overlap: over the whole hull). The distance to a set is 1-Lipschitz,
- * so a cell of half-diagonal r whose centre is at distance f from the part
- * holds no point farther than f + r. Cells covering the hull's box are
- * refined best first (largest f + r) until the largest bound left is within
- * 1 % of the largest distance seen at a point known to belong to the set,
- * or the budget of distance evaluations is spent; the answer is the largest
- * f + r left, a certified bound either way. */
-
-typedef struct part_geom {
-    const px_vec3 *v;
-    const uint32_t *tri; /* 3 per triangle */
-    uint32_t nt;
-    px_vec3 *tc; /* per-triangle sphere centre and radius */
-    double *tr;
-} part_geom;
-
-static double part_distance(const part_geom *g, px_vec3 q) {
-    double best = INFINITY;
-    for (uint32_t t = 0; t < g->nt; ++t) {
-        if (pxi_len(pxi_sub(q, g->tc[t])) - g->tr[t] >= best) continue;
-        px_vec3 tv[3] = {g->v[g->tri[3 * t]], g->v[g->tri[3 * t + 1]], g->v[g->tri[3 * t + 2]]};
-        px_feature f;
-        double d = pxi_len(pxi_sub(pxi_tri_closest(q, tv, &f), q));
-        if (d < best) best = d;
-    }
-    return best;
-}
-
-typedef struct hcell {
-    px_vec3 c, half;
-    double ub;
-} hcell;
-
-static double plane_max(const px_convex *hull, px_vec3 p) {
-    double worst = -INFINITY;
-    uint32_t nf = px_convex_face_count(hull);
-    for (uint32_t f = 0; f < nf; ++f) {
-        px_vec3 n;
-        double off;
-        px_convex_face(hull, f, &n, &off, NULL);
-        worst = fmax(worst, pxi_dot(n, p) - off);
-    }
-    return worst;
-}
-
-static void heap_push(hcell *h, uint32_t *n, hcell c) {
-    uint32_t i = (*n)++;
-    while (i > 0 && h[(i - 1) / 2].ub < c.ub) {
-        h[i] = h[(i - 1) / 2];
-        i = (i - 1) / 2;
-    }
-    h[i] = c;
-}
-
-static hcell heap_pop(hcell *h, uint32_t *n) {
-    hcell top = h[0], last = h[--(*n)];
-    uint32_t i = 0;
-    for (;;) {
-        uint32_t k = 2 * i + 1;
-        if (k >= *n) break;
-        if (k + 1 < *n && h[k + 1].ub > h[k].ub) ++k;
-        if (h[k].ub <= last.ub) break;
-        h[i] = h[k];
-        i = k;
-    }
-    if (*n) h[i] = last;
-    return top;
-}
-
-enum { H_BUDGET = 6000, H_CELLS = 8 * H_BUDGET + 64 };
-
-/* One bound: boundary (overlap = 0) or whole hull (overlap = 1). */
-static double hull_reach(const px_convex *hull, const part_geom *g, int overlap, hcell *heap) {
-    uint32_t nv = px_convex_vertex_count(hull);
-    px_vec3 lo, hi;
-    px_convex_vertex(hull, 0, &lo);
-    hi = lo;
-    double known = 0.0; /* largest distance at a point of the set */
-    for (uint32_t i = 0; i < nv; ++i) {
-        px_vec3 p;
-        px_convex_vertex(hull, i, &p);
-        lo = pxi_v(fmin(lo.x, p.x), fmin(lo.y, p.y), fmin(lo.z, p.z));
-        hi = pxi_v(fmax(hi.x, p.x), fmax(hi.y, p.y), fmax(hi.z, p.z));
-        known = fmax(known, part_distance(g, p));
-    }
-    double diag = pxi_len(pxi_sub(hi, lo));
-    uint32_t n = 0, evals = nv;
-    const int k0 = 4;
-    px_vec3 half = pxi_scale(pxi_sub(hi, lo), 0.5 / k0);
-    for (int i = 0; i < k0; ++i)
-        for (int j = 0; j < k0; ++j)
-            for (int k = 0; k < k0; ++k) {
-                px_vec3 c = pxi_v(lo.x + (2 * i + 1) * half.x, lo.y + (2 * j + 1) * half.y, lo.z + (2 * k + 1) * half.z);
-                double r = pxi_len(half), pm = plane_max(hull, c);
-                if (pm > r || (!overlap && pm < -r)) continue;
-                double f = part_distance(g, c);
-                ++evals;
-                if (overlap && pm <= 0.0) known = fmax(known, f);
-                hcell cell = {c, half, f + r};
-                heap_push(heap, &n, cell);
-            }
-    while (n > 0) {
-        hcell top = heap_pop(heap, &n);
-        if (top.ub <= known * 1.01 + 1e-12 * diag || evals + 8 > H_BUDGET || n + 8 > H_CELLS) {
-            /* Every cell left is bounded by top.ub. */
-            return fmax(top.ub, known) * (1.0 + 8.0 * DBL_EPSILON);
-        }
-        px_vec3 hh = pxi_scale(top.half, 0.5);
-        for (int s = 0; s < 8; ++s) {
-            px_vec3 c = pxi_v(top.c.x + ((s & 1) ? hh.x : -hh.x), top.c.y + ((s & 2) ? hh.y : -hh.y),
-                              top.c.z + ((s & 4) ? hh.z : -hh.z));
-            double r = pxi_len(hh), pm = plane_max(hull, c);
-            if (pm > r || (!overlap && pm < -r)) continue;
-            double f = part_distance(g, c);
-            ++evals;
-            if (overlap && pm <= 0.0) known = fmax(known, f);
-            hcell cell = {c, hh, f + r};
-            heap_push(heap, &n, cell);
-        }
-    }
-    return known * (1.0 + 8.0 * DBL_EPSILON);
-}
-
-/* h and h_overlap of `hull` standing for triangles `tri` (nt, indices into
- * v). PX_ERR_OUT_OF_MEMORY or PX_OK. */
-static px_status part_reach(const px_allocator *alloc, const px_convex *hull, const px_vec3 *v, const uint32_t *tri,
-                            uint32_t nt, double *h, double *h_overlap) {
-    *h = *h_overlap = 0.0;
-    if (nt == 0) return PX_OK;
-    part_geom g = {v, tri, nt, NULL, NULL};
-    g.tc = pxi_alloc_array(alloc, nt, sizeof *g.tc);
-    g.tr = pxi_alloc_array(alloc, nt, sizeof *g.tr);
-    hcell *heap = pxi_alloc_array(alloc, H_CELLS, sizeof *heap);
-    px_status st = PX_ERR_OUT_OF_MEMORY;
-    if (g.tc && g.tr && heap) {
-        for (uint32_t t = 0; t < nt; ++t) {
-            px_vec3 a = v[tri[3 * t]], b = v[tri[3 * t + 1]], c = v[tri[3 * t + 2]];
-            px_vec3 m = pxi_scale(pxi_add(pxi_add(a, b), c), 1.0 / 3.0);
-            g.tc[t] = m;
-            g.tr[t] = fmax(pxi_len(pxi_sub(a, m)), fmax(pxi_len(pxi_sub(b, m)), pxi_len(pxi_sub(c, m)))) *
-                      (1.0 + 4.0 * DBL_EPSILON);
-        }
-        *h = hull_reach(hull, &g, 0, heap);
-        *h_overlap = fmax(*h, hull_reach(hull, &g, 1, heap));
-        st = PX_OK;
-    }
-    pxi_free(alloc, g.tc, nt * sizeof *g.tc);
-    pxi_free(alloc, g.tr, nt * sizeof *g.tr);
-    pxi_free(alloc, heap, H_CELLS * sizeof *heap);
-    return st;
 }
 
 /* ---- Construction ------------------------------------------------------- */
@@ -366,11 +223,12 @@ void px_model_destroy(px_model *m) {
 
 /* Builds the tree over m->n_leaves leaves (convex: the pieces of a convex
  * tree, NULL for triangles); takes ownership of the pieces. */
-static px_status build_tree(px_model *m, px_convex **convex, px_error *err) {
+static px_status build_tree(px_model *m, px_convex **convex, int hulls, px_error *err) {
     builder b;
     memset(&b, 0, sizeof b);
     b.m = m;
     b.convex = convex;
+    b.hulls = hulls;
     b.err = err;
     b.status = PX_OK;
     uint32_t n = m->n_leaves;
@@ -454,7 +312,8 @@ static px_status triangle_reps(px_model *m, px_error *err) {
         }
         qsort(keys, nv, sizeof *keys, cmp_vkey);
         for (uint32_t i = 1; i < nv; ++i) {
-            if (keys[i].p.x == keys[i - 1].p.x && keys[i].p.y == keys[i - 1].p.y && keys[i].p.z == keys[i - 1].p.z)
+            if (keys[i].p.x == keys[i - 1].p.x && keys[i].p.y == keys[i - 1].p.y &&
+                keys[i].p.z == keys[i - 1].p.z)
                 parent[uf_find(parent, keys[i].i)] = uf_find(parent, keys[i - 1].i);
         }
         for (uint32_t t = 0; t < m->nt; ++t) {
@@ -521,7 +380,8 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
         return NULL;
     }
     if (piece_count > (1u << 30)) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_points: too many pieces (%u)", piece_count);
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_points: too many pieces (%u)",
+                  piece_count);
         return NULL;
     }
     px_allocator alloc;
@@ -550,7 +410,8 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
             }
             px_error e;
             convex[i] = px_convex_create(xyz + 3 * (size_t)start, piece_end[i] - start, &co, &e);
-            if (!convex[i]) st = pxi_error(err, e.code, "px_model_create_from_points: piece %u: %s", i, e.message);
+            if (!convex[i])
+                st = pxi_error(err, e.code, "px_model_create_from_points: piece %u: %s", i, e.message);
             m->leaves[i].part = i;
             m->leaves[i].tri = PXI_NONE;
             m->leaves[i].h = m->leaves[i].h_overlap = 0.0;
@@ -558,7 +419,7 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
         }
         if (st == PX_OK) st = convex_reps(m, convex, err);
         if (st == PX_OK) {
-            st = build_tree(m, convex, err);
+            st = build_tree(m, convex, 1, err);
         } else {
             for (uint32_t i = 0; i < piece_count; ++i) px_convex_destroy(convex[i]);
         }
@@ -592,7 +453,7 @@ static px_status copy_triangles(px_model *m, const double *xyz, uint32_t nv, con
 }
 
 px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_t *tri, uint32_t nt,
-                                   const uint32_t *part, const uint8_t *closed, uint32_t n_parts,
+                                   const uint32_t *part, const uint8_t *closed, uint32_t n_parts, int hulls,
                                    const px_allocator *alloc_in, px_error *err) {
     px_model_options o;
     memset(&o, 0, sizeof o);
@@ -618,7 +479,7 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
         for (uint32_t p = 0; closed && p < n_parts; ++p) m->solid_parts += closed[p] != 0;
         st = triangle_reps(m, err);
     }
-    if (st == PX_OK) st = build_tree(m, NULL, err);
+    if (st == PX_OK) st = build_tree(m, NULL, hulls, err);
     return finish(m, st, err);
 }
 
@@ -629,11 +490,12 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
     }
     uint32_t pieces = options ? options->pieces : PX_PIECES_PARTS;
     if (pieces != PX_PIECES_PARTS && pieces != PX_PIECES_TRIANGLES) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_mesh: options.pieces %u is not PARTS or TRIANGLES",
-                  pieces);
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                  "px_model_create_from_mesh: options.pieces %u is not PARTS or TRIANGLES", pieces);
         return NULL;
     }
-    uint32_t np = px_mesh_part_count(mesh), nv = px_mesh_vertex_count(mesh), nt = px_mesh_triangle_count(mesh);
+    uint32_t np = px_mesh_part_count(mesh), nv = px_mesh_vertex_count(mesh),
+             nt = px_mesh_triangle_count(mesh);
     const double *xyz = px_mesh_vertices(mesh);
     const uint32_t *tri = px_mesh_triangles(mesh);
     if (np == 0 || nv == 0) {
@@ -663,8 +525,9 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
                 }
                 for (uint32_t t = 0; t < mp.triangle_count; ++t) part[mp.first_triangle + t] = p;
             }
-            if (ok && options && options->reserved[0]) ok = 0, pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model: options.reserved[0] is not zero");
-            if (ok) m = pxi_model_from_triangles(xyz, nv, tri, nt, part, closed, np, &alloc, err);
+            if (ok && options && options->reserved[0])
+                ok = 0, pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model: options.reserved[0] is not zero");
+            if (ok) m = pxi_model_from_triangles(xyz, nv, tri, nt, part, closed, np, 1, &alloc, err);
         }
         pxi_free(&alloc, part, (size_t)(nt ? nt : 1) * sizeof *part);
         pxi_free(&alloc, closed, np);
@@ -677,14 +540,12 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
     m->n_leaves = np;
     m->leaves = pxi_alloc_array(&alloc, np, sizeof *m->leaves);
     px_convex **convex = pxi_alloc_array(&alloc, np, sizeof *convex);
-    px_vec3 *v = pxi_alloc_array(&alloc, nv, sizeof *v);
     px_status st = PX_OK;
-    if (!m->leaves || !convex || !v) {
+    if (!m->leaves || !convex) {
         st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
     } else {
         m->bytes += (size_t)np * sizeof *m->leaves;
         memset(convex, 0, (size_t)np * sizeof *convex);
-        for (uint32_t i = 0; i < nv; ++i) v[i] = pxi_v(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
         px_convex_options co;
         memset(&co, 0, sizeof co);
         co.allocator = &m->alloc;
@@ -694,25 +555,25 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
             px_error e;
             convex[p] = px_convex_create(xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count, &co, &e);
             if (!convex[p]) {
-                st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'): %s", p, mp.name, e.message);
+                st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'): %s", p, mp.name,
+                               e.message);
                 break;
             }
             m->leaves[p].part = p;
             m->leaves[p].tri = PXI_NONE;
-            st = part_reach(&alloc, convex[p], v, tri + 3 * (size_t)mp.first_triangle, mp.triangle_count,
-                            &m->leaves[p].h, &m->leaves[p].h_overlap);
-            if (st != PX_OK) pxi_error(err, st, "px_model: out of memory");
+            st = pxi_part_reach(&alloc, convex[p], xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count,
+                                tri + 3 * (size_t)mp.first_triangle, mp.triangle_count, mp.first_vertex,
+                                &m->leaves[p].h, &m->leaves[p].h_overlap, err);
             m->max_h = fmax(m->max_h, m->leaves[p].h_overlap);
         }
         if (st == PX_OK) st = convex_reps(m, convex, err);
         if (st == PX_OK) {
-            st = build_tree(m, convex, err);
+            st = build_tree(m, convex, 1, err);
         } else {
             for (uint32_t i = 0; i < np; ++i) px_convex_destroy(convex[i]);
         }
     }
     pxi_free(&alloc, convex, (size_t)np * sizeof *convex);
-    pxi_free(&alloc, v, (size_t)nv * sizeof *v);
     return finish(m, st, err);
 }
 

@@ -9,6 +9,15 @@
 
 #define PXI_NONE UINT32_MAX
 
+/* Node flags. OVERSIZE: the subtree's hull had more than
+ * PXI_HULL_MAX_VERTICES vertices and was not kept (nor is any ancestor's). */
+#define PXI_NODE_OVERSIZE 1u
+
+/* Triangle trees keep no hull of more vertices than this: a hull costs
+ * ~450 bytes per vertex, and the hull of a large patch of a round surface
+ * holds most of its vertices. */
+#define PXI_HULL_MAX_VERTICES 256u
+
 /* A tree node. Leaves have child[0] = leaf index and child[1] = PXI_NONE.
  * `hull` is the node's convex hull (for convex leaves: the piece itself), or
  * NULL where only the sphere bounds the subtree (triangle leaves, small
@@ -18,7 +27,7 @@ typedef struct pxi_mnode {
     double radius;
     uint32_t child[2];
     uint32_t leaf_count;
-    uint32_t depth;
+    uint32_t flags; /* PXI_NODE_* */
     px_convex *hull;
 } pxi_mnode;
 
@@ -56,8 +65,20 @@ struct px_model {
  * px_model_create_from_mesh): nv vertices, nt triangles, part[t] the part
  * of triangle t, closed[p] whether part p bounds a solid. */
 px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_t *tri, uint32_t nt,
-                                   const uint32_t *part, const uint8_t *closed, uint32_t n_parts,
+                                   const uint32_t *part, const uint8_t *closed, uint32_t n_parts, int hulls,
                                    const px_allocator *alloc, px_error *err);
+
+/* Certified bounds of a part hull (reach.c): h over the hull's boundary, h_overlap
+ * over the whole hull, of the distance to the part's triangles (nt, indices
+ * minus `index_base` into the part's nv vertices xyz). */
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const double *xyz, uint32_t nv,
+                         const uint32_t *tri, uint32_t nt, uint32_t index_base, double *h, double *h_overlap,
+                         px_error *err);
+
+/* Distance from p (body frame) to the nearest triangle of a triangle tree,
+ * at most `limit` (returns `limit` when none is nearer); *tri gets the
+ * triangle (PXI_NONE when none is nearer than limit). */
+double pxi_model_nearest(const px_model *m, px_vec3 p, double limit, uint32_t *tri);
 
 /* Triangle geometry (tri.c). Closest point of triangle (a, b, c) to p,
  * with the feature realising it (vertex k, edge k from vertex k to k+1, or

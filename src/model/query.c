@@ -140,9 +140,9 @@ typedef struct qctx {
     px_model_cache *cache;
     mc_impl *mc;
     int kind;
-    double tol;  /* Q_WITHIN */
-    double ub;   /* best leaf distance so far (Q_DISTANCE) */
-    int hit;     /* Q_COLLIDE / Q_WITHIN */
+    double tol; /* Q_WITHIN */
+    double ub;  /* best leaf distance so far (Q_DISTANCE) */
+    int hit;    /* Q_COLLIDE / Q_WITHIN */
     uint32_t leaf_a, leaf_b, node_a, node_b;
     px_vec3 pt_a, pt_b; /* world */
     px_feature fa, fb;
@@ -519,8 +519,8 @@ static px_status model_collide(const px_model *a, const px_pose *pose_a, const p
     return st;
 }
 
-px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
-                            px_model_cache *cache, px_model_distance_result *out) {
+px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_model *b,
+                            const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out) {
     return model_distance(a, pose_a, b, pose_b, cache, out, NULL);
 }
 
@@ -576,7 +576,8 @@ static px_status view_convex(convex_view *v, const px_convex *c) {
 }
 
 px_status px_model_distance_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
-                                   const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out) {
+                                   const px_pose *pose_b, px_model_cache *cache,
+                                   px_model_distance_result *out) {
     if (out) memset(out, 0, sizeof *out);
     convex_view v;
     if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;
@@ -584,7 +585,8 @@ px_status px_model_distance_convex(const px_model *a, const px_pose *pose_a, con
 }
 
 px_status px_model_collide_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
-                                  const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out) {
+                                  const px_pose *pose_b, px_model_cache *cache,
+                                  px_model_collide_result *out) {
     if (out) memset(out, 0, sizeof *out);
     convex_view v;
     if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;

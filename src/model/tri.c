@@ -84,7 +84,8 @@ px_vec3 pxi_tri_closest(px_vec3 p, const px_vec3 t[3], px_feature *feature) {
     double vb = d5 * d2 - d1 * d6;
     if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return edge_point(c, a, segment_param(p, c, a), 2, feature);
     double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return edge_point(b, c, segment_param(p, b, c), 1, feature);
+    if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+        return edge_point(b, c, segment_param(p, b, c), 1, feature);
     /* Inside the face region: project onto the plane (more accurate than
      * the barycentric combination far from the origin of the frame). */
     *feature = tri_feature(PX_FEATURE_FACE, 0);

@@ -1,0 +1,317 @@
+/* Certified bounds h of part hulls: how far a convex hull reaches outside
+ * the triangles of the part it stands for.
+ *
+ * h bounds max dist(p, part) over the points p of the hull's boundary. The
+ * boundary is triangulated (each hull face fanned) and the triangles are
+ * refined best first. A triangle T = (v0, v1, v2) whose corners' nearest
+ * points q0, q1, q2 lie on one and the same part triangle is bounded by
+ * max d_k exactly: p = sum l_k v_k is within |sum l_k (v_k - q_k)| <=
+ * max d_k of the point sum l_k q_k, which lies on that part triangle
+ * (convex). Otherwise the distance being 1-Lipschitz, T is bounded by
+ * dist(g) + max |v_k - g| at its centroid g. Faces of the hull that are
+ * triangles of the part get bound 0 at once; others are split in four until
+ * the largest bound left is within 1 % of the largest distance seen (a
+ * lower bound of h) or a budget of evaluations is spent; h is the largest
+ * bound left, certified either way.
+ *
+ * h_overlap bounds the same over the whole hull (inside too, used when two
+ * pieces overlap), by cells of space refined the same way: a cell of
+ * half-diagonal r whose centre is at distance f bounds f + r. */
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "convex/convex.h"
+#include "core/core.h"
+#include "model/model.h"
+
+double pxi_model_nearest(const px_model *m, px_vec3 p, double limit, uint32_t *tri) {
+    uint32_t stack[128], top = 0;
+    double best = limit;
+    *tri = PXI_NONE;
+    stack[top++] = 0;
+    while (top > 0) {
+        const pxi_mnode *n = &m->nodes[stack[--top]];
+        if (pxi_len(pxi_sub(p, n->center)) - n->radius >= best) continue;
+        if (n->child[1] == PXI_NONE) {
+            const pxi_mleaf *leaf = &m->leaves[n->child[0]];
+            const uint32_t *t = m->tri + 3 * (size_t)leaf->tri;
+            px_vec3 tv[3] = {m->v[t[0]], m->v[t[1]], m->v[t[2]]};
+            px_feature f;
+            double d = pxi_len(pxi_sub(pxi_tri_closest(p, tv, &f), p));
+            if (d < best) {
+                best = d;
+                *tri = leaf->tri;
+            }
+            continue;
+        }
+        /* Nearer child on top. */
+        const pxi_mnode *c0 = &m->nodes[n->child[0]], *c1 = &m->nodes[n->child[1]];
+        double d0 = pxi_len(pxi_sub(p, c0->center)) - c0->radius;
+        double d1 = pxi_len(pxi_sub(p, c1->center)) - c1->radius;
+        if (top + 2 > sizeof stack / sizeof stack[0]) return best; /* depth is bounded far below */
+        if (d0 < d1) {
+            stack[top++] = n->child[1];
+            stack[top++] = n->child[0];
+        } else {
+            stack[top++] = n->child[0];
+            stack[top++] = n->child[1];
+        }
+    }
+    return best;
+}
+
+/* Evaluation budgets: the boundary as a whole, one of its triangles, the
+ * volume. */
+enum { R_BUDGET = 200000, R_FACE_BUDGET = 20000, R_VOLUME_BUDGET = 40000, R_HEAP = R_VOLUME_BUDGET + 64 };
+
+typedef struct rpoint {
+    px_vec3 p;
+    double d;
+    uint32_t tri;
+} rpoint;
+
+typedef struct rtri {
+    rpoint c[3];
+    double ub;
+} rtri;
+
+typedef struct rcell {
+    px_vec3 c, half;
+    double ub;
+} rcell;
+
+/* A max-heap of fixed-size records keyed by their leading... ub field, kept
+ * generic through a byte size and an offset. */
+typedef struct rheap {
+    unsigned char *data;
+    size_t size, off;
+    uint32_t n, cap;
+} rheap;
+
+static double rh_key(const rheap *h, uint32_t i) {
+    double k;
+    memcpy(&k, h->data + (size_t)i * h->size + h->off, sizeof k);
+    return k;
+}
+
+static void rh_swap(rheap *h, uint32_t i, uint32_t j) {
+    unsigned char tmp[sizeof(rtri) > sizeof(rcell) ? sizeof(rtri) : sizeof(rcell)];
+    memcpy(tmp, h->data + (size_t)i * h->size, h->size);
+    memcpy(h->data + (size_t)i * h->size, h->data + (size_t)j * h->size, h->size);
+    memcpy(h->data + (size_t)j * h->size, tmp, h->size);
+}
+
+static int rh_push(rheap *h, const void *rec) {
+    if (h->n == h->cap) return 0;
+    uint32_t i = h->n++;
+    memcpy(h->data + (size_t)i * h->size, rec, h->size);
+    while (i > 0 && rh_key(h, (i - 1) / 2) < rh_key(h, i)) {
+        rh_swap(h, i, (i - 1) / 2);
+        i = (i - 1) / 2;
+    }
+    return 1;
+}
+
+static void rh_pop(rheap *h, void *rec) {
+    memcpy(rec, h->data, h->size);
+    h->n--;
+    if (h->n == 0) return;
+    memcpy(h->data, h->data + (size_t)h->n * h->size, h->size);
+    uint32_t i = 0;
+    for (;;) {
+        uint32_t k = 2 * i + 1;
+        if (k >= h->n) break;
+        if (k + 1 < h->n && rh_key(h, k + 1) > rh_key(h, k)) ++k;
+        if (rh_key(h, k) <= rh_key(h, i)) break;
+        rh_swap(h, i, k);
+        i = k;
+    }
+}
+
+typedef struct reach {
+    const px_model *tree;
+    double known; /* largest distance seen at a point of the set */
+    double bound; /* largest bound of the parts refined so far */
+    uint32_t evals;
+} reach;
+
+static rpoint eval(reach *r, px_vec3 p) {
+    rpoint out;
+    out.p = p;
+    out.d = pxi_model_nearest(r->tree, p, INFINITY, &out.tri);
+    r->evals++;
+    return out;
+}
+
+static void tri_bound(reach *r, rtri *t) {
+    if (t->c[0].tri == t->c[1].tri && t->c[1].tri == t->c[2].tri) {
+        t->ub = fmax(t->c[0].d, fmax(t->c[1].d, t->c[2].d));
+        return;
+    }
+    px_vec3 g = pxi_scale(pxi_add(pxi_add(t->c[0].p, t->c[1].p), t->c[2].p), 1.0 / 3.0);
+    double rad = 0.0;
+    for (int k = 0; k < 3; ++k) rad = fmax(rad, pxi_len(pxi_sub(t->c[k].p, g)));
+    rpoint pg = eval(r, g);
+    r->known = fmax(r->known, pg.d);
+    t->ub = pg.d + rad;
+}
+
+/* Refines one triangle of the boundary best first; returns its bound. */
+static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budget) {
+    h->n = 0;
+    rh_push(h, t0);
+    uint32_t start = r->evals;
+    while (h->n > 0) {
+        rtri t;
+        rh_pop(h, &t);
+        if (t.ub <= r->known * 1.01 || r->evals - start + 7 > budget || h->n + 4 > h->cap) return t.ub;
+        rpoint m01 = eval(r, pxi_scale(pxi_add(t.c[0].p, t.c[1].p), 0.5));
+        rpoint m12 = eval(r, pxi_scale(pxi_add(t.c[1].p, t.c[2].p), 0.5));
+        rpoint m20 = eval(r, pxi_scale(pxi_add(t.c[2].p, t.c[0].p), 0.5));
+        r->known = fmax(r->known, fmax(m01.d, fmax(m12.d, m20.d)));
+        rtri kids[4] = {{{t.c[0], m01, m20}, 0}, {{m01, t.c[1], m12}, 0}, {{m20, m12, t.c[2]}, 0}, {{m01, m12, m20}, 0}};
+        for (int k = 0; k < 4; ++k) {
+            tri_bound(r, &kids[k]);
+            rh_push(h, &kids[k]);
+        }
+    }
+    return 0.0;
+}
+
+/* The hull's faces fanned into triangles, each refined with a share of the
+ * budget proportional to its area. */
+static double boundary_reach(reach *r, const px_convex *hull, rheap *h) {
+    uint32_t nf = px_convex_face_count(hull);
+    double total_area = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+        for (uint32_t f = 0; f < nf; ++f) {
+            uint32_t count, v0;
+            px_convex_face(hull, f, NULL, NULL, &count);
+            px_convex_face_vertex(hull, f, 0, &v0);
+            px_vec3 p0;
+            px_convex_vertex(hull, v0, &p0);
+            rpoint c0 = {p0, 0.0, PXI_NONE};
+            if (pass == 1) {
+                c0 = eval(r, p0);
+                r->known = fmax(r->known, c0.d);
+            }
+            for (uint32_t k = 1; k + 1 < count; ++k) {
+                uint32_t v1, v2;
+                px_convex_face_vertex(hull, f, k, &v1);
+                px_convex_face_vertex(hull, f, k + 1, &v2);
+                px_vec3 p1, p2;
+                px_convex_vertex(hull, v1, &p1);
+                px_convex_vertex(hull, v2, &p2);
+                double area = 0.5 * pxi_len(pxi_cross(pxi_sub(p1, p0), pxi_sub(p2, p0)));
+                if (pass == 0) {
+                    total_area += area;
+                    continue;
+                }
+                rtri t;
+                t.c[0] = c0;
+                t.c[1] = eval(r, p1);
+                t.c[2] = eval(r, p2);
+                r->known = fmax(r->known, fmax(t.c[1].d, t.c[2].d));
+                tri_bound(r, &t);
+                double share = total_area > 0.0 ? area / total_area : 1.0;
+                uint32_t budget = (uint32_t)fmin((double)R_FACE_BUDGET, fmax(8.0, share * R_BUDGET));
+                r->bound = fmax(r->bound, refine_triangle(r, h, &t, budget));
+            }
+        }
+    }
+    return fmax(r->bound, r->known);
+}
+
+static double plane_max(const px_convex *hull, px_vec3 p) {
+    double worst = -INFINITY;
+    uint32_t nf = px_convex_face_count(hull);
+    for (uint32_t f = 0; f < nf; ++f) {
+        px_vec3 n;
+        double off;
+        px_convex_face(hull, f, &n, &off, NULL);
+        worst = fmax(worst, pxi_dot(n, p) - off);
+    }
+    return worst;
+}
+
+static int push_cell(reach *r, const px_convex *hull, rheap *h, px_vec3 c, px_vec3 half) {
+    double rad = pxi_len(half), pm = plane_max(hull, c);
+    if (pm > rad) return 1; /* the cell misses the hull */
+    rpoint e = eval(r, c);
+    if (pm <= 0.0) r->known = fmax(r->known, e.d);
+    rcell cell = {c, half, e.d + rad};
+    return rh_push(h, &cell);
+}
+
+static double volume_reach(reach *r, const px_convex *hull, rheap *h) {
+    uint32_t nv = px_convex_vertex_count(hull);
+    px_vec3 lo, hi;
+    px_convex_vertex(hull, 0, &lo);
+    hi = lo;
+    for (uint32_t i = 1; i < nv; ++i) {
+        px_vec3 p;
+        px_convex_vertex(hull, i, &p);
+        lo = pxi_v(fmin(lo.x, p.x), fmin(lo.y, p.y), fmin(lo.z, p.z));
+        hi = pxi_v(fmax(hi.x, p.x), fmax(hi.y, p.y), fmax(hi.z, p.z));
+    }
+    const int k0 = 4;
+    px_vec3 half = pxi_scale(pxi_sub(hi, lo), 0.5 / k0);
+    for (int i = 0; i < k0; ++i)
+        for (int j = 0; j < k0; ++j)
+            for (int k = 0; k < k0; ++k) {
+                px_vec3 c = pxi_v(lo.x + (2 * i + 1) * half.x, lo.y + (2 * j + 1) * half.y,
+                                  lo.z + (2 * k + 1) * half.z);
+                if (!push_cell(r, hull, h, c, half)) return INFINITY;
+            }
+    while (h->n > 0) {
+        rcell cell;
+        rh_pop(h, &cell);
+        if (cell.ub <= r->known * 1.01 || r->evals + 8 > R_VOLUME_BUDGET || h->n + 8 > h->cap)
+            return fmax(cell.ub, r->known);
+        px_vec3 hh = pxi_scale(cell.half, 0.5);
+        for (int s = 0; s < 8; ++s) {
+            px_vec3 c = pxi_v(cell.c.x + ((s & 1) ? hh.x : -hh.x), cell.c.y + ((s & 2) ? hh.y : -hh.y),
+                              cell.c.z + ((s & 4) ? hh.z : -hh.z));
+            push_cell(r, hull, h, c, hh);
+        }
+    }
+    return r->known;
+}
+
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const double *xyz, uint32_t nv,
+                         const uint32_t *tri, uint32_t nt, uint32_t index_base, double *h, double *h_overlap,
+                         px_error *err) {
+    *h = *h_overlap = 0.0;
+    if (nt == 0) return PX_OK;
+    uint32_t *local = pxi_alloc_array(alloc, (size_t)nt * 3, sizeof *local);
+    if (!local) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    for (size_t i = 0; i < (size_t)nt * 3; ++i) local[i] = tri[i] - index_base;
+    px_model *tree = pxi_model_from_triangles(xyz, nv, local, nt, NULL, NULL, 0, 0, alloc, err);
+    pxi_free(alloc, local, (size_t)nt * 3 * sizeof *local);
+    if (!tree) return err ? err->code : PX_ERR_OUT_OF_MEMORY;
+    size_t rec = sizeof(rtri) > sizeof(rcell) ? sizeof(rtri) : sizeof(rcell);
+    rheap heap = {NULL, sizeof(rtri), offsetof(rtri, ub), 0, R_HEAP};
+    heap.data = pxi_alloc_array(alloc, R_HEAP, rec);
+    px_status st = PX_OK;
+    if (!heap.data) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    } else {
+        /* Rounding of the nearest points: a few ulps of the hull's size. */
+        px_bounds bd;
+        px_convex_bounds(hull, NULL, &bd);
+        double slack = 16.0 * DBL_EPSILON * (bd.radius + pxi_len(bd.center));
+        reach r = {tree, 0.0, 0.0, 0};
+        *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
+        heap.n = 0;
+        heap.size = sizeof(rcell);
+        heap.off = offsetof(rcell, ub);
+        r.evals = 0;
+        *h_overlap = fmax(*h, volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack);
+        if (!isfinite(*h) || !isfinite(*h_overlap)) st = pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
+    }
+    pxi_free(alloc, heap.data, R_HEAP * rec);
+    px_model_destroy(tree);
+    return st;
+}

@@ -71,7 +71,7 @@ static void sphere(tri_mesh *t, double rad, int nlat, int nlon, px_vec3 at) {
             q[2] = at.z + rad * cos(th);
         }
     uint32_t k = 0;
-#define V(i, j) ((uint32_t)(2 + ((i) - 1) * nlon + ((j) % nlon)))
+#define V(i, j) ((uint32_t)(2 + ((i)-1) * nlon + ((j) % nlon)))
     for (int j = 0; j < nlon; ++j) {
         uint32_t *q = t->tri + 3 * k++;
         q[0] = 0, q[1] = V(1, j), q[2] = V(1, j + 1);
@@ -158,8 +158,8 @@ static px_pose nudge(pg_rng *rng, px_pose p, double ang, double step) {
 /* ---- Oracles ------------------------------------------------------------ */
 
 /* Brute force over the convex pieces: GJK on every pair (a second method). */
-static double brute_convex(px_convex *const *pa, uint32_t na, const px_pose *posa, px_convex *const *pb, uint32_t nb,
-                           const px_pose *posb) {
+static double brute_convex(px_convex *const *pa, uint32_t na, const px_pose *posa, px_convex *const *pb,
+                           uint32_t nb, const px_pose *posb) {
     px_query_options o;
     memset(&o, 0, sizeof o);
     o.method = PX_METHOD_GJK;
@@ -293,13 +293,16 @@ static void test_points(void) {
             CHECK(cold.upper_bound == cold.distance, "exact leaves: bracket closed");
             worst = fmax(worst, fabs(hot.distance - bf) / (1.0 + bf));
             /* The witnesses: |pa - pb| = d, and the leaf pair realises it. */
-            px_vec3 d = {hot.point_b.x - hot.point_a.x, hot.point_b.y - hot.point_a.y, hot.point_b.z - hot.point_a.z};
-            CHECK(fabs(sqrt(d.x * d.x + d.y * d.y + d.z * d.z) - hot.distance) <= 1e-12 * (1.0 + bf) || bf == 0.0,
+            px_vec3 d = {hot.point_b.x - hot.point_a.x, hot.point_b.y - hot.point_a.y,
+                         hot.point_b.z - hot.point_a.z};
+            CHECK(fabs(sqrt(d.x * d.x + d.y * d.y + d.z * d.z) - hot.distance) <= 1e-12 * (1.0 + bf) ||
+                      bf == 0.0,
                   "witness gap");
             CHECK(hot.leaf_a < pa.n && hot.leaf_b < pb.n && hot.feature_a.piece == hot.leaf_a, "leaves");
             if (hot.leaf_a < pa.n && hot.leaf_b < pb.n) {
                 double lp = brute_convex(&pa.c[hot.leaf_a], 1, &posa, &pb.c[hot.leaf_b], 1, &posb);
-                CHECK(fabs(lp - bf) <= tol, "leaf pair %u,%u gives %.17g, brute %.17g", hot.leaf_a, hot.leaf_b, lp, bf);
+                CHECK(fabs(lp - bf) <= tol, "leaf pair %u,%u gives %.17g, brute %.17g", hot.leaf_a,
+                      hot.leaf_b, lp, bf);
             }
             /* collide and within agree with the brute force (away from ties). */
             px_model_collide_result c;
@@ -308,12 +311,14 @@ static void test_points(void) {
             if (bf == 0.0) CHECK(c.hit == 1, "collide misses an overlap");
             double t = 0.3;
             CHECK(px_model_within(ma, &posa, mb, &posb, t, NULL, &c) == PX_OK, "within");
-            if (fabs(bf - t) > 1e-9) CHECK(c.hit == (bf < t), "within %g at distance %g says %d", t, bf, c.hit);
+            if (fabs(bf - t) > 1e-9)
+                CHECK(c.hit == (bf < t), "within %g at distance %g says %d", t, bf, c.hit);
             /* Model against one convex: piece 0 of B alone. */
             px_model_distance_result rc;
             CHECK(px_model_distance_convex(ma, &posa, pb.c[0], &posb, NULL, &rc) == PX_OK, "vs convex");
             double bc = brute_convex(pa.c, pa.n, &posa, pb.c, 1, &posb);
-            CHECK(fabs(rc.distance - bc) <= 1e-12 * (1.0 + bc), "vs convex %.17g brute %.17g", rc.distance, bc);
+            CHECK(fabs(rc.distance - bc) <= 1e-12 * (1.0 + bc), "vs convex %.17g brute %.17g", rc.distance,
+                  bc);
             ++checked;
         }
         CHECK(tiny.cold_runs > 0 && tiny.memory_bytes <= 200, "tiny cache: cold runs %llu, %zu bytes",
@@ -356,8 +361,9 @@ static void test_triangles(void) {
     CHECK(info.leaves == ta.nt && info.solid == 1 && info.solid_parts == 1, "torus info: %u leaves solid %u",
           info.leaves, info.solid);
     CHECK(info.hull_nodes > 0, "torus has hull nodes");
-    printf("triangles: torus %u triangles, %u hull nodes, depth %u, %zu bytes (%.0f per triangle)\n", info.leaves,
-           info.hull_nodes, info.depth, info.memory_bytes, (double)info.memory_bytes / info.leaves);
+    printf("triangles: torus %u triangles, %u hull nodes, depth %u, %zu bytes (%.0f per triangle)\n",
+           info.leaves, info.hull_nodes, info.depth, info.memory_bytes,
+           (double)info.memory_bytes / info.leaves);
     int n = tu_scaled(tu_sanitized() ? 20 : 150);
     px_model_cache warm = {0};
     px_pose posa = px_pose_identity(), posb = random_pose(&rng, 1.5);
@@ -418,7 +424,8 @@ static void test_containment(void) {
     px_pose id = px_pose_identity(), off = px_pose_identity();
     off.t = (px_vec3){0.5, -0.3, 0.2};
     px_model_collide_result c;
-    CHECK(px_model_collide(a, &id, b, &off, NULL, &c) == PX_OK && c.hit && c.contained, "inner sphere collides");
+    CHECK(px_model_collide(a, &id, b, &off, NULL, &c) == PX_OK && c.hit && c.contained,
+          "inner sphere collides");
     CHECK(px_model_collide(b, &off, a, &id, NULL, &c) == PX_OK && c.hit && c.contained, "either order");
     CHECK(px_model_within(a, &id, b, &off, 0.0, NULL, &c) == PX_OK && c.hit, "within 0 of a solid");
     px_model_distance_result r;
@@ -434,7 +441,8 @@ static void test_containment(void) {
     px_model_get_info(open, &info);
     CHECK(info.solid == 0 && info.solid_parts == 0, "open mesh is a surface");
     off.t = (px_vec3){0.5, -0.3, 0.2};
-    CHECK(px_model_collide(open, &id, b, &off, NULL, &c) == PX_OK && !c.hit, "inside an open surface: no hit");
+    CHECK(px_model_collide(open, &id, b, &off, NULL, &c) == PX_OK && !c.hit,
+          "inside an open surface: no hit");
     px_model_destroy(open);
     px_mesh_destroy(mo);
     px_model_destroy(a);
@@ -464,7 +472,8 @@ static void test_bracket(void) {
     px_model *ha = px_model_create_from_mesh(ma, &hull_opt, &e);
     CHECK(ha != NULL, "part hulls: %s", e.message);
     px_model *hb = px_model_create_from_mesh(mb, &hull_opt, &e);
-    px_model *ta = px_model_create_from_mesh(ma, &tri_opt, &e), *tb = px_model_create_from_mesh(mb, &tri_opt, &e);
+    px_model *ta = px_model_create_from_mesh(ma, &tri_opt, &e),
+             *tb = px_model_create_from_mesh(mb, &tri_opt, &e);
     CHECK(ha && hb && ta && tb, "bracket models");
     if (!ha || !hb || !ta || !tb) return;
     px_model_leaf leaf;
@@ -508,15 +517,18 @@ static void test_arguments(void) {
     px_error e;
     px_model *m = px_model_create_from_points(box, end, 1, NULL, &e);
     CHECK(m != NULL, "one box");
-    CHECK(px_model_create_from_points(NULL, end, 1, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "NULL");
-    CHECK(px_model_create_from_points(box, end, 0, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "none");
+    CHECK(px_model_create_from_points(NULL, end, 1, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT,
+          "NULL");
+    CHECK(px_model_create_from_points(box, end, 0, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT,
+          "none");
     px_model_options o;
     memset(&o, 0, sizeof o);
     o.reserved[2] = 1;
-    CHECK(px_model_create_from_points(box, end, 1, &o, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "reserved");
+    CHECK(px_model_create_from_points(box, end, 1, &o, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT,
+          "reserved");
     uint32_t bad_end[2] = {8, 8};
-    CHECK(px_model_create_from_points(box, bad_end, 2, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT &&
-              strstr(e.message, "piece 1"),
+    CHECK(px_model_create_from_points(box, bad_end, 2, NULL, &e) == NULL &&
+              e.code == PX_ERR_INVALID_ARGUMENT && strstr(e.message, "piece 1"),
           "empty piece named: %s", e.message);
     double flat[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
     uint32_t two[2] = {8, 12};
@@ -529,7 +541,8 @@ static void test_arguments(void) {
     double nan_pts[24];
     memcpy(nan_pts, box, sizeof box);
     nan_pts[5] = NAN;
-    CHECK(px_model_create_from_points(nan_pts, end, 1, NULL, &e) == NULL && e.code == PX_ERR_NON_FINITE, "NaN");
+    CHECK(px_model_create_from_points(nan_pts, end, 1, NULL, &e) == NULL && e.code == PX_ERR_NON_FINITE,
+          "NaN");
     px_pose id = px_pose_identity(), bad = id;
     bad.r[0] = 2.0;
     px_model_distance_result r;
@@ -540,7 +553,8 @@ static void test_arguments(void) {
     CHECK(px_model_within(m, &id, m, &id, -1.0, NULL, &c) == PX_ERR_INVALID_ARGUMENT, "negative tolerance");
     CHECK(px_model_within(m, &id, m, &id, NAN, NULL, &c) == PX_ERR_INVALID_ARGUMENT, "NaN tolerance");
     CHECK(px_model_distance_convex(m, &id, NULL, &id, NULL, &r) == PX_ERR_INVALID_ARGUMENT, "NULL convex");
-    CHECK(px_model_create_from_mesh(NULL, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "NULL mesh");
+    CHECK(px_model_create_from_mesh(NULL, NULL, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT,
+          "NULL mesh");
     px_model_destroy(m);
     px_model_destroy(NULL);
     px_model_cache_release(NULL);

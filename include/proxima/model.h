@@ -73,15 +73,17 @@ typedef struct px_model_options {
 /// is 0). Errors as `px_convex_create` for each piece (the message names the
 /// piece), PX_ERR_INVALID_ARGUMENT for NULL arrays, zero pieces or ends
 /// that decrease.
-PX_API px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_end, uint32_t piece_count,
-                                             const px_model_options *options, px_error *err);
+PX_API px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_end,
+                                             uint32_t piece_count, const px_model_options *options,
+                                             px_error *err);
 
 /// A model from a mesh, with leaves as `options->pieces` says. Parts without
 /// triangles become point-set pieces (h = 0). The mesh may be destroyed
 /// afterwards. PX_ERR_DEGENERATE names a part whose hull cannot be built;
 /// PX_ERR_INVALID_ARGUMENT for a mesh without triangles with
 /// PX_PIECES_TRIANGLES.
-PX_API px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options *options, px_error *err);
+PX_API px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options *options,
+                                           px_error *err);
 
 /// Frees the model with its allocator; NULL is a no-op.
 PX_API void px_model_destroy(px_model *model);
@@ -96,9 +98,9 @@ typedef struct px_model_info {
     uint32_t solid;       ///< 1 when every leaf stands for a solid (closed parts, convex pieces)
     uint32_t solid_parts; ///< closed parts (triangle trees) whose inside counts in collisions
     uint32_t reserved;
-    double max_h;         ///< largest leaf bound h (0 for exact leaves)
-    px_vec3 min, max;     ///< axis-aligned box of the model (body frame)
-    size_t memory_bytes;  ///< everything the model owns
+    double max_h;        ///< largest leaf bound h (0 for exact leaves)
+    px_vec3 min, max;    ///< axis-aligned box of the model (body frame)
+    size_t memory_bytes; ///< everything the model owns
 } px_model_info;
 
 PX_API px_status px_model_get_info(const px_model *model, px_model_info *out);

@@ -481,7 +481,9 @@ static void test_bracket(void) {
     /* A torus hull reaches out by at least the hole's radius minus the tube. */
     CHECK(leaf.h >= 0.2 && leaf.h_overlap >= 0.6 - 1e-9 && leaf.h_overlap <= 1.0,
           "torus part: h %.4g h_overlap %.4g", leaf.h, leaf.h_overlap);
+    printf("bracket: torus part (0.8, 0.2): h %.4g, h_overlap %.4g\n", leaf.h, leaf.h_overlap);
     px_model_get_leaf(hb, 1, &leaf);
+    printf("bracket: UV sphere part (0.3, 6 x 8): h %.4g, h_overlap %.4g\n", leaf.h, leaf.h_overlap);
     CHECK(leaf.h < 0.05, "a UV sphere's hull is nearly the sphere: h %.4g", leaf.h);
     int n = tu_scaled(tu_sanitized() ? 30 : 300), in = 0;
     double worst_gap = 0.0;

@@ -562,6 +562,125 @@ static void test_arguments(void) {
     px_model_cache_release(NULL);
 }
 
+/* ---- .pxm files ---------------------------------------------------------- */
+
+static unsigned char *read_all(const char *path, size_t *size) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *b = malloc((size_t)n + 1);
+    *size = fread(b, 1, (size_t)n, f);
+    fclose(f);
+    return b;
+}
+
+/* A model saved and loaded answers as the original did; every truncation
+ * and every flipped byte of a small file is refused with PX_ERR_IO. */
+static void roundtrip(const char *what, const px_model *m, const px_model *other, int exhaustive) {
+    const char *path = "test_model_roundtrip.pxm";
+    px_error e;
+    CHECK(px_model_save(m, path, &e) == PX_OK, "%s: save: %s", what, e.message);
+    px_model *l = px_model_load(path, NULL, &e);
+    CHECK(l != NULL, "%s: load: %s", what, e.message);
+    if (!l) return;
+    px_model_info a, b;
+    px_model_get_info(m, &a);
+    px_model_get_info(l, &b);
+    CHECK(a.leaves == b.leaves && a.nodes == b.nodes && a.hull_nodes == b.hull_nodes && a.depth == b.depth &&
+              a.solid == b.solid && a.max_h == b.max_h,
+          "%s: info differs after loading", what);
+    pg_rng rng;
+    pg_seed(&rng, 5);
+    for (int i = 0; i < 50; ++i) {
+        px_pose pa = random_pose(&rng, 0.5), pb = random_pose(&rng, 3.0);
+        px_model_distance_result r0, r1;
+        px_model_distance(m, &pa, other, &pb, NULL, &r0);
+        px_model_distance(l, &pa, other, &pb, NULL, &r1);
+        CHECK(fabs(r0.distance - r1.distance) <= 1e-14 * (1.0 + r0.distance) &&
+                  r0.upper_bound - r0.distance == r1.upper_bound - r1.distance,
+              "%s: loaded model answers %.17g, saved one %.17g", what, r1.distance, r0.distance);
+        px_model_collide_result c0, c1;
+        px_model_collide(m, &pa, other, &pb, NULL, &c0);
+        px_model_collide(l, &pa, other, &pb, NULL, &c1);
+        CHECK(c0.hit == c1.hit, "%s: collide differs after loading", what);
+    }
+    px_model_destroy(l);
+    size_t size = 0;
+    unsigned char *buf = read_all(path, &size);
+    CHECK(buf != NULL && size > 88, "%s: file read back", what);
+    if (!buf) return;
+    l = px_model_load_memory(buf, size, NULL, &e);
+    CHECK(l != NULL, "%s: load from memory: %s", what, e.message);
+    px_model_destroy(l);
+    int refused = 0, tried = 0;
+    size_t step = exhaustive ? 1 : size / 997 + 1;
+    for (size_t n = 0; n < size; n += step, ++tried) {
+        l = px_model_load_memory(buf, n, NULL, &e);
+        refused += l == NULL && e.code == PX_ERR_IO;
+        px_model_destroy(l);
+    }
+    CHECK(refused == tried, "%s: %d of %d truncations refused", what, refused, tried);
+    int flips = 0, flips_refused = 0;
+    for (size_t i = 0; i < size; i += step) {
+        buf[i] ^= 0x5a;
+        l = px_model_load_memory(buf, size, NULL, &e);
+        flips_refused += l == NULL && e.code == PX_ERR_IO;
+        ++flips;
+        px_model_destroy(l);
+        buf[i] ^= 0x5a;
+    }
+    CHECK(flips_refused == flips, "%s: %d of %d flipped bytes refused", what, flips_refused, flips);
+    unsigned char junk[200];
+    memset(junk, 'x', sizeof junk);
+    CHECK(px_model_load_memory(junk, sizeof junk, NULL, &e) == NULL && e.code == PX_ERR_IO &&
+              strstr(e.message, "magic"),
+          "foreign file: %s", e.message);
+    CHECK(px_model_load("/nonexistent/x.pxm", NULL, &e) == NULL && e.code == PX_ERR_IO &&
+              strstr(e.message, "/nonexistent/x.pxm"),
+          "missing file named: %s", e.message);
+    CHECK(px_model_load(".", NULL, &e) == NULL && e.code == PX_ERR_IO, "directory refused");
+    printf("pxm: %s: %zu bytes, %d truncations and %d flipped bytes refused\n", what, size, refused,
+           flips_refused);
+    free(buf);
+    remove(path);
+}
+
+static void test_pxm(void) {
+    pg_rng rng;
+    pg_seed(&rng, 31);
+    pieces pa;
+    make_pieces(&rng, &pa, 5, 1.0);
+    px_model *mp = px_model_create_from_points(pa.xyz, pa.end, pa.n, NULL, NULL);
+    tri_mesh t, parts[2];
+    torus(&t, 1.0, 0.3, 12, 6, (px_vec3){0, 0, 0});
+    torus(&parts[0], 0.8, 0.2, 10, 6, (px_vec3){0, 0, 0});
+    sphere(&parts[1], 0.3, 5, 6, (px_vec3){0, 1.5, 0});
+    px_mesh *mt = make_mesh(&t, 1), *mparts = make_mesh(parts, 2);
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_TRIANGLES;
+    px_model *mtri = px_model_create_from_mesh(mt, &o, NULL);
+    o.pieces = PX_PIECES_PARTS;
+    px_model *mhull = px_model_create_from_mesh(mparts, &o, NULL);
+    CHECK(mp && mtri && mhull, "pxm models");
+    if (mp && mtri && mhull) {
+        roundtrip("points", mp, mhull, 1);
+        roundtrip("triangles", mtri, mtri, 0);
+        roundtrip("parts", mhull, mp, 0);
+    }
+    px_model_destroy(mp);
+    px_model_destroy(mtri);
+    px_model_destroy(mhull);
+    px_mesh_destroy(mt);
+    px_mesh_destroy(mparts);
+    mesh_free(&t);
+    mesh_free(&parts[0]);
+    mesh_free(&parts[1]);
+    free_pieces(&pa);
+}
+
 int main(void) {
     tu_init("test_model");
     test_arguments();
@@ -569,5 +688,6 @@ int main(void) {
     test_triangles();
     test_containment();
     test_bracket();
+    test_pxm();
     return tu_finish();
 }

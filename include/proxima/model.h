@@ -123,6 +123,31 @@ typedef struct px_model_leaf {
 
 PX_API px_status px_model_get_leaf(const px_model *model, uint32_t i, px_model_leaf *out);
 
+/// Largest .pxm file px_model_load reads (4 GiB).
+#define PX_MODEL_MAX_FILE_BYTES (1ull << 32)
+
+/// Saves a model to `path` in proxima's versioned binary format (.pxm), so
+/// that the build runs once. PX_ERR_IO (naming the file) when it cannot be
+/// written.
+PX_API px_status px_model_save(const px_model *model, const char *path, px_error *err);
+
+/// Loads a model saved by px_model_save (`options` as for creation: the
+/// allocator; `pieces` must be 0). The reader checks the magic, version,
+/// every size against the bytes present (before allocating), a checksum of
+/// the whole payload, every index and the tree's shape; it rebuilds each
+/// hull from its stored vertices and checks that every hull holds its
+/// subtree, and recomputes the bounding spheres. A damaged or foreign file
+/// gets PX_ERR_IO naming the file and the problem. Not checked: a part's
+/// bound h (recomputing it is the build's cost); a file crafted to lie
+/// about h gives a wrong bracket, never a wrong distance. A loaded model
+/// answers every query as the saved one did (hulls are rebuilt from the
+/// same vertices; their feature numbering may differ).
+PX_API px_model *px_model_load(const char *path, const px_model_options *options, px_error *err);
+
+/// The same from `size` bytes in memory (messages name "(memory)").
+PX_API px_model *px_model_load_memory(const void *data, size_t size, const px_model_options *options,
+                                      px_error *err);
+
 /// Caller-owned coherence cache for one pair of models (A, B), in that
 /// order. Zero-initialise it: zero means cold. It keeps the last best leaf
 /// pair and one small Lin-Canny cache per node pair a query visited, created

@@ -171,7 +171,8 @@ static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budge
         rpoint m12 = eval(r, pxi_scale(pxi_add(t.c[1].p, t.c[2].p), 0.5));
         rpoint m20 = eval(r, pxi_scale(pxi_add(t.c[2].p, t.c[0].p), 0.5));
         r->known = fmax(r->known, fmax(m01.d, fmax(m12.d, m20.d)));
-        rtri kids[4] = {{{t.c[0], m01, m20}, 0}, {{m01, t.c[1], m12}, 0}, {{m20, m12, t.c[2]}, 0}, {{m01, m12, m20}, 0}};
+        rtri kids[4] = {
+            {{t.c[0], m01, m20}, 0}, {{m01, t.c[1], m12}, 0}, {{m20, m12, t.c[2]}, 0}, {{m01, m12, m20}, 0}};
         for (int k = 0; k < 4; ++k) {
             tri_bound(r, &kids[k]);
             rh_push(h, &kids[k]);
@@ -309,7 +310,8 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
         heap.off = offsetof(rcell, ub);
         r.evals = 0;
         *h_overlap = fmax(*h, volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack);
-        if (!isfinite(*h) || !isfinite(*h_overlap)) st = pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
+        if (!isfinite(*h) || !isfinite(*h_overlap))
+            st = pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
     }
     pxi_free(alloc, heap.data, R_HEAP * rec);
     px_model_destroy(tree);

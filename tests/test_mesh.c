@@ -252,8 +252,8 @@ static void test_closed(void) {
                   info.unit_metres == 0.001 && info.max.x == 12 && info.min.y == 0,
               "info");
         CHECK(px_mesh_vertices(m)[3 * 9] == 12, "scaled");
-        CHECK(px_mesh_vertex_count(m) == 16 && px_mesh_triangle_count(m) == 22 && px_mesh_part_count(m) == 2 &&
-                  px_mesh_node_count(m) == 2,
+        CHECK(px_mesh_vertex_count(m) == 16 && px_mesh_triangle_count(m) == 22 &&
+                  px_mesh_part_count(m) == 2 && px_mesh_node_count(m) == 2,
               "counts");
         CHECK(px_mesh_memory_bytes(m) == (size_t)g_live_bytes, "memory_bytes %zu vs %ld",
               px_mesh_memory_bytes(m), g_live_bytes);
@@ -271,7 +271,8 @@ static void expect_create_error(const px_mesh_desc *d, const px_mesh_options *o,
     px_mesh *m = px_mesh_create(d, o, &err);
     CHECK(m == NULL && err.code == code, "line %d: expected %s, got %s (%s)", line, px_status_string(code),
           px_status_string(err.code), err.message);
-    CHECK(!needle || strstr(err.message, needle), "line %d: message '%s' lacks '%s'", line, err.message, needle);
+    CHECK(!needle || strstr(err.message, needle), "line %d: message '%s' lacks '%s'", line, err.message,
+          needle);
     px_mesh_destroy(m);
 }
 #define EXPECT(d, o, code, needle) expect_create_error(d, o, code, needle, __LINE__)
@@ -415,8 +416,9 @@ static void test_validation(void) {
     CHECK(px_mesh_get_info(e, &info) == PX_OK && info.min.x == 0 && info.max.x == 0 && info.scale == 1,
           "empty info");
     px_mesh_destroy(e);
-    CHECK(px_mesh_vertex_count(NULL) == 0 && px_mesh_part_count(NULL) == 0 && px_mesh_vertices(NULL) == NULL &&
-              px_mesh_memory_bytes(NULL) == 0 && px_mesh_get_info(NULL, &info) == PX_ERR_INVALID_ARGUMENT,
+    CHECK(px_mesh_vertex_count(NULL) == 0 && px_mesh_part_count(NULL) == 0 &&
+              px_mesh_vertices(NULL) == NULL && px_mesh_memory_bytes(NULL) == 0 &&
+              px_mesh_get_info(NULL, &info) == PX_ERR_INVALID_ARGUMENT,
           "NULL mesh accessors");
     px_mesh_destroy(NULL);
     CHECK(g_live_bytes == 0 && g_live_blocks == 0, "leak after test_validation");
@@ -453,7 +455,8 @@ static void test_alloc_failures(void) {
         }
         CHECK(err.code == PX_ERR_OUT_OF_MEMORY && strstr(err.message, "out of memory"),
               "allocation %ld failing: %s", k, err.message);
-        CHECK(g_live_bytes == 0 && g_live_blocks == 0, "allocation %ld failing leaks %ld bytes", k, g_live_bytes);
+        CHECK(g_live_bytes == 0 && g_live_blocks == 0, "allocation %ld failing leaks %ld bytes", k,
+              g_live_bytes);
     }
     g_fail_at = -1;
     CHECK(k == 5, "a two-part creation makes 5 allocations (got %ld)", k);

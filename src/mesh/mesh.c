@@ -250,32 +250,36 @@ static px_status check_overlap(const px_mesh_desc *d, range_rec *tmp, int which,
 static px_status check_desc(const px_mesh_desc *d, double scale, px_error *err) {
     for (int i = 0; i < 4; ++i)
         if (d->reserved[i])
-            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: desc.reserved[%d] is not zero", i);
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: desc.reserved[%d] is not zero",
+                             i);
     if (d->vertex_count > PXI_MESH_MAX_COUNT || d->triangle_count > PXI_MESH_MAX_COUNT)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                         "px_mesh_create: %zu vertices and %zu triangles: at most 2^31 of each", d->vertex_count,
-                         d->triangle_count);
+                         "px_mesh_create: %zu vertices and %zu triangles: at most 2^31 of each",
+                         d->vertex_count, d->triangle_count);
     if (d->part_count > PXI_MESH_MAX_COUNT || d->node_count > PXI_MESH_MAX_COUNT)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                          "px_mesh_create: %u parts and %u nodes: at most 2^31 of each", d->part_count,
                          d->node_count);
-    if ((d->vertex_count && !d->xyz) || (d->triangle_count && !d->triangles) || (d->part_count && !d->parts) ||
-        (d->node_count && !d->nodes))
-        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                         "px_mesh_create: an array is NULL while its count is not zero (xyz %zu, triangles %zu, "
-                         "parts %u, nodes %u)",
-                         d->vertex_count, d->triangle_count, d->part_count, d->node_count);
+    if ((d->vertex_count && !d->xyz) || (d->triangle_count && !d->triangles) ||
+        (d->part_count && !d->parts) || (d->node_count && !d->nodes))
+        return pxi_error(
+            err, PX_ERR_INVALID_ARGUMENT,
+            "px_mesh_create: an array is NULL while its count is not zero (xyz %zu, triangles %zu, "
+            "parts %u, nodes %u)",
+            d->vertex_count, d->triangle_count, d->part_count, d->node_count);
     if (!isfinite(d->unit_metres) || d->unit_metres < 0)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                         "px_mesh_create: unit_metres %g must be finite and >= 0 (0: unknown)", d->unit_metres);
+                         "px_mesh_create: unit_metres %g must be finite and >= 0 (0: unknown)",
+                         d->unit_metres);
     for (size_t i = 0; i < 3 * d->vertex_count; ++i) {
         double x = d->xyz[i];
         if (!isfinite(x))
-            return pxi_error(err, PX_ERR_NON_FINITE, "px_mesh_create: vertex %zu has a NaN or infinite coordinate",
-                             i / 3);
+            return pxi_error(err, PX_ERR_NON_FINITE,
+                             "px_mesh_create: vertex %zu has a NaN or infinite coordinate", i / 3);
         if (!isfinite(x * scale))
             return pxi_error(err, PX_ERR_NON_FINITE,
-                             "px_mesh_create: vertex %zu overflows to infinity when scaled by %g", i / 3, scale);
+                             "px_mesh_create: vertex %zu overflows to infinity when scaled by %g", i / 3,
+                             scale);
     }
     for (size_t i = 0; i < 3 * d->triangle_count; ++i)
         if (d->triangles[i] >= d->vertex_count)
@@ -285,7 +289,8 @@ static px_status check_desc(const px_mesh_desc *d, double scale, px_error *err) 
     for (uint32_t i = 0; i < d->node_count; ++i) {
         const px_mesh_node_desc *n = &d->nodes[i];
         if (n->reserved)
-            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: node %u: reserved is not zero", i);
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: node %u: reserved is not zero",
+                             i);
         if (n->parent < -1 || (n->parent >= 0 && (uint32_t)n->parent >= i))
             return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                              "px_mesh_create: node %u has parent %d: it must be -1 or an earlier node", i,
@@ -294,11 +299,12 @@ static px_status check_desc(const px_mesh_desc *d, double scale, px_error *err) 
     for (uint32_t i = 0; i < d->part_count; ++i) {
         const px_mesh_part_desc *p = &d->parts[i];
         if (p->reserved)
-            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: part %u: reserved is not zero", i);
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: part %u: reserved is not zero",
+                             i);
         if (p->node < -1 || (p->node >= 0 && (uint32_t)p->node >= d->node_count))
             return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                             "px_mesh_create: part %u hangs from node %d, but there are %u nodes", i, (int)p->node,
-                             d->node_count);
+                             "px_mesh_create: part %u hangs from node %d, but there are %u nodes", i,
+                             (int)p->node, d->node_count);
         if ((uint64_t)p->first_vertex + p->vertex_count > d->vertex_count)
             return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                              "px_mesh_create: part %u: vertices %u + %u exceed the %zu vertices", i,
@@ -374,8 +380,8 @@ px_mesh *px_mesh_create(const px_mesh_desc *desc, const px_mesh_options *options
     }
     double scale = opt.scale == 0 ? 1.0 : opt.scale;
     if (!isfinite(scale) || scale <= 0) { /* isfinite first: no comparison with a NaN */
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: options.scale %g must be finite and positive",
-                  opt.scale);
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                  "px_mesh_create: options.scale %g must be finite and positive", opt.scale);
         return NULL;
     }
     px_allocator alloc;
@@ -404,7 +410,8 @@ px_mesh *px_mesh_create(const px_mesh_desc *desc, const px_mesh_options *options
     int ok = add_array(&bytes, 1, sizeof(px_mesh)) && add_array(&bytes, 3 * (size_t)nv, sizeof(double)) &&
              add_array(&bytes, np, sizeof(px_mesh_part)) && add_array(&bytes, nn, sizeof(px_mesh_node)) &&
              add_array(&bytes, 3 * (size_t)nt, sizeof(uint32_t));
-    for (uint32_t i = 0; ok && i < desc->part_count; ++i) ok = add_size(&bytes, name_bytes(desc->parts[i].name));
+    for (uint32_t i = 0; ok && i < desc->part_count; ++i)
+        ok = add_size(&bytes, name_bytes(desc->parts[i].name));
     for (uint32_t i = 0; ok && i < nn; ++i) ok = add_size(&bytes, name_bytes(desc->nodes[i].name));
     if (ok && !desc->part_count) ok = add_size(&bytes, 1);
     if (!ok) {

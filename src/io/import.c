@@ -1,0 +1,127 @@
+/* The checked, serialised Assimp import both loaders share (import.h).
+ *
+ * - Before Assimp sees a file, precheck.c checks its type, its size and the
+ *   counts its header declares (Assimp allocates by them), and walks PLY and
+ *   OFF bodies and COLLADA and glTF node graphs the way Assimp would.
+ * - Assimp opens files through fs.c (aiImportFileEx with our aiFileIO): the
+ *   mesh file must still be the one the precheck read, and every file the
+ *   import opens, the mesh file's references too, is a regular file within
+ *   the size limits. A refused open fails the import even where Assimp would
+ *   have done without the file.
+ * - Assimp's last-error string is a process-global std::string written
+ *   without a lock, so every call into Assimp (import, error copy,
+ *   post-processing, the callers' walks, release) runs under one mutex, and
+ *   the message is copied at once.
+ * - The import itself runs no post-processing; a caller that wants some
+ *   (px_mesh_load: Triangulate) gets it only after its own check of the raw
+ *   scene (indices, finite coordinates), because Assimp's steps trust what
+ *   they read (Triangulate indexes mVertices by the face indices).
+ * - Scenes flagged AI_SCENE_FLAGS_INCOMPLETE are rejected.
+ */
+#include "io/import.h"
+
+#include <stdio.h>
+#include <string.h>
+#include <threads.h>
+
+#include <assimp/cimport.h>
+
+#include "core/core.h"
+#include "io/fs.h"
+#include "io/precheck.h"
+
+/* The import lock, created once (call_once) on first use. If mtx_init fails
+ * then, the failure is permanent: every later load fails too, with
+ * PX_ERR_INTERNAL, rather than calling Assimp without the lock. */
+static once_flag g_io_once = ONCE_FLAG_INIT;
+static mtx_t g_io_mutex;
+static int g_io_mutex_ok; /* written once, inside call_once */
+
+/* call_once callback: creates the import mutex and records whether it could. */
+static void io_mutex_init(void) { g_io_mutex_ok = (mtx_init(&g_io_mutex, mtx_plain) == thrd_success); }
+
+/* Takes the import lock. On PX_OK the caller must call io_unlock; otherwise
+ * the lock is not held and err names the file and the failure. */
+static px_status io_lock(const char *path, px_error *err) {
+    call_once(&g_io_once, io_mutex_init);
+    if (!g_io_mutex_ok)
+        return pxi_error(
+            err, PX_ERR_INTERNAL,
+            "cannot import mesh file '%s': the import mutex could not be created (mtx_init failed), "
+            "and Assimp is not safe to call without it",
+            path);
+    if (mtx_lock(&g_io_mutex) != thrd_success)
+        return pxi_error(err, PX_ERR_INTERNAL,
+                         "cannot import mesh file '%s': locking the import mutex failed", path);
+    return PX_OK;
+}
+
+/* Releases the lock taken by a successful io_lock. */
+static void io_unlock(void) { mtx_unlock(&g_io_mutex); }
+
+/* Copies Assimp's last error (call with the lock held). */
+static void ai_message(char *msg, size_t size) {
+    const char *ai = aiGetErrorString();
+    snprintf(msg, size, "%s", ai && ai[0] ? ai : "unknown error");
+}
+
+/* The import proper, with the lock held. */
+static px_status import_locked(const char *path, const pxi_file_id *id, const px_allocator *alloc,
+                               unsigned post_flags, pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx,
+                               px_error *err) {
+    /* fs outlives the scene: the importer keeps it until aiReleaseImport. */
+    pxi_io_fs fs;
+    pxi_io_fs_init(&fs, path, id, alloc);
+    const struct aiScene *scene = aiImportFileEx(path, 0, &fs.io);
+    if (fs.refused) {
+        /* Also after a success: Assimp goes on without a material library. */
+        if (scene) aiReleaseImport(scene);
+        pxi_io_fs_finish(&fs);
+        return pxi_error(err, PX_ERR_IO, "cannot import mesh file '%s': %s", path, fs.message);
+    }
+    if (!scene) {
+        pxi_io_fs_finish(&fs);
+        char msg[160];
+        ai_message(msg, sizeof msg);
+        return pxi_error(err, PX_ERR_IO, "cannot import mesh file '%s': %s", path, msg);
+    }
+    px_status st = PX_OK;
+    if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) {
+        st = pxi_error(err, PX_ERR_IO, "mesh file '%s' was imported incompletely (AI_SCENE_FLAGS_INCOMPLETE)",
+                       path);
+    } else if (scene->mNumMeshes == 0 || !scene->mMeshes) {
+        st = pxi_error(err, PX_ERR_IO, "mesh file '%s' contains no meshes", path);
+    } else if (!scene->mRootNode) {
+        st = pxi_error(err, PX_ERR_IO, "mesh file '%s' has no root node", path);
+    }
+    if (st == PX_OK && check) st = check(path, scene, ctx, err);
+    if (st == PX_OK && post_flags) {
+        /* On failure Assimp releases the scene itself and returns NULL. */
+        const struct aiScene *post = aiApplyPostProcessing(scene, post_flags);
+        if (!post) {
+            char msg[160];
+            ai_message(msg, sizeof msg);
+            pxi_io_fs_finish(&fs);
+            return pxi_error(err, PX_ERR_IO, "mesh file '%s': Assimp's post-processing failed: %s", path, msg);
+        }
+        scene = post;
+    }
+    if (st == PX_OK && use) st = use(path, scene, ctx, err);
+    aiReleaseImport(scene);
+    pxi_io_fs_finish(&fs);
+    return st;
+}
+
+px_status pxi_io_import(const char *path, const px_allocator *alloc, unsigned post_flags, pxi_io_scene_fn check,
+                        pxi_io_scene_fn use, void *ctx, px_error *err) {
+    /* Readability, size and header counts first (precheck.c): Assimp's message
+     * for a missing file omits why, and Assimp allocates by declared counts. */
+    pxi_file_id id;
+    px_status st = pxi_io_precheck(path, alloc, &id, err);
+    if (st != PX_OK) return st;
+    st = io_lock(path, err);
+    if (st != PX_OK) return st;
+    st = import_locked(path, &id, alloc, post_flags, check, use, ctx, err);
+    io_unlock();
+    return st;
+}

@@ -1,11 +1,13 @@
-/// proxima/io.h: building polytopes from mesh files (Assimp). These
+/// proxima/io.h: meshes and polytopes from mesh files (Assimp). These
 /// functions live in the separate library proxima-io (CMake target
 /// proxima::io, pkg-config proxima-io), the only part of proxima that links
 /// Assimp.
 ///
 /// Any format Assimp 5 reads (OBJ, STL, PLY, OFF, COLLADA, glTF, FBX, ...),
-/// except those refused below (see Limits), can be turned into a convex
-/// polytope: the convex hull of every vertex of every mesh in the file.
+/// except those refused below (see Limits), can be loaded as a `px_mesh`
+/// (triangles and the file's part tree, `px_mesh_load`) or turned into a
+/// convex polytope: the convex hull of every vertex of every mesh in the
+/// file (`px_convex_create_from_file`).
 /// Positions pass through Assimp as 32-bit floats (about 7 significant
 /// digits); do not route precision-critical geometry through files.
 ///
@@ -101,6 +103,7 @@
 
 #include "proxima/base.h"
 #include "proxima/convex.h"
+#include "proxima/mesh.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -127,6 +130,50 @@ extern "C" {
 /// such a file may define (2^16 = 65536): Assimp builds one node per path
 /// from the root through instances and children.
 #define PX_IO_MAX_NODES (1ull << 16)
+
+/// Loads the mesh file at `path` as a `px_mesh` (proxima/mesh.h): one part
+/// per node-mesh reference (a mesh that two nodes reference gives two
+/// parts), in the order of a depth-first walk of the file's node tree, with
+/// the node's world transform applied (vertices in the file's root frame)
+/// and the tree kept as the mesh's nodes (preorder: parents before
+/// children). Part `i` hangs from its node and is named "node/mesh" (Assimp's
+/// node and mesh names; "node/#k" for the file's k-th mesh if it has no
+/// name).
+///
+/// What a part holds: every vertex of its mesh, in Assimp's order (so STL
+/// parts have 3 vertices per triangle: nothing is welded; the closed test
+/// joins exactly equal positions itself), and the mesh's faces of three
+/// corners after Assimp's Triangulate (polygons become triangles; points
+/// and lines add no triangle, so a mesh of points or lines only is a
+/// point-set part). Triangles under a mirroring node transform are
+/// reversed, so their winding keeps facing the same way. No other Assimp
+/// post-processing runs: joining vertices, removing degenerate triangles
+/// and validating the scene all use absolute thresholds in file units and
+/// delete small parts of small models (docs/io.md). The closed test and the
+/// flip of inside-out closed parts are `px_mesh_create`'s.
+///
+/// Units: `options->scale` (0: 1) multiplies every coordinate. The mesh's
+/// `unit_metres` is 1 for COLLADA (Assimp folds `<unit meter>` and the
+/// up-axis rotation into the root node, so the coordinates are already
+/// metres, Y up) and glTF, 0 (unknown) for the other formats.
+/// Precision: Assimp 5.2 stores positions as 32-bit floats (docs/io.md has
+/// the measured cost).
+///
+/// Returns NULL and fills `err` (may be NULL) on:
+/// - PX_ERR_INVALID_ARGUMENT: `path` NULL or empty, a reserved option not
+///   zero, a scale that is negative, NaN or infinite, an allocator without
+///   both functions;
+/// - PX_ERR_IO: everything `px_convex_create_from_file` refuses (the file's
+///   checks and limits, Assimp's failures), and a face index out of its
+///   mesh's range, a NaN or infinite coordinate (also after the node
+///   transform or the scale), polygons too large to triangulate (the
+///   squares of the sizes of all polygons of 5 or more corners sum to more
+///   than 2^28: ear clipping is quadratic), more than PX_IO_MAX_ELEMENTS
+///   vertices, triangles, parts or nodes (a mesh counts once per node that
+///   uses it), a file with no vertex. The message names the file;
+/// - PX_ERR_INTERNAL: the import lock could not be created;
+/// - PX_ERR_OUT_OF_MEMORY.
+PX_API px_mesh *px_mesh_load(const char *path, const px_mesh_options *options, px_error *err);
 
 /// Convex hull of all vertices of all meshes in the file at `path`, with the
 /// node transforms applied (the file's root frame; see the header comment for

@@ -211,6 +211,7 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name, const char 
     fs_file *h = pxi_alloc(fs->alloc, sizeof *h);
     if (!h) {
         close(fd);
+        if (!fs->refused) fs->out_of_memory = 1;
         refuse(fs, name, "out of memory");
         return NULL;
     }

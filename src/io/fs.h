@@ -20,6 +20,7 @@ typedef struct pxi_io_fs {
     unsigned long long charged; /* bytes counted against PX_IO_MAX_IMPORT_BYTES */
     int main_charged;
     int refused;       /* an open or a read was refused: the import fails */
+    int out_of_memory; /* ... and the first refusal was an allocation failing */
     void *open_files;  /* the openings not closed yet (a list, fs.c) */
     char message[480]; /* the first refusal: "'name' was refused: why" */
 } pxi_io_fs;

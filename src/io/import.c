@@ -77,7 +77,8 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
         /* Also after a success: Assimp goes on without a material library. */
         if (scene) aiReleaseImport(scene);
         pxi_io_fs_finish(&fs);
-        return pxi_error(err, PX_ERR_IO, "cannot import mesh file '%s': %s", path, fs.message);
+        return pxi_error(err, fs.out_of_memory ? PX_ERR_OUT_OF_MEMORY : PX_ERR_IO,
+                         "cannot import mesh file '%s': %s", path, fs.message);
     }
     if (!scene) {
         pxi_io_fs_finish(&fs);
@@ -102,7 +103,8 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
             char msg[160];
             ai_message(msg, sizeof msg);
             pxi_io_fs_finish(&fs);
-            return pxi_error(err, PX_ERR_IO, "mesh file '%s': Assimp's post-processing failed: %s", path, msg);
+            return pxi_error(err, PX_ERR_IO, "mesh file '%s': Assimp's post-processing failed: %s", path,
+                             msg);
         }
         scene = post;
     }
@@ -112,8 +114,8 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
     return st;
 }
 
-px_status pxi_io_import(const char *path, const px_allocator *alloc, unsigned post_flags, pxi_io_scene_fn check,
-                        pxi_io_scene_fn use, void *ctx, px_error *err) {
+px_status pxi_io_import(const char *path, const px_allocator *alloc, unsigned post_flags,
+                        pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx, px_error *err) {
     /* Readability, size and header counts first (precheck.c): Assimp's message
      * for a missing file omits why, and Assimp allocates by declared counts. */
     pxi_file_id id;

@@ -25,8 +25,8 @@ typedef px_status (*pxi_io_scene_fn)(const char *path, const struct aiScene *sce
  * The scene is released and the lock dropped before returning.
  * Returns PX_OK, PX_ERR_IO, PX_ERR_OUT_OF_MEMORY (precheck buffers),
  * PX_ERR_INTERNAL (no lock), or what a callback returned. */
-px_status pxi_io_import(const char *path, const px_allocator *alloc, unsigned post_flags, pxi_io_scene_fn check,
-                        pxi_io_scene_fn use, void *ctx, px_error *err);
+px_status pxi_io_import(const char *path, const px_allocator *alloc, unsigned post_flags,
+                        pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx, px_error *err);
 
 /* Affine map as a row-major 3x4 matrix [R | t]: p' = R p + t, in doubles
  * (Assimp's float matrices convert exactly). */

@@ -814,6 +814,349 @@ static void test_load_formats(void) {
     CHECK(g_live_bytes == 0 && g_live_blocks == 0, "leak after test_load_formats: %ld bytes", g_live_bytes);
 }
 
+/* An OBJ object whose faces use two materials: Assimp makes two meshes of
+ * it (the second named after its material), and the loader one part. */
+static void test_material_split(void) {
+    const char *obj = "o box\n"
+                      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                      "usemtl red\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\n"
+                      "usemtl blue\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    px_mesh *m = load(write_file("split.obj", obj, (size_t)-1), 0);
+    if (!m) return;
+    CHECK(px_mesh_part_count(m) == 1, "material split: %u parts", px_mesh_part_count(m));
+    EXPECT_PART(m, 0, "box/box", 1, 24, 12, 1);
+    px_mesh_destroy(m);
+}
+
+/* Triangles of an OBJ file counted from its text: a face of n corners
+ * gives n - 2 (fan or ear clipping alike). */
+static long obj_triangles(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return -1;
+    char line[4096];
+    long t = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (line[0] != 'f' || (line[1] != ' ' && line[1] != '\t')) continue;
+        int n = 0;
+        for (char *tok = strtok(line + 1, " \t\r\n"); tok; tok = strtok(NULL, " \t\r\n")) ++n;
+        t += n - 2;
+    }
+    fclose(f);
+    return t;
+}
+
+/* Triangles a binary STL declares (bytes 80..83). */
+static long stl_triangles(const char *path) {
+    FILE *f = fopen(path, "rb");
+    unsigned char h[84];
+    long t = -1;
+    if (f && fread(h, 1, 84, f) == 84)
+        t = (long)h[80] | (long)h[81] << 8 | (long)h[82] << 16 | (long)h[83] << 24;
+    if (f) fclose(f);
+    return t;
+}
+
+/* The models the repository ships load with the triangle counts and closed
+ * surfaces of models/puma560/SOURCE.md (independent: counted from the
+ * files, closedness by an edge test after welding at 1e-6), or counted from
+ * the file here. */
+static void test_shipped_models(void) {
+    char path[1024];
+    const char *models = PX_SOURCE_DIR "/models";
+    struct {
+        const char *file;
+        long triangles; /* -1: count from the file */
+        int closed;
+    } k[] = {
+        {"teapot/mcguire_cc0/teapot.obj", -1, 1},
+        {"teapot/trimesh_mit/teapot.stl", 894, 0},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link1.stl", 1676, 0},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link2.stl", 1702, 1},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link3.stl", 324, 1},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link4.stl", 3026, 1},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link5.stl", 764, 1},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link6.stl", 484, 1},
+        {"puma560/nimasarli_puma560_description/meshes/puma_link7.stl", 140, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link1.dae", 3046, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link2.dae", 2210, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link3.dae", 12248, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link4.dae", 3040, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link5.dae", 984, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link6.dae", 1260, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_link7.dae", 140, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_collision1.dae", 1125, 0},
+        {"puma560/rtb_puma560_description/meshes/puma560_collision2.dae", 520, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_collision3.dae", 630, 1},
+        {"puma560/rtb_puma560_description/meshes/puma560_collision4.dae", 94, 1},
+        /* SOURCE.md: closed by its edge test, but triangle 8 has three
+         * exactly collinear corners (x, y equal, z -0.0343, -0.0127, 0.0127):
+         * zero area, so open by mesh.h's rule */
+        {"puma560/rtb_puma560_description/meshes/puma560_collision5.dae", 324, 0},
+    };
+    for (size_t i = 0; i < sizeof k / sizeof k[0]; ++i) {
+        snprintf(path, sizeof path, "%s/%s", models, k[i].file);
+        long expect = k[i].triangles;
+        if (expect < 0) expect = obj_triangles(path);
+        if (strstr(path, ".stl")) CHECK(stl_triangles(path) == expect, "%s: header", k[i].file);
+        px_mesh *m = load(path, 0);
+        if (!m) continue;
+        CHECK(px_mesh_triangle_count(m) == (uint32_t)expect, "%s: %u triangles, expected %ld", k[i].file,
+              px_mesh_triangle_count(m), expect);
+        px_mesh_info info;
+        px_mesh_get_info(m, &info);
+        /* one part per file, except the teapot OBJ (two objects: Base, Top) */
+        uint32_t parts = strstr(path, "teapot.obj") ? 2 : 1;
+        CHECK(px_mesh_part_count(m) == parts, "%s: %u parts", k[i].file, px_mesh_part_count(m));
+        CHECK(info.closed_parts == (k[i].closed ? parts : 0), "%s: %u closed parts, expected %s", k[i].file,
+              info.closed_parts, k[i].closed ? "all" : "none");
+        for (uint32_t p = 0; p < px_mesh_part_count(m); ++p) {
+            px_mesh_part part;
+            px_mesh_get_part(m, p, &part);
+            if (part.closed) CHECK(part_volume(m, p) > 0, "%s: part %u faces out", k[i].file, p);
+        }
+        /* COLLADA: metres (unit folded in by Assimp); the PUMA links are under a metre */
+        if (strstr(path, ".dae"))
+            CHECK(info.unit_metres == 1 && info.max.y < 1 && info.min.y > -1, "%s: metres", k[i].file);
+        px_mesh_destroy(m);
+    }
+}
+
+static void expect_load_error(const char *path, const char *needle, int line) {
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_mesh_options o = counted_options();
+    px_mesh *m = px_mesh_load(path, &o, &err);
+    CHECK(m == NULL && err.code == PX_ERR_IO, "line %d: '%s' loaded (%s)", line, path, err.message);
+    CHECK(strstr(err.message, path) != NULL, "line %d: message does not name the file: %s", line,
+          err.message);
+    CHECK(!needle || strstr(err.message, needle), "line %d: message lacks '%s': %s", line, needle,
+          err.message);
+    px_mesh_destroy(m);
+}
+#define EXPECT_LOAD_ERROR(path, needle) expect_load_error(path, needle, __LINE__)
+
+static void test_bad_files(void) {
+    char missing[512];
+    snprintf(missing, sizeof missing, "%s/missing.obj", g_dir);
+    EXPECT_LOAD_ERROR(missing, "No such file");
+    EXPECT_LOAD_ERROR(g_dir, "directory");
+    EXPECT_LOAD_ERROR(write_file("empty.stl", "", 0), "empty");
+    /* truncated: a binary STL cut after 2 of its 4 triangles; a COLLADA file cut in the middle */
+    unsigned char stl[84 + 4 * 50];
+    tet_stl_binary(stl, 0);
+    EXPECT_LOAD_ERROR(write_file("cut.stl", stl, 84 + 2 * 50), "declares 4 triangles");
+    EXPECT_LOAD_ERROR(write_file("cut.dae", k_dae, strlen(k_dae) / 2), "malformed XML");
+    /* malformed text */
+    EXPECT_LOAD_ERROR(write_file("bad.stl",
+                                 "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n",
+                                 (size_t)-1),
+                      "real number");
+    EXPECT_LOAD_ERROR(write_file("garbage.obj", "garbage here\nxx yy\n", (size_t)-1), "no meshes");
+    /* no triangles and no points: an OFF without faces */
+    EXPECT_LOAD_ERROR(write_file("nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", (size_t)-1),
+                      "no valid faces");
+    /* NaN coordinates: text and binary */
+    EXPECT_LOAD_ERROR(write_file("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", (size_t)-1),
+                      "vertex 1 of mesh 0 is NaN");
+    EXPECT_LOAD_ERROR(write_file("nan.stl", stl, tet_stl_binary(stl, 1)), "NaN");
+    /* absurd counts */
+    EXPECT_LOAD_ERROR(write_file("absurd.off", "OFF\n1000000000 1 0\n0 0 0\n", (size_t)-1),
+                      "declares 1000000000 vertices");
+    tet_stl_binary(stl, 0);
+    stl[83] = 0x7f; /* 2^30-odd triangles declared */
+    EXPECT_LOAD_ERROR(write_file("absurd.stl", stl, sizeof stl), "triangles");
+    /* a cyclic node graph (glTF children 0 -> 1 -> 0) */
+    EXPECT_LOAD_ERROR(
+        write_file("cycle.gltf",
+                   "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}],"
+                   " \"nodes\": [{\"children\": [1]}, {\"children\": [0]}]}",
+                   (size_t)-1),
+        "cycle");
+    /* indices out of range: Assimp's PLY reader passes them on; the
+     * loader's check refuses them before Triangulate reads by them (the
+     * quad's index 9 would be read out of bounds) */
+    const char *ply_head =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+        "0 0 0\n1 0 0\n0 1 0\n";
+    char text[512];
+    snprintf(text, sizeof text, "%s3 0 1 7\n", ply_head);
+    EXPECT_LOAD_ERROR(write_file("idx.ply", text, (size_t)-1), "uses vertex 7, but the mesh has 3 vertices");
+    snprintf(text, sizeof text, "%s4 0 1 2 9\n", ply_head);
+    EXPECT_LOAD_ERROR(write_file("idx4.ply", text, (size_t)-1), "uses vertex 9");
+    EXPECT_LOAD_ERROR(write_file("idx.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n", (size_t)-1), "out of range");
+    /* a polygon too large to triangulate (20,000 corners: 4e8 > 2^28) */
+    {
+        size_t cap = 20000 * 40 + 20000 * 8 + 16, n = 0;
+        char *big = malloc(cap);
+        for (int i = 0; i < 20000; ++i) {
+            double a = 6.283185307179586 * i / 20000;
+            n += (size_t)snprintf(big + n, cap - n, "v %.6f %.6f 0\n", cos(a), sin(a));
+        }
+        n += (size_t)snprintf(big + n, cap - n, "f");
+        for (int i = 0; i < 20000; ++i) n += (size_t)snprintf(big + n, cap - n, " %d", i + 1);
+        n += (size_t)snprintf(big + n, cap - n, "\n");
+        EXPECT_LOAD_ERROR(write_file("big_polygon.obj", big, n), "too large to triangulate");
+        free(big);
+    }
+    /* bad arguments */
+    px_error err;
+    CHECK(px_mesh_load(NULL, NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "NULL path");
+    CHECK(px_mesh_load("", NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "empty path");
+    px_mesh_options o;
+    memset(&o, 0, sizeof o);
+    o.scale = -2;
+    CHECK(px_mesh_load(missing, &o, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "negative scale");
+    o.scale = 0;
+    o.reserved[0] = 1;
+    CHECK(px_mesh_load(missing, &o, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "reserved option");
+    CHECK(g_live_bytes == 0 && g_live_blocks == 0, "leak after test_bad_files: %ld bytes", g_live_bytes);
+}
+
+/* ---- what float storage costs ----------------------------------------------- */
+
+/* Reads an OFF file's vertices exactly (strtod: correctly rounded to double,
+ * and the %.17g text written here round-trips). Returns the count. */
+static size_t read_off_exact(const char *path, double *xyz, size_t cap) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    char line[256];
+    size_t nv = 0, nf = 0, ne = 0;
+    if (!fgets(line, sizeof line, f) || !fgets(line, sizeof line, f) ||
+        sscanf(line, "%zu %zu %zu", &nv, &nf, &ne) != 3 || nv > cap) {
+        fclose(f);
+        return 0;
+    }
+    for (size_t i = 0; i < nv; ++i) {
+        char *p = fgets(line, sizeof line, f), *end;
+        for (int k = 0; k < 3 && p; ++k, p = end) xyz[3 * i + k] = strtod(p, &end);
+    }
+    fclose(f);
+    return nv;
+}
+
+/* The PUMA's link 2 (binary STL, inches) in millimetres and moved 1000 mm
+ * along x: coordinates about 1e3, edges down to about 1e-2 mm, written
+ * with 17 significant digits as OFF and as ASCII STL, then loaded through
+ * Assimp and compared with the exact values. Prints the errors; the bound
+ * checked is the float rounding a correct reader would make (2^-24
+ * relative, half an ulp) with room for Assimp's own number parser. */
+static void test_float_cost(void) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/models/puma560/nimasarli_puma560_description/meshes/puma_link2.stl",
+             PX_SOURCE_DIR);
+    long nt = stl_triangles(path);
+    FILE *f = fopen(path, "rb");
+    CHECK(f && nt > 0, "open %s", path);
+    if (!f || nt <= 0) return;
+    size_t nv = 3 * (size_t)nt;
+    double *exact = malloc(nv * 3 * sizeof(double)), *back = malloc(nv * 3 * sizeof(double));
+    unsigned char rec[50];
+    fseek(f, 84, SEEK_SET);
+    for (long t = 0; t < nt && fread(rec, 1, 50, f) == 50; ++t) {
+        for (int k = 0; k < 9; ++k) {
+            float x;
+            memcpy(&x, rec + 12 + 4 * k, 4);
+            double mm = (double)x * 25.4;
+            exact[9 * t + k] = k % 3 == 0 ? mm + 1000 : mm;
+        }
+    }
+    fclose(f);
+    double min_edge = INFINITY, max_coord = 0;
+    for (size_t j = 0; j < 3 * nv; ++j)
+        if (fabs(exact[j]) > max_coord) max_coord = fabs(exact[j]);
+    for (long t = 0; t < nt; ++t) {
+        for (int e = 0; e < 3; ++e) {
+            const double *a = exact + 9 * t + 3 * e, *b = exact + 9 * t + 3 * ((e + 1) % 3);
+            double d = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                            (a[2] - b[2]) * (a[2] - b[2]));
+            if (d > 0 && d < min_edge) min_edge = d;
+        }
+    }
+    /* OFF: the vertices in file order; ASCII STL: three per facet */
+    size_t cap = nv * 80 + (size_t)nt * 40 + 64, n = 0;
+    char *text = malloc(cap);
+    n = (size_t)snprintf(text, cap, "OFF\n%zu %ld 0\n", nv, nt);
+    for (size_t i = 0; i < nv; ++i)
+        n += (size_t)snprintf(text + n, cap - n, "%.17g %.17g %.17g\n", exact[3 * i], exact[3 * i + 1],
+                              exact[3 * i + 2]);
+    for (long t = 0; t < nt; ++t)
+        n += (size_t)snprintf(text + n, cap - n, "3 %ld %ld %ld\n", 3 * t, 3 * t + 1, 3 * t + 2);
+    char off_path[512];
+    snprintf(off_path, sizeof off_path, "%s", write_file("link2_mm.off", text, n));
+    CHECK(read_off_exact(off_path, back, nv) == nv && memcmp(back, exact, nv * 3 * sizeof(double)) == 0,
+          "%%.17g round-trips");
+    n = (size_t)snprintf(text, cap, "solid link2\n");
+    for (long t = 0; t < nt; ++t) {
+        n += (size_t)snprintf(text + n, cap - n, "facet normal 0 0 0\nouter loop\n");
+        for (int c = 0; c < 3; ++c) {
+            const double *v = exact + 9 * t + 3 * c;
+            n += (size_t)snprintf(text + n, cap - n, "vertex %.17g %.17g %.17g\n", v[0], v[1], v[2]);
+        }
+        n += (size_t)snprintf(text + n, cap - n, "endloop\nendfacet\n");
+    }
+    n += (size_t)snprintf(text + n, cap - n, "endsolid link2\n");
+    char stl_path[512];
+    snprintf(stl_path, sizeof stl_path, "%s", write_file("link2_mm.stl", text, n));
+    free(text);
+
+    const char *paths[2] = {off_path, stl_path};
+    for (int i = 0; i < 2; ++i) {
+        px_mesh *m = load(paths[i], 0);
+        if (!m) continue;
+        CHECK(px_mesh_vertex_count(m) == nv, "%s: %u vertices", paths[i], px_mesh_vertex_count(m));
+        const double *v = px_mesh_vertices(m);
+        double max_rel = 0, max_abs = 0, max_half_ulp = 0;
+        for (size_t j = 0; j < 3 * nv && px_mesh_vertex_count(m) == nv; ++j) {
+            double d = fabs(v[j] - exact[j]);
+            if (d > max_abs) max_abs = d;
+            if (exact[j] != 0 && d / fabs(exact[j]) > max_rel) max_rel = d / fabs(exact[j]);
+            /* in float ulps of the exact value */
+            int e;
+            frexp(exact[j], &e);
+            double half_ulp = ldexp(1.0, e - 25);
+            if (exact[j] != 0 && d / half_ulp > max_half_ulp) max_half_ulp = d / half_ulp;
+        }
+        printf("float cost, %s: %zu vertices, |x| up to %.0f mm, shortest edge %.3g mm: max error %.3g mm "
+               "(%.3g of the shortest edge), max relative error %.3g (%.2f half-ulps of float)\n",
+               i ? "ASCII STL" : "OFF", nv, max_coord, min_edge, max_abs, max_abs / min_edge, max_rel,
+               max_half_ulp);
+        CHECK(max_rel <= 0x1p-23, "%s: relative error %g above 2^-23", paths[i], max_rel);
+        px_mesh_destroy(m);
+    }
+    free(exact);
+    free(back);
+
+    /* A feature of 1e-3 at coordinate 1e3: a tetrahedron of edge 1e-3 at
+     * (1000.1234..., 999.7, 1000.3). Float spacing there is 6.1e-5, so its
+     * corners move by up to ~3% of its size. */
+    const double base[3] = {1000.123456789012, 999.7, 1000.3};
+    double tet[12];
+    for (int c = 0; c < 4; ++c)
+        for (int k = 0; k < 3; ++k) tet[3 * c + k] = base[k] + (c == k + 1 ? 1e-3 : 0);
+    char off[1024];
+    int len = snprintf(off, sizeof off, "OFF\n4 4 0\n");
+    for (int c = 0; c < 4; ++c)
+        len += snprintf(off + len, sizeof off - (size_t)len, "%.17g %.17g %.17g\n", tet[3 * c],
+                        tet[3 * c + 1], tet[3 * c + 2]);
+    len += snprintf(off + len, sizeof off - (size_t)len, "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    const char *tiny_path = write_file("tiny.off", off, (size_t)len);
+    double tiny[12];
+    CHECK(read_off_exact(tiny_path, tiny, 4) == 4 && memcmp(tiny, tet, sizeof tet) == 0, "tiny round-trips");
+    px_mesh *m = load(tiny_path, 0);
+    if (m) {
+        const double *v = px_mesh_vertices(m);
+        double worst = 0;
+        for (int j = 0; j < 12; ++j) worst = fmax(worst, fabs(v[j] - tet[j]));
+        printf(
+            "float cost, a 1e-3 tetrahedron at 1e3 (OFF): corners moved by up to %.3g, %.1f%% of its edge; "
+            "volume %.4g instead of %.4g\n",
+            worst, 100 * worst / 1e-3, part_volume(m, 0), 1e-9 / 6);
+        CHECK(worst > 1e-6 && worst < 0.1e-3, "the tetrahedron's corners move by %g", worst);
+        px_mesh_destroy(m);
+    }
+}
+
 /* Every allocation px_mesh_load makes through the options' allocator
  * (prechecks, Assimp's file system, the walk, the mesh) fails in turn. */
 static void test_load_alloc_failures(void) {
@@ -862,6 +1205,10 @@ int main(void) {
     snprintf(cmd, sizeof cmd, "mkdir -p '%s'", g_dir);
     if (system(cmd) != 0) return 2;
     test_load_formats();
+    test_material_split();
+    test_shipped_models();
+    test_bad_files();
+    test_float_cost();
     test_load_alloc_failures();
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_dir);

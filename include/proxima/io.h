@@ -132,15 +132,18 @@ extern "C" {
 #define PX_IO_MAX_NODES (1ull << 16)
 
 /// Loads the mesh file at `path` as a `px_mesh` (proxima/mesh.h): one part
-/// per node-mesh reference (a mesh that two nodes reference gives two
-/// parts), in the order of a depth-first walk of the file's node tree, with
-/// the node's world transform applied (vertices in the file's root frame)
-/// and the tree kept as the mesh's nodes (preorder: parents before
-/// children). Part `i` hangs from its node and is named "node/mesh" (Assimp's
-/// node and mesh names; "node/#k" for the file's k-th mesh if it has no
-/// name).
+/// per node that references meshes, holding all of them (Assimp splits one
+/// geometry into a mesh per material, so its meshes are not the file's
+/// bodies; what one node holds moves as one), so a mesh that two nodes
+/// reference gives two parts. Parts come in the order of a depth-first walk
+/// of the file's node tree, with the node's world transform applied
+/// (vertices in the file's root frame), and the tree is kept as the mesh's
+/// nodes (preorder: parents before children). A part hangs from its node
+/// and is named "node/mesh" after the node and its first mesh (Assimp's
+/// names: COLLADA node ids, OBJ object names, ...; "node/#k" when that is
+/// the file's k-th mesh and has no name).
 ///
-/// What a part holds: every vertex of its mesh, in Assimp's order (so STL
+/// What a part holds: every vertex of its meshes, in Assimp's order (so STL
 /// parts have 3 vertices per triangle: nothing is welded; the closed test
 /// joins exactly equal positions itself), and the mesh's faces of three
 /// corners after Assimp's Triangulate (polygons become triangles; points

@@ -23,6 +23,15 @@
  *   checks what is checked here anyway; PreTransformVertices flattens the
  *   tree; GenNormals, FixInfacingNormals and friends guess.
  *
+ * Parts: one per node with meshes, holding all of them. Assimp's meshes
+ * are material boundaries more than geometric ones: it splits a COLLADA
+ * geometry into a mesh per <triangles> element, an OBJ object per
+ * `usemtl`, a glTF mesh per primitive (the PUMA's link 3 comes as three
+ * open pieces of one closed surface), and the pieces' names do not tell
+ * (OBJ names the second piece after its material). What one node holds
+ * moves as one body, so it is one part; a mesh that two nodes reference is
+ * two parts.
+ *
  * The node tree is walked iteratively (BAD_INPUTS item 29: explicit stack,
  * depth cap PXI_IO_MAX_DEPTH), twice: once to count, once to fill. Nodes
  * are numbered in preorder, so a parent comes before its children. Each
@@ -89,17 +98,19 @@ static px_status check_raw(const char *path, const struct aiScene *scene, void *
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const struct aiMesh *m = scene->mMeshes[i];
         if (!m || (m->mNumVertices && !m->mVertices) || (m->mNumFaces && !m->mFaces))
-            return pxi_error(err, PX_ERR_IO, "mesh file '%s': mesh %u is missing its vertices or faces", path, i);
+            return pxi_error(err, PX_ERR_IO, "mesh file '%s': mesh %u is missing its vertices or faces", path,
+                             i);
         for (unsigned v = 0; v < m->mNumVertices; ++v) {
             const struct aiVector3D *p = &m->mVertices[v];
             if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z))
-                return pxi_error(err, PX_ERR_IO, "mesh file '%s': vertex %u of mesh %u is NaN or infinite", path,
-                                 v, i);
+                return pxi_error(err, PX_ERR_IO, "mesh file '%s': vertex %u of mesh %u is NaN or infinite",
+                                 path, v, i);
         }
         for (unsigned f = 0; f < m->mNumFaces; ++f) {
             const struct aiFace *face = &m->mFaces[f];
             if (face->mNumIndices && !face->mIndices)
-                return pxi_error(err, PX_ERR_IO, "mesh file '%s': face %u of mesh %u has no indices", path, f, i);
+                return pxi_error(err, PX_ERR_IO, "mesh file '%s': face %u of mesh %u has no indices", path, f,
+                                 i);
             for (unsigned k = 0; k < face->mNumIndices; ++k) {
                 if (face->mIndices[k] >= m->mNumVertices)
                     return pxi_error(err, PX_ERR_IO,
@@ -111,10 +122,11 @@ static px_status check_raw(const char *path, const struct aiScene *scene, void *
             if (n >= 5) {
                 work += n * n;
                 if (work > PXI_IO_MAX_POLYGON_WORK)
-                    return pxi_error(err, PX_ERR_IO,
-                                     "mesh file '%s': its polygons are too large to triangulate (face %u of mesh "
-                                     "%u has %u corners; the squares of all polygon sizes may sum to %llu)",
-                                     path, f, i, face->mNumIndices, (unsigned long long)PXI_IO_MAX_POLYGON_WORK);
+                    return pxi_error(
+                        err, PX_ERR_IO,
+                        "mesh file '%s': its polygons are too large to triangulate (face %u of mesh "
+                        "%u has %u corners; the squares of all polygon sizes may sum to %llu)",
+                        path, f, i, face->mNumIndices, (unsigned long long)PXI_IO_MAX_POLYGON_WORK);
             }
         }
     }
@@ -142,28 +154,45 @@ static px_status visit(const char *path, const struct aiScene *scene, load_ctx *
     c->name_bytes += node_len + 1;
     int32_t index = (int32_t)c->nn++;
     int mirror = pxi_xform_det(world) < 0;
+    if (node->mNumMeshes && !node->mMeshes)
+        return pxi_error(err, PX_ERR_IO, "mesh file '%s': node '%.*s' lists meshes without their indices",
+                         path, (int)(node_len < 64 ? node_len : 64), node->mName.data);
     for (unsigned k = 0; k < node->mNumMeshes; ++k) {
-        unsigned mi = node->mMeshes ? node->mMeshes[k] : scene->mNumMeshes;
-        if (mi >= scene->mNumMeshes)
-            return pxi_error(err, PX_ERR_IO, "mesh file '%s': node '%.*s' references a mesh that does not exist",
-                             path, (int)(node_len < 64 ? node_len : 64), node->mName.data);
-        const struct aiMesh *m = scene->mMeshes[mi];
-        size_t nv = m->mNumVertices, nt = 0;
-        for (unsigned f = 0; f < m->mNumFaces; ++f) nt += m->mFaces[f].mNumIndices == 3;
-        if (nv > PX_IO_MAX_ELEMENTS - c->nv || nt > PX_IO_MAX_ELEMENTS - c->nt || c->np >= PX_IO_MAX_ELEMENTS)
+        if (node->mMeshes[k] >= scene->mNumMeshes)
             return pxi_error(err, PX_ERR_IO,
-                             "mesh file '%s' has more than %llu vertices, triangles or parts (a mesh counts once "
-                             "per node that uses it)",
-                             path, (unsigned long long)PX_IO_MAX_ELEMENTS);
+                             "mesh file '%s': node '%.*s' references a mesh that does not exist", path,
+                             (int)(node_len < 64 ? node_len : 64), node->mName.data);
+    }
+    if (node->mNumMeshes) {
+        /* One part: all the node's meshes (file comment), named after the first. */
+        const unsigned k = 0, end = node->mNumMeshes, mi = node->mMeshes[0];
+        const struct aiMesh *first = scene->mMeshes[mi];
+        size_t mesh_len = ai_len(&first->mName);
+        size_t nv = 0, nt = 0;
+        for (unsigned g = k; g < end; ++g) {
+            const struct aiMesh *m = scene->mMeshes[node->mMeshes[g]];
+            nv += m->mNumVertices;
+            for (unsigned f = 0; f < m->mNumFaces; ++f) nt += m->mFaces[f].mNumIndices == 3;
+            if (nv > PX_IO_MAX_ELEMENTS || nt > PX_IO_MAX_ELEMENTS) break;
+        }
+        if (nv > PX_IO_MAX_ELEMENTS - c->nv || nt > PX_IO_MAX_ELEMENTS - c->nt || c->np >= PX_IO_MAX_ELEMENTS)
+            return pxi_error(
+                err, PX_ERR_IO,
+                "mesh file '%s' has more than %llu vertices, triangles or parts (a mesh counts once "
+                "per node that uses it)",
+                path, (unsigned long long)PX_IO_MAX_ELEMENTS);
         /* part name: "node/mesh", "node/#index" for a mesh without a name */
-        size_t mesh_len = ai_len(&m->mName);
         char number[16];
-        if (!mesh_len) mesh_len = (size_t)snprintf(number, sizeof number, "#%u", mi);
+        const char *mesh_name = first->mName.data;
+        if (!mesh_len) {
+            mesh_len = (size_t)snprintf(number, sizeof number, "#%u", mi);
+            mesh_name = number;
+        }
         if (fill) {
             char *name = c->names + c->name_bytes;
             memcpy(name, node->mName.data, node_len);
             name[node_len] = '/';
-            memcpy(name + node_len + 1, ai_len(&m->mName) ? m->mName.data : number, mesh_len);
+            memcpy(name + node_len + 1, mesh_name, mesh_len);
             name[node_len + 1 + mesh_len] = '\0';
             px_mesh_part_desc *p = &c->parts[c->np];
             memset(p, 0, sizeof *p);
@@ -174,23 +203,28 @@ static px_status visit(const char *path, const struct aiScene *scene, load_ctx *
             p->first_triangle = (uint32_t)c->nt;
             p->triangle_count = (uint32_t)nt;
             double *out = c->xyz + 3 * c->nv;
-            for (size_t v = 0; v < nv; ++v, out += 3) {
-                const struct aiVector3D *q = &m->mVertices[v];
-                pxi_xform_apply(world, q->x, q->y, q->z, out);
-                if (!isfinite(out[0]) || !isfinite(out[1]) || !isfinite(out[2]))
-                    return pxi_error(err, PX_ERR_IO,
-                                     "mesh file '%s': vertex %zu of mesh %u is NaN or infinite under the "
-                                     "transform of node '%.64s'",
-                                     path, v, mi, node_name);
-            }
             uint32_t *t = c->tri + 3 * c->nt, base = (uint32_t)c->nv;
-            for (unsigned f = 0; f < m->mNumFaces; ++f) {
-                const struct aiFace *face = &m->mFaces[f];
-                if (face->mNumIndices != 3) continue;
-                t[0] = base + face->mIndices[0];
-                t[1] = base + face->mIndices[mirror ? 2 : 1];
-                t[2] = base + face->mIndices[mirror ? 1 : 2];
-                t += 3;
+            for (unsigned g = k; g < end; ++g) {
+                unsigned gi = node->mMeshes[g];
+                const struct aiMesh *m = scene->mMeshes[gi];
+                for (unsigned v = 0; v < m->mNumVertices; ++v, out += 3) {
+                    const struct aiVector3D *q = &m->mVertices[v];
+                    pxi_xform_apply(world, q->x, q->y, q->z, out);
+                    if (!isfinite(out[0]) || !isfinite(out[1]) || !isfinite(out[2]))
+                        return pxi_error(err, PX_ERR_IO,
+                                         "mesh file '%s': vertex %u of mesh %u is NaN or infinite under the "
+                                         "transform of node '%.64s'",
+                                         path, v, gi, node_name);
+                }
+                for (unsigned f = 0; f < m->mNumFaces; ++f) {
+                    const struct aiFace *face = &m->mFaces[f];
+                    if (face->mNumIndices != 3) continue;
+                    t[0] = base + face->mIndices[0];
+                    t[1] = base + face->mIndices[mirror ? 2 : 1];
+                    t[2] = base + face->mIndices[mirror ? 1 : 2];
+                    t += 3;
+                }
+                base += m->mNumVertices;
             }
         }
         c->name_bytes += node_len + 1 + mesh_len + 1;
@@ -223,8 +257,8 @@ static px_status walk(const char *path, const struct aiScene *scene, load_ctx *c
         const struct aiNode *child = node->mChildren[top->next_child++];
         if (!child) return pxi_error(err, PX_ERR_IO, "mesh file '%s': a node has a missing child", path);
         if (depth + 1 > PXI_IO_MAX_DEPTH)
-            return pxi_error(err, PX_ERR_IO, "mesh file '%s': node tree deeper than %d levels (or cyclic)", path,
-                             PXI_IO_MAX_DEPTH);
+            return pxi_error(err, PX_ERR_IO, "mesh file '%s': node tree deeper than %d levels (or cyclic)",
+                             path, PXI_IO_MAX_DEPTH);
         walk_entry *next = &stack[depth + 1];
         local = pxi_xform_from_ai(&child->mTransformation);
         next->node = child;
@@ -270,7 +304,8 @@ static px_status build(const char *path, const struct aiScene *scene, void *vctx
     walk_entry *stack = pxi_alloc_array(c->alloc, PXI_IO_MAX_DEPTH + 1, sizeof *stack);
     if (!stack) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
     px_status st = walk(path, scene, c, stack, 0, err);
-    if (st == PX_OK && c->nv == 0) st = pxi_error(err, PX_ERR_IO, "mesh file '%s' contains no vertices", path);
+    if (st == PX_OK && c->nv == 0)
+        st = pxi_error(err, PX_ERR_IO, "mesh file '%s' contains no vertices", path);
     if (st == PX_OK) {
         c->cap_v = c->nv;
         c->cap_t = c->nt;
@@ -284,8 +319,8 @@ static px_status build(const char *path, const struct aiScene *scene, void *vctx
         c->names = c->nodes ? pxi_alloc(c->alloc, c->cap_names) : NULL;
         if (!c->names)
             st = pxi_error(err, PX_ERR_OUT_OF_MEMORY,
-                           "out of memory reading mesh file '%s' (%zu vertices, %zu triangles)", path, c->cap_v,
-                           c->cap_t);
+                           "out of memory reading mesh file '%s' (%zu vertices, %zu triangles)", path,
+                           c->cap_v, c->cap_t);
     }
     if (st == PX_OK) st = walk(path, scene, c, stack, 1, err);
     pxi_free(c->alloc, stack, (PXI_IO_MAX_DEPTH + 1) * sizeof *stack);

@@ -94,8 +94,11 @@
 /// - a scene with more than PX_IO_MAX_ELEMENTS vertices, counting a mesh once
 ///   per node that references it.
 /// At these limits, the arrays Assimp sizes by declared counts take about
-/// 2 GiB at most (up to ~64 bytes per element), and proxima's copy of the
-/// points 1.5 GiB (48 bytes per vertex), before the hull is computed.
+/// 2 GiB at most (up to ~64 bytes per element). Once Assimp's scene is
+/// released, `px_mesh_load` holds at most about 84 bytes per vertex and 48
+/// per triangle while it builds the mesh (its arrays, the mesh's copy, the
+/// closed test's sorting), 4.1 GiB at 2^25 of each; the point loaders then
+/// keep 24 bytes per vertex (48 while duplicates are removed).
 #ifndef PROXIMA_IO_H
 #define PROXIMA_IO_H
 
@@ -186,15 +189,18 @@ PX_API px_mesh *px_mesh_load(const char *path, const px_mesh_options *options, p
 /// have only vertices (an OBJ point cloud), but not for OBJ and COLLADA files
 /// with faces: Assimp 5.2 builds their meshes from the faces and drops the
 /// other vertices, and offers no option to keep them (STL has no vertex
-/// list).
+/// list). The file is read by `px_mesh_load` (default options) and the
+/// hull built from its vertices, exact duplicates removed (`px_load_points`).
 /// `options` (may be NULL) is passed to `px_convex_create`.
 ///
 /// Returns NULL and fills `err` (may be NULL) on:
 /// - PX_ERR_INVALID_ARGUMENT: `path` NULL or empty;
-/// - PX_ERR_IO: the file cannot be opened, exceeds a limit or fails a check
-///   of its header (see the header comment), Assimp cannot parse it or
-///   reports an incomplete scene, the scene has no meshes or no vertices, or
-///   a vertex (after the node transform) is NaN or infinite. The message
+/// - PX_ERR_IO: whatever `px_mesh_load` refuses: the file cannot be opened,
+///   exceeds a limit or fails a check of its header (see the header
+///   comment), Assimp cannot parse it or reports an incomplete scene, the
+///   scene has no meshes or no vertices, a face index is out of its mesh's
+///   range, polygons are too large to triangulate, or a vertex (in any
+///   mesh, or after the node transform) is NaN or infinite. The message
 ///   names the file and the problem (Assimp's own message is quoted when
 ///   there is one);
 /// - PX_ERR_INTERNAL: the import lock could not be created (see Thread
@@ -209,8 +215,9 @@ PX_API px_convex *px_convex_create_from_file(const char *path, const px_convex_o
 /// transforms applied (the frame `px_convex_create_from_file` uses). On
 /// PX_OK, `*xyz` holds `3 * *count` doubles (x, y, z per point, exact
 /// duplicates removed, order unspecified but deterministic), allocated with
-/// `allocator` (NULL: malloc): release it with
-/// `px_free_points(*xyz, *count, allocator)`, the same allocator.
+/// `allocator` (NULL: malloc; the mesh `px_mesh_load` reads on the way
+/// uses it too): release it with `px_free_points(*xyz, *count, allocator)`,
+/// the same allocator.
 /// On error `*xyz` is NULL, `*count` is 0, and the status is returned with
 /// `err` (may be NULL) filled as for `px_convex_create_from_file` (PX_ERR_IO,
 /// PX_ERR_INVALID_ARGUMENT for a NULL argument or an allocator without both

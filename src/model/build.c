@@ -483,6 +483,25 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
     return finish(m, st, err);
 }
 
+/* h and h_overlap of a part's hull: a scratch triangle tree of the part
+ * (indices made local to its vertex range), measured by reach.c. */
+static px_status part_bounds(const px_allocator *alloc, const px_convex *hull, const double *xyz, const uint32_t *tri,
+                             const px_mesh_part *mp, double *h, double *h_overlap, px_error *err) {
+    *h = *h_overlap = 0.0;
+    if (mp->triangle_count == 0) return PX_OK;
+    size_t n = (size_t)mp->triangle_count * 3;
+    uint32_t *local = pxi_alloc_array(alloc, n, sizeof *local);
+    if (!local) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    for (size_t i = 0; i < n; ++i) local[i] = tri[3 * (size_t)mp->first_triangle + i] - mp->first_vertex;
+    px_model *tree = pxi_model_from_triangles(xyz + 3 * (size_t)mp->first_vertex, mp->vertex_count, local,
+                                              mp->triangle_count, NULL, NULL, 0, 0, alloc, err);
+    pxi_free(alloc, local, n * sizeof *local);
+    if (!tree) return err ? err->code : PX_ERR_OUT_OF_MEMORY;
+    px_status st = pxi_part_reach(alloc, hull, tree, h, h_overlap, err);
+    px_model_destroy(tree);
+    return st;
+}
+
 px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options *options, px_error *err) {
     if (!mesh) {
         pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_mesh: mesh is NULL");
@@ -561,9 +580,7 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
             }
             m->leaves[p].part = p;
             m->leaves[p].tri = PXI_NONE;
-            st = pxi_part_reach(&alloc, convex[p], xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count,
-                                tri + 3 * (size_t)mp.first_triangle, mp.triangle_count, mp.first_vertex,
-                                &m->leaves[p].h, &m->leaves[p].h_overlap, err);
+            st = part_bounds(&alloc, convex[p], xyz, tri, &mp, &m->leaves[p].h, &m->leaves[p].h_overlap, err);
             m->max_h = fmax(m->max_h, m->leaves[p].h_overlap);
         }
         if (st == PX_OK) st = convex_reps(m, convex, err);

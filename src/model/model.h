@@ -68,12 +68,11 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
                                    const uint32_t *part, const uint8_t *closed, uint32_t n_parts, int hulls,
                                    const px_allocator *alloc, px_error *err);
 
-/* Certified bounds of a part hull (reach.c): h over the hull's boundary, h_overlap
- * over the whole hull, of the distance to the part's triangles (nt, indices
- * minus `index_base` into the part's nv vertices xyz). */
-px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const double *xyz, uint32_t nv,
-                         const uint32_t *tri, uint32_t nt, uint32_t index_base, double *h, double *h_overlap,
-                         px_error *err);
+/* Certified bounds of a part hull (reach.c): h over the hull's boundary,
+ * h_overlap over the whole hull, of the distance to the part's triangles,
+ * given as a triangle tree (built without hulls). */
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, double *h,
+                         double *h_overlap, px_error *err);
 
 /* Distance from p (body frame) to the nearest triangle of a triangle tree,
  * at most `limit` (returns `limit` when none is nearer); *tri gets the

@@ -281,39 +281,26 @@ static double volume_reach(reach *r, const px_convex *hull, rheap *h) {
     return r->known;
 }
 
-px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const double *xyz, uint32_t nv,
-                         const uint32_t *tri, uint32_t nt, uint32_t index_base, double *h, double *h_overlap,
-                         px_error *err) {
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, double *h,
+                         double *h_overlap, px_error *err) {
     *h = *h_overlap = 0.0;
-    if (nt == 0) return PX_OK;
-    uint32_t *local = pxi_alloc_array(alloc, (size_t)nt * 3, sizeof *local);
-    if (!local) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
-    for (size_t i = 0; i < (size_t)nt * 3; ++i) local[i] = tri[i] - index_base;
-    px_model *tree = pxi_model_from_triangles(xyz, nv, local, nt, NULL, NULL, 0, 0, alloc, err);
-    pxi_free(alloc, local, (size_t)nt * 3 * sizeof *local);
-    if (!tree) return err ? err->code : PX_ERR_OUT_OF_MEMORY;
     size_t rec = sizeof(rtri) > sizeof(rcell) ? sizeof(rtri) : sizeof(rcell);
     rheap heap = {NULL, sizeof(rtri), offsetof(rtri, ub), 0, R_HEAP};
     heap.data = pxi_alloc_array(alloc, R_HEAP, rec);
-    px_status st = PX_OK;
-    if (!heap.data) {
-        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
-    } else {
-        /* Rounding of the nearest points: a few ulps of the hull's size. */
-        px_bounds bd;
-        px_convex_bounds(hull, NULL, &bd);
-        double slack = 16.0 * DBL_EPSILON * (bd.radius + pxi_len(bd.center));
-        reach r = {tree, 0.0, 0.0, 0};
-        *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
-        heap.n = 0;
-        heap.size = sizeof(rcell);
-        heap.off = offsetof(rcell, ub);
-        r.evals = 0;
-        *h_overlap = fmax(*h, volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack);
-        if (!isfinite(*h) || !isfinite(*h_overlap))
-            st = pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
-    }
+    if (!heap.data) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    /* Rounding of the nearest points: a few ulps of the hull's size. */
+    px_bounds bd;
+    px_convex_bounds(hull, NULL, &bd);
+    double slack = 16.0 * DBL_EPSILON * (bd.radius + pxi_len(bd.center));
+    reach r = {tree, 0.0, 0.0, 0};
+    *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
+    heap.n = 0;
+    heap.size = sizeof(rcell);
+    heap.off = offsetof(rcell, ub);
+    r.evals = 0;
+    *h_overlap = fmax(*h, volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack);
     pxi_free(alloc, heap.data, R_HEAP * rec);
-    px_model_destroy(tree);
-    return st;
+    if (!isfinite(*h) || !isfinite(*h_overlap))
+        return pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
+    return PX_OK;
 }

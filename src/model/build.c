@@ -485,8 +485,9 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
 
 /* h and h_overlap of a part's hull: a scratch triangle tree of the part
  * (indices made local to its vertex range), measured by reach.c. */
-static px_status part_bounds(const px_allocator *alloc, const px_convex *hull, const double *xyz, const uint32_t *tri,
-                             const px_mesh_part *mp, double *h, double *h_overlap, px_error *err) {
+static px_status part_bounds(const px_allocator *alloc, const px_convex *hull, const double *xyz,
+                             const uint32_t *tri, const px_mesh_part *mp, double *h, double *h_overlap,
+                             px_error *err) {
     *h = *h_overlap = 0.0;
     if (mp->triangle_count == 0) return PX_OK;
     size_t n = (size_t)mp->triangle_count * 3;

@@ -148,7 +148,8 @@ static void write_payload(const px_model *m, wbuf *w, uint32_t *hull_vertices) {
 }
 
 px_status px_model_save(const px_model *m, const char *path, px_error *err) {
-    if (!m || !path || !*path) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_save: NULL model or path");
+    if (!m || !path || !*path)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_save: NULL model or path");
     wbuf w = {NULL, 0, 0, 0, &m->alloc};
     uint32_t hull_vertices;
     write_payload(m, &w, &hull_vertices);
@@ -239,10 +240,12 @@ static void finish_nodes(px_model *m, reader *r) {
      * are pushed into every ancestor through a parent array. */
     uint32_t nn = m->n_nodes;
     uint32_t *parent = pxi_alloc_array(&m->alloc, nn, sizeof *parent);
-    px_vec3 *lo = pxi_alloc_array(&m->alloc, nn, sizeof *lo), *hi = pxi_alloc_array(&m->alloc, nn, sizeof *hi);
+    px_vec3 *lo = pxi_alloc_array(&m->alloc, nn, sizeof *lo),
+            *hi = pxi_alloc_array(&m->alloc, nn, sizeof *hi);
     uint32_t cap = 3;
     for (uint32_t i = 0; i < nn; ++i)
-        if (m->nodes[i].child[1] == PXI_NONE && m->nodes[i].hull && px_convex_vertex_count(m->nodes[i].hull) > cap)
+        if (m->nodes[i].child[1] == PXI_NONE && m->nodes[i].hull &&
+            px_convex_vertex_count(m->nodes[i].hull) > cap)
             cap = px_convex_vertex_count(m->nodes[i].hull);
     px_vec3 *pts = pxi_alloc_array(&m->alloc, cap, sizeof *pts);
     double *tol = pxi_alloc_array(&m->alloc, nn, sizeof *tol);
@@ -254,7 +257,8 @@ static void finish_nodes(px_model *m, reader *r) {
             tol[i] = m->nodes[i].hull ? hull_tol(m->nodes[i].hull) : 0.0;
             lo[i] = pxi_v(INFINITY, INFINITY, INFINITY);
             hi[i] = pxi_v(-INFINITY, -INFINITY, -INFINITY);
-            if (m->nodes[i].child[1] != PXI_NONE) parent[m->nodes[i].child[0]] = parent[m->nodes[i].child[1]] = i;
+            if (m->nodes[i].child[1] != PXI_NONE)
+                parent[m->nodes[i].child[0]] = parent[m->nodes[i].child[1]] = i;
         }
         for (int pass = 0; pass < 2 && r->st == PX_OK; ++pass) {
             /* pass 0: boxes; pass 1: radii about the boxes' middles, and
@@ -277,8 +281,8 @@ static void finish_nodes(px_model *m, reader *r) {
                         } else {
                             n->radius = fmax(n->radius, pxi_len(pxi_sub(p, n->center)));
                             if (n->hull && a != i && !inside(n->hull, p, tol[a])) {
-                                BAD(r, "px_model_load: '%s': the hull of node %u does not hold its subtree", r->name,
-                                    a);
+                                BAD(r, "px_model_load: '%s': the hull of node %u does not hold its subtree",
+                                    r->name, a);
                                 break;
                             }
                         }
@@ -302,7 +306,8 @@ static void finish_nodes(px_model *m, reader *r) {
 
 static int finite3(px_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
-static px_model *load_memory(const unsigned char *d, size_t size, const px_model_options *options, reader *r) {
+static px_model *load_memory(const unsigned char *d, size_t size, const px_model_options *options,
+                             reader *r) {
     if (size < PXM_HEADER) {
         BAD(r, "px_model_load: '%s' is too short for a .pxm header (%zu bytes)", r->name, size);
         return NULL;
@@ -334,8 +339,10 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     uint64_t need = nn * PXM_NODE + (uint64_t)nl * PXM_LEAF + (uint64_t)nv * 24 + (uint64_t)nt * 13 +
                     (uint64_t)n_reps * 24 + (uint64_t)nhv * 24;
     if (payload != need || size - PXM_HEADER != payload) {
-        BAD(r, "px_model_load: '%s': sizes do not match (payload %llu bytes, the header's counts need %llu, the file "
-               "holds %zu)",
+        BAD(r,
+            "px_model_load: '%s': sizes do not match (payload %llu bytes, the header's counts need %llu, the "
+            "file "
+            "holds %zu)",
             r->name, (unsigned long long)payload, (unsigned long long)need, size - PXM_HEADER);
         return NULL;
     }
@@ -352,11 +359,13 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     if (options) {
         for (size_t i = 0; i < sizeof options->reserved / sizeof options->reserved[0]; ++i)
             if (options->reserved[i] || options->pieces) {
-                r->st = pxi_error(r->err, PX_ERR_INVALID_ARGUMENT, "px_model_load: options.reserved or pieces set");
+                r->st = pxi_error(r->err, PX_ERR_INVALID_ARGUMENT,
+                                  "px_model_load: options.reserved or pieces set");
                 return NULL;
             }
     }
-    if ((r->st = pxi_allocator_resolve(options ? options->allocator : NULL, &alloc, r->err)) != PX_OK) return NULL;
+    if ((r->st = pxi_allocator_resolve(options ? options->allocator : NULL, &alloc, r->err)) != PX_OK)
+        return NULL;
     px_model *m = pxi_alloc(&alloc, sizeof *m);
     if (!m) {
         r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
@@ -374,7 +383,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     m->tri = nt ? pxi_alloc_array(&alloc, (size_t)nt * 3, sizeof *m->tri) : NULL;
     m->tri_solid = nt ? pxi_alloc_array(&alloc, nt, 1) : NULL;
     m->reps = n_reps ? pxi_alloc_array(&alloc, n_reps, sizeof *m->reps) : NULL;
-    if (!m->nodes || !m->leaves || (nv && !m->v) || (nt && (!m->tri || !m->tri_solid)) || (n_reps && !m->reps)) {
+    if (!m->nodes || !m->leaves || (nv && !m->v) || (nt && (!m->tri || !m->tri_solid)) ||
+        (n_reps && !m->reps)) {
         r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
         pxi_free(&alloc, m->nodes, nn * sizeof *m->nodes);
         pxi_free(&alloc, m->leaves, (size_t)nl * sizeof *m->leaves);
@@ -397,7 +407,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
      * the child of exactly one node, each leaf index used once. */
     uint32_t *hv = pxi_alloc_array(&alloc, nn, sizeof *hv);
     uint8_t *seen = pxi_alloc_array(&alloc, nn + nl, 1);
-    if (!hv || !seen) r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+    if (!hv || !seen)
+        r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
     if (seen) memset(seen, 0, nn + nl);
     uint64_t hv_total = 0;
     for (uint32_t i = 0; i < nn && r->st == PX_OK; ++i, p += PXM_NODE) {
@@ -407,10 +418,12 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
         n->flags = r_u32(p + 8);
         hv[i] = r_u32(p + 12);
         hv_total += hv[i];
-        if (n->flags & ~PXI_NODE_OVERSIZE) BAD(r, "px_model_load: '%s': node %u has unknown flags", r->name, i);
+        if (n->flags & ~PXI_NODE_OVERSIZE)
+            BAD(r, "px_model_load: '%s': node %u has unknown flags", r->name, i);
         if (n->child[1] == PXI_NONE) {
             if (n->child[0] >= nl || seen[nn + n->child[0]]++)
-                BAD(r, "px_model_load: '%s': node %u names leaf %u twice or out of range", r->name, i, n->child[0]);
+                BAD(r, "px_model_load: '%s': node %u names leaf %u twice or out of range", r->name, i,
+                    n->child[0]);
             else if (pieces != PX_PIECES_TRIANGLES && hv[i] == 0)
                 BAD(r, "px_model_load: '%s': convex leaf node %u has no hull", r->name, i);
             else if (pieces == PX_PIECES_TRIANGLES && hv[i] != 0)
@@ -423,7 +436,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
             }
         }
     }
-    if (r->st == PX_OK && hv_total != nhv) BAD(r, "px_model_load: '%s': hull vertex counts do not add up", r->name);
+    if (r->st == PX_OK && hv_total != nhv)
+        BAD(r, "px_model_load: '%s': hull vertex counts do not add up", r->name);
     for (uint32_t i = 0; i < nl && r->st == PX_OK; ++i, p += PXM_LEAF) {
         pxi_mleaf *l = &m->leaves[i];
         l->part = r_u32(p);
@@ -431,7 +445,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
         l->h = r_f64(p + 8);
         l->h_overlap = r_f64(p + 16);
         int tri_ok = pieces == PX_PIECES_TRIANGLES ? l->tri < nt : l->tri == PXI_NONE;
-        if (!tri_ok || !(l->h >= 0.0) || !(l->h_overlap >= l->h) || !isfinite(l->h_overlap) || l->h_overlap > max_h)
+        if (!tri_ok || !(l->h >= 0.0) || !(l->h_overlap >= l->h) || !isfinite(l->h_overlap) ||
+            l->h_overlap > max_h)
             BAD(r, "px_model_load: '%s': leaf %u is malformed", r->name, i);
     }
     for (uint32_t i = 0; i < nv && r->st == PX_OK; ++i, p += 24) {
@@ -440,7 +455,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     }
     for (uint32_t i = 0; i < 3 * nt && r->st == PX_OK; ++i, p += 4) {
         m->tri[i] = r_u32(p);
-        if (m->tri[i] >= nv) BAD(r, "px_model_load: '%s': triangle %u uses vertex %u of %u", r->name, i / 3, m->tri[i], nv);
+        if (m->tri[i] >= nv)
+            BAD(r, "px_model_load: '%s': triangle %u uses vertex %u of %u", r->name, i / 3, m->tri[i], nv);
     }
     if (r->st == PX_OK && nt) {
         memcpy(m->tri_solid, p, nt);
@@ -466,7 +482,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
             buf = pxi_alloc_array(&alloc, buf_cap, sizeof *buf);
             if (!buf) {
                 buf_cap = 0;
-                r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+                r->st =
+                    pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
                 break;
             }
         }
@@ -497,7 +514,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
                     px_vec3 q;
                     px_convex_vertex(ch, j, &q);
                     if (!inside(n->hull, q, t)) {
-                        BAD(r, "px_model_load: '%s': the hull of node %u does not hold its children", r->name, i);
+                        BAD(r, "px_model_load: '%s': the hull of node %u does not hold its children", r->name,
+                            i);
                         break;
                     }
                 }
@@ -524,7 +542,8 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     return m;
 }
 
-px_model *px_model_load_memory(const void *data, size_t size, const px_model_options *options, px_error *err) {
+px_model *px_model_load_memory(const void *data, size_t size, const px_model_options *options,
+                               px_error *err) {
     reader r = {"(memory)", err, PX_OK};
     if (!data) {
         pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_load_memory: data is NULL");

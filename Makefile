@@ -39,6 +39,7 @@ build: configure
 demo: deps
 	$(MAKE) build
 	./$(BUILD)/examples/proxima_demo --models models
+	./$(BUILD)/examples/proxima_model_demo --models models
 
 test-release: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)

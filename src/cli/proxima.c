@@ -110,7 +110,8 @@ static int parse(int argc, char **argv, int first, opts *o) {
             if (!has_value) return usage_error("%s needs tx,ty,tz[,qw,qx,qy,qz]", a);
             const char *v = argv[++i];
             if (!parse_pose(v, &o->pose[a[7] == 'b']))
-                return usage_error("bad pose '%s': tx,ty,tz or tx,ty,tz,qw,qx,qy,qz (quaternion not zero)", v);
+                return usage_error("bad pose '%s': tx,ty,tz or tx,ty,tz,qw,qx,qy,qz (quaternion not zero)",
+                                   v);
         } else if (a[0] == '-' && a[1] != '\0') {
             return usage_error("unknown option '%s'", a);
         } else {
@@ -145,7 +146,8 @@ static px_mesh *load_mesh(const char *path, double scale) {
 static px_model *load_model(const char *path, int pieces, double scale) {
     px_error e;
     if (is_pxm(path)) {
-        if (scale != 0.0) fprintf(stderr, "proxima: note: --scale does not apply to the .pxm file '%s'\n", path);
+        if (scale != 0.0)
+            fprintf(stderr, "proxima: note: --scale does not apply to the .pxm file '%s'\n", path);
         px_model *m = px_model_load(path, NULL, &e);
         if (!m) fprintf(stderr, "proxima: %s\n", e.message);
         return m;
@@ -181,13 +183,16 @@ static int cmd_info(const opts *o) {
         printf("leaves:      %u (%s)\n", in.leaves, pieces_name(in.pieces));
         printf("nodes:       %u, %u with a hull, depth %u\n", in.nodes, in.hull_nodes, in.depth);
         if (in.pieces == PX_PIECES_TRIANGLES)
-            printf("solid:       %s (%u closed parts)\n", in.solid ? "yes" : in.solid_parts ? "partly" : "no",
+            printf("solid:       %s (%u closed parts)\n",
+                   in.solid         ? "yes"
+                   : in.solid_parts ? "partly"
+                                    : "no",
                    in.solid_parts);
         else
             printf("solid:       yes (convex pieces are solids)\n");
         printf("largest h:   %.9g\n", in.max_h);
-        printf("box:         [%.9g, %.9g, %.9g] .. [%.9g, %.9g, %.9g]\n", in.min.x, in.min.y, in.min.z, in.max.x,
-               in.max.y, in.max.z);
+        printf("box:         [%.9g, %.9g, %.9g] .. [%.9g, %.9g, %.9g]\n", in.min.x, in.min.y, in.min.z,
+               in.max.x, in.max.y, in.max.z);
         printf("memory:      %zu bytes\n", in.memory_bytes);
         px_model_destroy(m);
         return 0;
@@ -202,8 +207,8 @@ static int cmd_info(const opts *o) {
     printf("triangles:   %u\n", px_mesh_triangle_count(m));
     printf("vertices:    %u\n", px_mesh_vertex_count(m));
     printf("closed:      %s\n", in.closed_parts == np ? "yes (every part bounds a solid)"
-                                : in.closed_parts  ? "partly"
-                                                   : "no (open surfaces)");
+                                : in.closed_parts     ? "partly"
+                                                      : "no (open surfaces)");
     printf("box:         [%.9g, %.9g, %.9g] .. [%.9g, %.9g, %.9g]\n", in.min.x, in.min.y, in.min.z, in.max.x,
            in.max.y, in.max.z);
     if (in.unit_metres > 0.0)
@@ -214,8 +219,8 @@ static int cmd_info(const opts *o) {
     for (uint32_t i = 0; i < np; ++i) {
         px_mesh_part p;
         px_mesh_get_part(m, i, &p);
-        printf("  part %u: '%s', %u triangles, %u vertices, %s\n", i, p.name, p.triangle_count, p.vertex_count,
-               p.closed ? "closed" : "open");
+        printf("  part %u: '%s', %u triangles, %u vertices, %s\n", i, p.name, p.triangle_count,
+               p.vertex_count, p.closed ? "closed" : "open");
     }
     px_mesh_destroy(m);
     return 0;
@@ -258,15 +263,18 @@ static int cmd_distance(const opts *o) {
     if (st == PX_OK) st = px_model_collide(a, &o->pose[0], b, &o->pose[1], NULL, &c);
     int rc = 0;
     if (st != PX_OK) {
-        fprintf(stderr, "proxima: distance of '%s' and '%s': %s\n", o->files[0], o->files[1], px_status_string(st));
+        fprintf(stderr, "proxima: distance of '%s' and '%s': %s\n", o->files[0], o->files[1],
+                px_status_string(st));
         rc = 1;
     } else {
         printf("distance:    %.17g\n", r.distance);
         if (r.upper_bound > r.distance)
-            printf("bracket:     [%.17g, %.17g] (the meshes' distance lies in it)\n", r.distance, r.upper_bound);
+            printf("bracket:     [%.17g, %.17g] (the meshes' distance lies in it)\n", r.distance,
+                   r.upper_bound);
         printf("point a:     %.17g %.17g %.17g (leaf %u)\n", r.point_a.x, r.point_a.y, r.point_a.z, r.leaf_a);
         printf("point b:     %.17g %.17g %.17g (leaf %u)\n", r.point_b.x, r.point_b.y, r.point_b.z, r.leaf_b);
-        printf("collide:     %s\n", c.hit ? (c.contained ? "yes (one inside the other's solid)" : "yes") : "no");
+        printf("collide:     %s\n",
+               c.hit ? (c.contained ? "yes (one inside the other's solid)" : "yes") : "no");
         printf("work:        %u node pairs, %u leaf pairs\n", r.node_pairs, r.leaf_pairs);
     }
     px_model_destroy(a);

@@ -27,7 +27,7 @@ typedef struct builder {
     sort_key *keys;
     px_vec3 *points; /* scratch for hull inputs */
     size_t points_cap;
-    uint32_t next_node;
+    uint32_t next_node, next_box;
     int hulls; /* triangle trees: build inner hulls (0 for the scratch trees of part_reach) */
     px_error *err;
     px_status status;
@@ -88,7 +88,7 @@ static uint32_t build_node(builder *b, uint32_t lo, uint32_t hi, uint32_t depth)
     px_model *m = b->m;
     uint32_t id = b->next_node++;
     pxi_mnode *node = &m->nodes[id];
-    node->leaf_count = hi - lo;
+    node->box = PXI_NONE;
     node->flags = 0;
     node->hull = NULL;
     if (depth > m->depth) m->depth = depth;
@@ -139,6 +139,10 @@ static uint32_t build_node(builder *b, uint32_t lo, uint32_t hi, uint32_t depth)
     double r = 0.0;
     for (size_t i = 0; i < n; ++i) r = fmax(r, pxi_len(pxi_sub(b->points[i], c)));
     node->center = c;
+    if (hi - lo > 1) {
+        node->box = b->next_box++;
+        pxi_box_fit(b->points, n, &m->boxes[node->box]);
+    }
     /* The radius is rounded up by a few ulps so that the sphere surely holds
      * every point. */
     node->radius = r * (1.0 + 4.0 * DBL_EPSILON) + 0x1p-1000;
@@ -213,6 +217,7 @@ void px_model_destroy(px_model *m) {
         for (uint32_t i = 0; i < m->n_nodes; ++i) px_convex_destroy(m->nodes[i].hull);
     }
     pxi_free(&a, m->nodes, (size_t)m->n_nodes * sizeof *m->nodes);
+    if (m->boxes) pxi_free(&a, m->boxes, (size_t)(m->n_leaves - 1) * sizeof *m->boxes);
     pxi_free(&a, m->leaves, (size_t)m->n_leaves * sizeof *m->leaves);
     pxi_free(&a, m->v, (size_t)m->nv * sizeof *m->v);
     pxi_free(&a, m->tri, (size_t)m->nt * 3 * sizeof *m->tri);
@@ -234,10 +239,11 @@ static px_status build_tree(px_model *m, px_convex **convex, int hulls, px_error
     uint32_t n = m->n_leaves;
     m->n_nodes = 2 * n - 1;
     m->nodes = pxi_alloc_array(&m->alloc, m->n_nodes, sizeof *m->nodes);
+    m->boxes = n > 1 ? pxi_alloc_array(&m->alloc, n - 1, sizeof *m->boxes) : NULL;
     b.centroid = pxi_alloc_array(&m->alloc, n, sizeof *b.centroid);
     b.order = pxi_alloc_array(&m->alloc, n, sizeof *b.order);
     b.keys = pxi_alloc_array(&m->alloc, n, sizeof *b.keys);
-    if (!m->nodes || !b.centroid || !b.order || !b.keys) {
+    if (!m->nodes || (n > 1 && !m->boxes) || !b.centroid || !b.order || !b.keys) {
         b.status = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
     } else {
         memset(m->nodes, 0, (size_t)m->n_nodes * sizeof *m->nodes);
@@ -253,7 +259,8 @@ static px_status build_tree(px_model *m, px_convex **convex, int hulls, px_error
             b.centroid[i] = pxi_scale(s, 1.0 / (double)k);
         }
         if (b.status == PX_OK) build_node(&b, 0, n, 0);
-        if (b.status == PX_OK) m->bytes += (size_t)m->n_nodes * sizeof *m->nodes;
+        if (b.status == PX_OK)
+            m->bytes += (size_t)m->n_nodes * sizeof *m->nodes + (size_t)(n - 1) * sizeof *m->boxes;
     }
     /* Leaves own their pieces through the nodes; pieces not yet placed in a
      * node (an error part way) are freed here. */

@@ -26,10 +26,21 @@ typedef struct pxi_mnode {
     px_vec3 center; /* bounding sphere, body frame */
     double radius;
     uint32_t child[2];
-    uint32_t leaf_count;
+    uint32_t box;   /* index into the model's boxes (inner nodes), PXI_NONE for leaves */
     uint32_t flags; /* PXI_NODE_* */
     px_convex *hull;
 } pxi_mnode;
+
+/* An oriented box bounding an inner node's subtree (body frame): centre,
+ * orthonormal axes (rows of `axis`) along the principal directions of the
+ * subtree's points, and half extents along them, rounded outward. Flat
+ * patches get thin boxes, whose separating-axis bound stays tight where
+ * spheres are not (two parallel plates). */
+typedef struct pxi_box {
+    px_vec3 center;
+    double axis[9];
+    px_vec3 half;
+} pxi_box;
 
 typedef struct pxi_mleaf {
     uint32_t part;
@@ -41,6 +52,7 @@ struct px_model {
     uint32_t pieces; /* px_pieces */
     uint32_t n_nodes, n_leaves, n_hulls, depth;
     pxi_mnode *nodes; /* root is node 0 */
+    pxi_box *boxes;   /* n_leaves - 1, one per inner node */
     pxi_mleaf *leaves;
     /* Triangle trees: the vertices and triangles (indices into v). */
     px_vec3 *v;
@@ -92,6 +104,18 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
 /* 1 when the segment [p, q] crosses the triangle (proper crossing of the
  * plane inside the triangle); coplanar contact is left to the distances. */
 int pxi_segment_crosses_tri(px_vec3 p, px_vec3 q, const px_vec3 t[3]);
+
+/* Computes the box of `n` points (box.c). */
+void pxi_box_fit(const px_vec3 *p, size_t n, pxi_box *out);
+
+/* The box of one triangle: in its plane, along its first edge. */
+void pxi_box_of_triangle(const px_vec3 t[3], pxi_box *out);
+
+/* A lower bound on the distance between box a (frame A) and box b (frame
+ * B, mapped into A by t_ab): the largest gap of the separating-axis test
+ * over the 15 axes, the line of centres and `hint` (a unit vector in A's
+ * frame, or NULL), minus a rounding margin; <= 0 when they may overlap. */
+double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint);
 
 /* Ray parity: 1 when p lies inside the solid bounded by the model's closed
  * parts, 0 outside, found by casting rays and counting crossings with the

@@ -304,6 +304,44 @@ static void finish_nodes(px_model *m, reader *r) {
     pxi_free(&m->alloc, tol, (size_t)nn * sizeof *tol);
 }
 
+/* The boxes of the inner nodes, fitted to their subtrees' points as the
+ * build does. */
+static void compute_boxes(px_model *m, reader *r) {
+    uint32_t nl = m->n_leaves;
+    if (nl < 2) return;
+    m->boxes = pxi_alloc_array(&m->alloc, nl - 1, sizeof *m->boxes);
+    uint32_t cap = 0;
+    for (uint32_t i = 0; i < m->n_nodes; ++i)
+        if (m->nodes[i].child[1] == PXI_NONE)
+            cap += m->nodes[i].hull ? px_convex_vertex_count(m->nodes[i].hull) : 3;
+    px_vec3 *pts = pxi_alloc_array(&m->alloc, cap, sizeof *pts);
+    uint32_t *stack = pxi_alloc_array(&m->alloc, m->n_nodes, sizeof *stack);
+    if (!m->boxes || !pts || !stack) {
+        r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+    } else {
+        m->bytes += (size_t)(nl - 1) * sizeof *m->boxes;
+        uint32_t next = 0;
+        for (uint32_t i = 0; i < m->n_nodes; ++i) {
+            if (m->nodes[i].child[1] == PXI_NONE) continue;
+            uint32_t top = 0, n = 0;
+            stack[top++] = i;
+            while (top) {
+                uint32_t k = stack[--top];
+                if (m->nodes[k].child[1] != PXI_NONE) {
+                    stack[top++] = m->nodes[k].child[0];
+                    stack[top++] = m->nodes[k].child[1];
+                } else {
+                    n += leaf_points(m, k, pts + n, cap - n);
+                }
+            }
+            m->nodes[i].box = next;
+            pxi_box_fit(pts, n, &m->boxes[next++]);
+        }
+    }
+    pxi_free(&m->alloc, pts, (size_t)cap * sizeof *pts);
+    pxi_free(&m->alloc, stack, (size_t)m->n_nodes * sizeof *stack);
+}
+
 static int finite3(px_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 static px_model *load_memory(const unsigned char *d, size_t size, const px_model_options *options,
@@ -500,7 +538,9 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     pxi_free(&alloc, buf, buf_cap * sizeof *buf);
     pxi_free(&alloc, hv, nn * sizeof *hv);
     pxi_free(&alloc, seen, nn + nl);
+    for (uint32_t i = 0; i < nn; ++i) m->nodes[i].box = PXI_NONE;
     if (r->st == PX_OK) finish_nodes(m, r);
+    if (r->st == PX_OK) compute_boxes(m, r);
     if (r->st == PX_OK) {
         /* Depth, and the hull of every inner node holding its children's hulls. */
         for (uint32_t i = 0; i < nn && r->st == PX_OK; ++i) {

@@ -145,6 +145,8 @@ typedef struct qctx {
     int hit;    /* Q_COLLIDE / Q_WITHIN */
     uint32_t leaf_a, leaf_b, node_a, node_b;
     px_vec3 pt_a, pt_b; /* world */
+    px_vec3 hint;       /* unit direction between the best witnesses, A's frame */
+    int has_hint;
     px_feature fa, fb;
     uint32_t node_pairs, leaf_pairs;
     px_diagnostics diag;
@@ -203,6 +205,10 @@ static void record(qctx *q, double d, uint32_t ia, uint32_t ib, px_vec3 pa, px_v
     q->leaf_b = lb;
     q->pt_a = pa;
     q->pt_b = pb;
+    px_vec3 u = pxi_rot_t(q->pa->r, pxi_sub(pb, pa));
+    double ul = pxi_len(u);
+    q->has_hint = ul > 0.0 && isfinite(ul);
+    if (q->has_hint) q->hint = pxi_scale(u, 1.0 / ul);
     fa.piece = la;
     fb.piece = lb;
     q->fa = fa;
@@ -258,7 +264,28 @@ static double pair_bound(qctx *q, uint32_t ia, uint32_t ib, double limit) {
     const pxi_mnode *na = &q->a->nodes[ia], *nb = &q->b->nodes[ib];
     q->node_pairs++;
     double lb = sphere_bound(q, na, nb);
-    if (lb > limit || !na->hull || !nb->hull) return lb;
+    if (lb > limit) return lb;
+    /* Boxes: inner nodes keep theirs; a triangle leaf's is made on the fly
+     * (against an inner node only: two triangles are measured directly). */
+    const pxi_box *ba = na->box != PXI_NONE ? &q->a->boxes[na->box] : NULL;
+    const pxi_box *bb = nb->box != PXI_NONE ? &q->b->boxes[nb->box] : NULL;
+    pxi_box tmp;
+    if (!ba && bb && !na->hull) {
+        px_vec3 t[3];
+        tri_of(q->a, na->child[0], t);
+        pxi_box_of_triangle(t, &tmp);
+        ba = &tmp;
+    } else if (ba && !bb && !nb->hull) {
+        px_vec3 t[3];
+        tri_of(q->b, nb->child[0], t);
+        pxi_box_of_triangle(t, &tmp);
+        bb = &tmp;
+    }
+    if (ba && bb) {
+        lb = fmax(lb, pxi_box_gap(ba, bb, &q->t_ab, q->has_hint ? &q->hint : NULL));
+        if (lb > limit) return lb;
+    }
+    if (!na->hull || !nb->hull) return lb;
     px_distance_result r;
     if (!hull_distance(q, ia, ib, &r)) return INFINITY;
     return r.intersecting ? 0.0 : fmax(lb, r.distance);
@@ -560,7 +587,7 @@ static px_status view_convex(convex_view *v, const px_convex *c) {
     v->node.radius = bd.radius * (1.0 + 4.0 * DBL_EPSILON);
     v->node.child[0] = 0;
     v->node.child[1] = PXI_NONE;
-    v->node.leaf_count = 1;
+    v->node.box = PXI_NONE;
     v->node.hull = (px_convex *)c;
     v->leaf.tri = PXI_NONE;
     px_convex_vertex(c, 0, &v->rep);

@@ -1,0 +1,208 @@
+/* Oriented bounding boxes of tree nodes and the separating-axis lower bound
+ * on their distance (S. Gottschalk, M. Lin, D. Manocha, "OBBTree: a
+ * hierarchical structure for rapid interference detection", SIGGRAPH
+ * 1996: axes from the covariance of the points, the 15-axis test). Here the
+ * test's gap is used as a distance bound: projections onto a unit axis are
+ * 1-Lipschitz, so the gap between two projected intervals never exceeds
+ * the distance of the boxes. */
+#include <float.h>
+#include <math.h>
+
+#include "model/model.h"
+
+/* max without libm's NaN rules (the call is not inlined); the bounds are
+ * finite. */
+static inline double max2(double a, double b) { return a > b ? a : b; }
+
+/* Eigenvectors of a symmetric 3x3 matrix by cyclic Jacobi rotations (rows
+ * of v). */
+static void jacobi3(double a[9], double v[9]) {
+    for (int i = 0; i < 9; ++i) v[i] = (i % 4 == 0) ? 1.0 : 0.0;
+    for (int sweep = 0; sweep < 32; ++sweep) {
+        double off = a[1] * a[1] + a[2] * a[2] + a[5] * a[5];
+        if (!(off > 1e-30 * (a[0] * a[0] + a[4] * a[4] + a[8] * a[8]))) break;
+        for (int p = 0; p < 2; ++p)
+            for (int q = p + 1; q < 3; ++q) {
+                double apq = a[3 * p + q];
+                if (apq == 0.0) continue;
+                double theta = (a[3 * q + q] - a[3 * p + p]) / (2.0 * apq);
+                double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
+                /* a = J^T a J on rows/columns p, q. */
+                for (int k = 0; k < 3; ++k) {
+                    double akp = a[3 * k + p], akq = a[3 * k + q];
+                    a[3 * k + p] = c * akp - s * akq;
+                    a[3 * k + q] = s * akp + c * akq;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    double apk = a[3 * p + k], aqk = a[3 * q + k];
+                    a[3 * p + k] = c * apk - s * aqk;
+                    a[3 * q + k] = s * apk + c * aqk;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    double vpk = v[3 * p + k], vqk = v[3 * q + k];
+                    v[3 * p + k] = c * vpk - s * vqk;
+                    v[3 * q + k] = s * vpk + c * vqk;
+                }
+            }
+    }
+}
+
+void pxi_box_fit(const px_vec3 *p, size_t n, pxi_box *out) {
+    px_vec3 mean = pxi_v(0, 0, 0);
+    for (size_t i = 0; i < n; ++i) mean = pxi_add(mean, p[i]);
+    mean = pxi_scale(mean, 1.0 / (double)n);
+    double c[9] = {0};
+    for (size_t i = 0; i < n; ++i) {
+        px_vec3 d = pxi_sub(p[i], mean);
+        c[0] += d.x * d.x, c[1] += d.x * d.y, c[2] += d.x * d.z;
+        c[4] += d.y * d.y, c[5] += d.y * d.z, c[8] += d.z * d.z;
+    }
+    c[3] = c[1], c[6] = c[2], c[7] = c[5];
+    double v[9];
+    jacobi3(c, v);
+    /* Orthonormalise (the third axis as the cross product keeps the frame
+     * right-handed and exactly orthogonal up to rounding). */
+    px_vec3 a0 = pxi_unit_safe(pxi_v(v[0], v[1], v[2]));
+    px_vec3 a1 = pxi_v(v[3], v[4], v[5]);
+    a1 = pxi_unit_safe(pxi_sub(a1, pxi_scale(a0, pxi_dot(a0, a1))));
+    px_vec3 a2 = pxi_unit_safe(pxi_cross(a0, a1));
+    if (!pxi_is_finite3(a0) || !pxi_is_finite3(a1) || !pxi_is_finite3(a2) || pxi_len2(a0) < 0.5 ||
+        pxi_len2(a1) < 0.5 || pxi_len2(a2) < 0.5) {
+        a0 = pxi_v(1, 0, 0), a1 = pxi_v(0, 1, 0), a2 = pxi_v(0, 0, 1);
+    }
+    px_vec3 ax[3] = {a0, a1, a2};
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    double reach = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        px_vec3 d = pxi_sub(p[i], mean);
+        reach = fmax(reach, pxi_max_abs(d));
+        for (int k = 0; k < 3; ++k) {
+            double t = pxi_dot(ax[k], d);
+            lo[k] = fmin(lo[k], t);
+            hi[k] = fmax(hi[k], t);
+        }
+    }
+    /* Outward rounding: the projections' and the centre's errors are a few
+     * ulps of the points' spread and of the centre's size. */
+    double pad = 16.0 * DBL_EPSILON * (4.0 * reach + pxi_max_abs(mean)) + 0x1p-1000;
+    px_vec3 center = mean;
+    double half[3];
+    for (int k = 0; k < 3; ++k) {
+        center = pxi_madd(center, ax[k], 0.5 * (lo[k] + hi[k]));
+        half[k] = 0.5 * (hi[k] - lo[k]) + pad;
+    }
+    out->center = center;
+    for (int k = 0; k < 3; ++k) {
+        out->axis[3 * k] = ax[k].x;
+        out->axis[3 * k + 1] = ax[k].y;
+        out->axis[3 * k + 2] = ax[k].z;
+    }
+    out->half = pxi_v(half[0], half[1], half[2]);
+}
+
+void pxi_box_of_triangle(const px_vec3 t[3], pxi_box *out) {
+    px_vec3 e0 = pxi_unit_safe(pxi_sub(t[1], t[0]));
+    px_vec3 n = pxi_unit_safe(pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0])));
+    if (!(pxi_len2(e0) > 0.5) || !(pxi_len2(n) > 0.5) || !pxi_is_finite3(n)) {
+        pxi_box_fit(t, 3, out); /* a zero-area triangle */
+        return;
+    }
+    px_vec3 e1 = pxi_cross(n, e0);
+    px_vec3 ax[3] = {e0, e1, n};
+    px_vec3 o = t[0];
+    double lo[3], hi[3], reach = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        lo[k] = hi[k] = 0.0;
+        for (int j = 1; j < 3; ++j) {
+            px_vec3 d = pxi_sub(t[j], o);
+            double v = pxi_dot(ax[k], d);
+            lo[k] = fmin(lo[k], v);
+            hi[k] = fmax(hi[k], v);
+            reach = fmax(reach, pxi_max_abs(d));
+        }
+    }
+    double pad = 16.0 * DBL_EPSILON * (4.0 * reach + pxi_max_abs(o)) + 0x1p-1000;
+    px_vec3 c = o;
+    double half[3];
+    for (int k = 0; k < 3; ++k) {
+        c = pxi_madd(c, ax[k], 0.5 * (lo[k] + hi[k]));
+        half[k] = 0.5 * (hi[k] - lo[k]) + pad;
+        out->axis[3 * k] = ax[k].x;
+        out->axis[3 * k + 1] = ax[k].y;
+        out->axis[3 * k + 2] = ax[k].z;
+    }
+    out->center = c;
+    out->half = pxi_v(half[0], half[1], half[2]);
+}
+
+double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint) {
+    /* B's axes and centre in A's frame, then in A's box basis. */
+    px_vec3 bc = pxi_xform(t_ab, b->center);
+    px_vec3 d = pxi_sub(bc, a->center);
+    px_vec3 ba[3];
+    for (int k = 0; k < 3; ++k) ba[k] = pxi_rot(t_ab->r, pxi_v(b->axis[3 * k], b->axis[3 * k + 1], b->axis[3 * k + 2]));
+    px_vec3 aa[3];
+    for (int k = 0; k < 3; ++k) aa[k] = pxi_v(a->axis[3 * k], a->axis[3 * k + 1], a->axis[3 * k + 2]);
+    double ha[3] = {a->half.x, a->half.y, a->half.z}, hb[3] = {b->half.x, b->half.y, b->half.z};
+    double r[3][3], ar[3][3], t[3];
+    for (int i = 0; i < 3; ++i) {
+        t[i] = pxi_dot(aa[i], d);
+        for (int j = 0; j < 3; ++j) {
+            r[i][j] = pxi_dot(aa[i], ba[j]);
+            ar[i][j] = fabs(r[i][j]);
+        }
+    }
+    /* Rounding of every gap: a few ulps of the sizes involved (divided by
+     * the axis length for the cross products). */
+    double size = pxi_len(d) + ha[0] + ha[1] + ha[2] + hb[0] + hb[1] + hb[2];
+    double margin = 64.0 * DBL_EPSILON * size;
+    double best = -INFINITY;
+    /* A's axes. */
+    for (int i = 0; i < 3; ++i) {
+        double rb = hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2];
+        best = max2(best, fabs(t[i]) - ha[i] - rb - margin);
+    }
+    /* B's axes. */
+    for (int j = 0; j < 3; ++j) {
+        double ra = ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j];
+        double tb = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
+        best = max2(best, fabs(tb) - ra - hb[j] - margin);
+    }
+    /* The line of centres, the best axis when the boxes lie diagonally
+     * from each other (no face or edge axis sees the whole gap then). */
+    double dl = pxi_len(d);
+    if (dl > 0.0) {
+        double ra = 0.0, rb = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            ra += ha[k] * fabs(t[k]);
+            rb += hb[k] * fabs(pxi_dot(ba[k], d));
+        }
+        best = max2(best, (dl * dl - ra - rb) / dl - margin);
+    }
+    /* The caller's hint (a unit vector, A's frame): the direction between
+     * the closest points found so far, which sees the gap between two
+     * parallel surfaces facing each other. */
+    if (hint) {
+        double ra = 0.0, rb = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            ra += ha[k] * fabs(pxi_dot(aa[k], *hint));
+            rb += hb[k] * fabs(pxi_dot(ba[k], *hint));
+        }
+        best = max2(best, fabs(pxi_dot(d, *hint)) - ra - rb - margin);
+    }
+    /* Cross products A_i x B_j, normalised (|A_i x B_j| = sqrt(1 - r_ij^2)). */
+    for (int i = 0; i < 3; ++i) {
+        int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+        for (int j = 0; j < 3; ++j) {
+            double len2 = 1.0 - r[i][j] * r[i][j];
+            if (!(len2 > 1e-6)) continue;
+            int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+            double ra = ha[i1] * ar[i2][j] + ha[i2] * ar[i1][j];
+            double rb = hb[j1] * ar[i][j2] + hb[j2] * ar[i][j1];
+            double tt = fabs(t[i2] * r[i1][j] - t[i1] * r[i2][j]);
+            best = max2(best, (tt - ra - rb - margin) / sqrt(len2));
+        }
+    }
+    return best;
+}

@@ -195,14 +195,30 @@ int or_poly_init_raw(or_poly *p, const double *xyz, uint32_t nv, const uint32_t 
     p->f_vert = xcalloc(total, sizeof *p->f_vert);
     memcpy(p->f_vert, f_vert, total * sizeof *f_vert);
     /* Each undirected edge appears once as a -> b with a < b in a closed
-     * consistently oriented surface. */
-    p->ev = xcalloc(total, sizeof *p->ev);
+     * consistently oriented surface; an edge of an open one (a single
+     * polygon) appears in one direction only, and is kept either way. */
+    p->ev = xcalloc(2 * (size_t)total, sizeof *p->ev);
     p->ne = 0;
     for (uint32_t f = 0; f < nf; ++f) {
         uint32_t b = f_first[f], n = f_first[f + 1] - b;
         for (uint32_t k = 0; k < n; ++k) {
             uint32_t a = f_vert[b + k], c = f_vert[b + (k + 1) % n];
-            if (a < c) {
+            int keep = a < c;
+            if (!keep) {
+                /* a > c: kept unless some face has c -> a. */
+                keep = 1;
+                for (uint32_t g = 0; g < nf && keep; ++g) {
+                    uint32_t gb = f_first[g], gn = f_first[g + 1] - gb;
+                    for (uint32_t j = 0; j < gn; ++j)
+                        if (f_vert[gb + j] == c && f_vert[gb + (j + 1) % gn] == a) keep = 0;
+                }
+                if (keep) {
+                    uint32_t t = a;
+                    a = c;
+                    c = t;
+                }
+            }
+            if (keep) {
                 p->ev[2 * p->ne] = a;
                 p->ev[2 * p->ne + 1] = c;
                 p->ne++;

@@ -68,7 +68,11 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Exact_rational.h>
 #include <CGAL/FPU.h>
+#include <CGAL/Projection_traits_xy_3.h>
+#include <CGAL/Projection_traits_xz_3.h>
+#include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/convex_hull_2.h>
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/exceptions.h>
 
@@ -80,6 +84,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <iterator>
 #include <new>
 #include <numeric>
 #include <stdexcept>
@@ -368,14 +373,92 @@ void check_topology(size_t vertex_count, const std::vector<size_t> &offsets,
 }
 
 // Hull facets as loops over `points` (hull vertices, as doubles), before
-// canonical numbering.
+// canonical numbering. Lower-dimensional hulls: a polygon has two loops
+// (the polygon both ways round), a segment its two end points and no loop,
+// a point itself and no loop.
 struct Facets {
+    int dim = 3;
     std::vector<Xyz> points;
     std::vector<uint32_t> loops;
     std::vector<size_t> offsets;
 };
 
-// Affine dimension, and when it is 3 the facets, computed with kernel K.
+template <class Point_3> Xyz to_xyz(const Point_3 &p) {
+    return {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+}
+
+// The extreme points of a planar point set, counter-clockwise in the
+// coordinate plane `drop` leaves out (0: yz, 1: xz, 2: xy), by CGAL's
+// convex_hull_2 with the projection traits: exact predicates on the input
+// doubles, and only extreme points (no duplicate, no point in the middle
+// of an edge). Projecting onto a coordinate plane that the points' plane is
+// not perpendicular to maps the planar hull one to one.
+template <class K>
+void planar_hull(const std::vector<typename K::Point_3> &pts, int drop,
+                 std::vector<typename K::Point_3> &out) {
+    if (drop == 0)
+        CGAL::convex_hull_2(pts.cbegin(), pts.cend(), std::back_inserter(out),
+                            CGAL::Projection_traits_yz_3<K>());
+    else if (drop == 1)
+        CGAL::convex_hull_2(pts.cbegin(), pts.cend(), std::back_inserter(out),
+                            CGAL::Projection_traits_xz_3<K>());
+    else
+        CGAL::convex_hull_2(pts.cbegin(), pts.cend(), std::back_inserter(out),
+                            CGAL::Projection_traits_xy_3<K>());
+}
+
+// The hull of a point set of affine dimension below 3: a point, the two
+// extreme points of a collinear set (the lexicographic least and greatest:
+// along a line the lexicographic order is the order along it, and
+// comparing coordinates is exact), or the polygon of a coplanar set.
+template <class K>
+void lower_dimensional_hull(const std::vector<typename K::Point_3> &pts, int dim, Facets &out) {
+    using Point_3 = typename K::Point_3;
+    out.offsets.assign(1, 0);
+    if (dim == 0) {
+        out.points.push_back(to_xyz(pts[0]));
+        return;
+    }
+    if (dim == 1) {
+        const auto lo = std::min_element(pts.cbegin(), pts.cend(), [](const Point_3 &a, const Point_3 &b) {
+            return CGAL::compare_xyz(a, b) == CGAL::SMALLER;
+        });
+        const auto hi = std::max_element(pts.cbegin(), pts.cend(), [](const Point_3 &a, const Point_3 &b) {
+            return CGAL::compare_xyz(a, b) == CGAL::SMALLER;
+        });
+        out.points.push_back(to_xyz(*lo));
+        out.points.push_back(to_xyz(*hi));
+        return;
+    }
+    // A coordinate plane the points' plane is not perpendicular to: one
+    // where three affinely independent points project to a proper triangle
+    // (an exact 2D orientation of input coordinates).
+    const Point_3 &a = pts[0];
+    size_t i = 1;
+    while (CGAL::compare_xyz(pts[i], a) == CGAL::EQUAL) ++i;
+    size_t j = i + 1;
+    while (CGAL::collinear(a, pts[i], pts[j])) ++j;
+    const Point_3 &b = pts[i], &c = pts[j];
+    int drop = 2;
+    if (CGAL::Projection_traits_xy_3<K>().orientation_2_object()(a, b, c) != CGAL::COLLINEAR)
+        drop = 2;
+    else if (CGAL::Projection_traits_yz_3<K>().orientation_2_object()(a, b, c) != CGAL::COLLINEAR)
+        drop = 0;
+    else
+        drop = 1;
+    std::vector<Point_3> ring;
+    planar_hull<K>(pts, drop, ring);
+    if (ring.size() < 3) throw Hull_error("planar hull of a coplanar set has fewer than 3 points");
+    const uint32_t n = static_cast<uint32_t>(ring.size());
+    for (const Point_3 &p : ring) out.points.push_back(to_xyz(p));
+    // Both sides of the polygon: the ring, then the ring reversed.
+    for (uint32_t k = 0; k < n; ++k) out.loops.push_back(k);
+    out.offsets.push_back(n);
+    for (uint32_t k = 0; k < n; ++k) out.loops.push_back(n - 1 - k);
+    out.offsets.push_back(2 * size_t(n));
+}
+
+// Affine dimension, and the facets, computed with kernel K.
 template <class K, class Traits> int compute_facets(const double *xyz, size_t count, Facets &out) {
     using Point_3 = typename K::Point_3;
     std::vector<Point_3> pts;
@@ -383,7 +466,11 @@ template <class K, class Traits> int compute_facets(const double *xyz, size_t co
     for (size_t i = 0; i < count; ++i) pts.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
 
     const int dim = affine_dimension(pts);
-    if (dim < 3) return dim;
+    out.dim = dim;
+    if (dim < 3) {
+        lower_dimensional_hull<K>(pts, dim, out);
+        return dim;
+    }
 
     // The traits-taking overload has an extra template parameter that cannot
     // be deduced in CGAL 5.5 (unused; any type works), hence the explicit
@@ -398,10 +485,7 @@ template <class K, class Traits> int compute_facets(const double *xyz, size_t co
 
     // Hull points are copies of input doubles, so to_double is exact.
     out.points.resize(mesh.points.size());
-    for (size_t v = 0; v < mesh.points.size(); ++v) {
-        const Point_3 &p = mesh.points[v];
-        out.points[v] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
-    }
+    for (size_t v = 0; v < mesh.points.size(); ++v) out.points[v] = to_xyz(mesh.points[v]);
     return 3;
 }
 
@@ -422,7 +506,7 @@ bool use_exact_kernel(bool force) {
     return force || !rounding_works;
 }
 
-// The hull (nullptr with *dimension < 3 for degenerate input), computed with
+// The hull (of any affine dimension, in *dimension), computed with
 // the exact kernel if force_exact or use_exact_kernel says so. Throws on
 // failure (std::bad_alloc, CGAL::Failure_exception, Hull_error).
 pxcd_hull *compute(const double *xyz, size_t count, int *dimension, bool force_exact) {
@@ -431,7 +515,6 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension, bool force_e
                         ? compute_facets<Exact_kernel, Exact_traits>(xyz, count, facets)
                         : compute_facets<Fast_kernel, Fast_traits>(xyz, count, facets);
     if (dimension != nullptr) *dimension = dim;
-    if (dim < 3) return nullptr;
     const std::vector<uint32_t> &loops = facets.loops;
     const std::vector<size_t> &offsets = facets.offsets;
     const size_t face_count = offsets.size() - 1;
@@ -444,6 +527,7 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension, bool force_e
     {
         std::vector<char> is_used(point_count, 0);
         for (uint32_t v : loops) is_used[v] = 1;
+        if (dim < 2) std::fill(is_used.begin(), is_used.end(), 1); // a point or a segment: no loops
         for (uint32_t v = 0; v < point_count; ++v)
             if (is_used[v]) used.push_back(v);
     }
@@ -489,7 +573,7 @@ pxcd_hull *compute(const double *xyz, size_t count, int *dimension, bool force_e
         out_indices.insert(out_indices.end(), indices.begin() + offsets[f], indices.begin() + offsets[f + 1]);
         out_offsets.push_back(out_indices.size());
     }
-    check_topology(used.size(), out_offsets, out_indices);
+    if (dim >= 2) check_topology(used.size(), out_offsets, out_indices);
 
     // Copy into malloc'd arrays (the C side frees them with pxcd_hull_free).
     pxcd_hull *hull = static_cast<pxcd_hull *>(std::calloc(1, sizeof(pxcd_hull)));
@@ -554,9 +638,7 @@ extern "C" pxcd_status pxcd_hull_compute_ex(const double *xyz, size_t count, uns
     const char *what = nullptr;
     char buf[512];
     try {
-        pxcd_hull *hull = compute(xyz, count, dimension, (flags & PXCD_HULL_FORCE_EXACT_KERNEL) != 0);
-        if (hull == nullptr) return PXCD_DEGENERATE;
-        *out = hull;
+        *out = compute(xyz, count, dimension, (flags & PXCD_HULL_FORCE_EXACT_KERNEL) != 0);
         return PXCD_OK;
     } catch (const std::bad_alloc &) {
         set_msg(msg, msg_len, "pxcd_hull_compute: out of memory");

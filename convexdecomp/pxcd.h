@@ -25,7 +25,6 @@ extern "C" {
 
 typedef enum pxcd_status {
     PXCD_OK = 0,
-    PXCD_DEGENERATE = 1,   /* fewer than 4 affinely independent points */
     PXCD_ERROR = 2,        /* bad argument, CGAL threw, or an internal check failed: see msg */
     PXCD_OUT_OF_MEMORY = 3 /* an allocation failed (std::bad_alloc) */
 } pxcd_status;
@@ -36,6 +35,11 @@ typedef enum pxcd_status {
  * Only extreme points are vertices (no point in the middle of an edge or
  * face). Every undirected edge belongs to exactly two faces, which use it in
  * opposite directions, and V - E + F = 2.
+ * Lower-dimensional point sets (exact predicates decide): a polygon
+ * (coplanar points) has two faces, its extreme points in order and the same
+ * loop reversed (a two-sided polygon: every edge still belongs to exactly
+ * two faces, and V - E + F = 2); a segment (collinear points) is its two end
+ * points and no face; a point is one vertex and no face.
  * The output is canonical, hence deterministic: vertex i is the i-th distinct
  * extreme point in input order, with the coordinates (bit for bit) of its
  * first occurrence in the input; each face starts at its smallest vertex id
@@ -50,10 +54,9 @@ typedef struct pxcd_hull {
 } pxcd_hull;
 
 /* Computes the hull of `count` points (xyz: 3*count doubles, all finite:
- * the caller checks). On PXCD_OK *out is a new hull (and *dimension is 3).
- * On PXCD_DEGENERATE, *dimension is set to the affine dimension of the input
- * (0 = one distinct point, 1 = collinear, 2 = coplanar, decided with exact
- * predicates) and *out is NULL. On PXCD_ERROR and PXCD_OUT_OF_MEMORY *out is
+ * the caller checks). On PXCD_OK *out is a new hull and *dimension the
+ * affine dimension of the input (0 = one distinct point, 1 = collinear,
+ * 2 = coplanar, 3 = a solid; decided with exact predicates). On PXCD_ERROR and PXCD_OUT_OF_MEMORY *out is
  * NULL and a sentence goes to msg (msg_len bytes, may be 0); count == 0 is
  * an error. `dimension` and `msg` may be NULL.
  * Time: ~1 s for 200k points in convex position. If the FPU's directed

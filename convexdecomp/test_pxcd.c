@@ -474,18 +474,28 @@ static void test_degenerate(void) {
     pxcd_hull *h;
     double one[] = {1.5, -2, 3};
     h = hull_of(one, 1, &st, &dim);
-    CHECK(st == PXCD_DEGENERATE && dim == 0 && !h, "single point: st=%d dim=%d", (int)st, dim);
+    CHECK(st == PXCD_OK && dim == 0 && h && h->vertex_count == 1 && h->face_count == 0 &&
+              memcmp(h->vertices, one, sizeof one) == 0,
+          "single point: st=%d dim=%d", (int)st, dim);
+    pxcd_hull_free(h);
 
     double same[5 * 3];
     for (int i = 0; i < 5; ++i) memcpy(&same[3 * i], one, sizeof one);
     h = hull_of(same, 5, &st, &dim);
-    CHECK(st == PXCD_DEGENERATE && dim == 0 && !h, "repeated point: st=%d dim=%d", (int)st, dim);
+    CHECK(st == PXCD_OK && dim == 0 && h && h->vertex_count == 1, "repeated point: st=%d dim=%d", (int)st,
+          dim);
+    pxcd_hull_free(h);
 
     double line[6 * 3];
     for (int i = 0; i < 6; ++i) line[3 * i] = 1 + i, line[3 * i + 1] = 2 + 2 * i, line[3 * i + 2] = -3 * i;
     memcpy(&line[3 * 5], &line[0], 3 * sizeof(double)); /* duplicates too */
     h = hull_of(line, 6, &st, &dim);
-    CHECK(st == PXCD_DEGENERATE && dim == 1 && !h, "collinear: st=%d dim=%d", (int)st, dim);
+    /* The end points (1,2,0) and (5,10,-12), in input order, no face. */
+    CHECK(st == PXCD_OK && dim == 1 && h && h->vertex_count == 2 && h->face_count == 0 &&
+              memcmp(h->vertices, &line[0], 3 * sizeof(double)) == 0 &&
+              memcmp(h->vertices + 3, &line[3 * 4], 3 * sizeof(double)) == 0,
+          "collinear: st=%d dim=%d", (int)st, dim);
+    pxcd_hull_free(h);
 
     double plane[50 * 3];
     for (int i = 0; i < 50; ++i) {
@@ -493,7 +503,29 @@ static void test_degenerate(void) {
         plane[3 * i] = a, plane[3 * i + 1] = b, plane[3 * i + 2] = 3 * a - 2 * b + 7;
     }
     h = hull_of(plane, 50, &st, &dim);
-    CHECK(st == PXCD_DEGENERATE && dim == 2 && !h, "coplanar: st=%d dim=%d", (int)st, dim);
+    /* A two-sided polygon: two loops, one the other reversed, every vertex
+     * an input point, every input point inside or on it (checked in the
+     * lattice's plane coordinates (a, b), which the plane maps one to one). */
+    int poly_ok = st == PXCD_OK && dim == 2 && h && h->face_count == 2 && h->vertex_count >= 3;
+    if (poly_ok) {
+        size_t n = h->vertex_count;
+        const uint32_t *f0 = h->face_indices, *f1 = h->face_indices + h->face_offsets[1];
+        poly_ok = h->face_offsets[1] == n && h->face_offsets[2] == 2 * n && f0[0] == 0 && f1[0] == 0;
+        for (size_t k = 1; k < n && poly_ok; ++k) poly_ok = f1[k] == f0[n - k];
+        double area = 0.0;
+        for (size_t k = 0; k < n; ++k) {
+            const double *p = h->vertices + 3 * f0[k], *q = h->vertices + 3 * f0[(k + 1) % n];
+            area += p[0] * q[1] - q[0] * p[1];
+        }
+        for (int i = 0; i < 50 && poly_ok; ++i)
+            for (size_t k = 0; k < n && poly_ok; ++k) {
+                const double *p = h->vertices + 3 * f0[k], *q = h->vertices + 3 * f0[(k + 1) % n];
+                double o = (q[0] - p[0]) * (plane[3 * i + 1] - p[1]) - (q[1] - p[1]) * (plane[3 * i] - p[0]);
+                poly_ok = area > 0 ? o >= 0 : o <= 0; /* small integers: exact */
+            }
+    }
+    CHECK(poly_ok, "coplanar: st=%d dim=%d", (int)st, dim);
+    pxcd_hull_free(h);
 
     /* Almost coplanar: one point off the plane by one ulp is 3D. */
     plane[3 * 49 + 2] = nextafter(plane[3 * 49 + 2], INFINITY);

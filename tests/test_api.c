@@ -60,9 +60,13 @@ static void test_version_and_errors(void) {
     CHECK(px_convex_validate(c, &err) == PX_OK && err.code == PX_OK && err.message[0] == '\0',
           "validate success: code %d", err.code);
     px_convex_destroy(c);
-    c = px_convex_create(xyz, 3, NULL, &err);
-    CHECK(!c && err.code == PX_ERR_DEGENERATE && strlen(err.message) > 10, "3 points: code %d '%s'", err.code,
+    c = px_convex_create(xyz, 0, NULL, &err);
+    CHECK(!c && err.code == PX_ERR_INVALID_ARGUMENT && strlen(err.message) > 10, "0 points: code %d '%s'",
+          err.code, err.message);
+    c = px_convex_create(xyz, 3, NULL, &err); /* a triangle: a flat piece (test_degenerate) */
+    CHECK(c && err.code == PX_OK && px_convex_dimension(c) == 2, "3 points: code %d '%s'", err.code,
           err.message);
+    px_convex_destroy(c);
     px_pose bad = px_pose_identity();
     bad.r[0] = 2;
     CHECK(px_pose_check(&bad, &err) == PX_ERR_INVALID_POSE && err.code == PX_ERR_INVALID_POSE, "bad pose");

@@ -291,22 +291,38 @@ static void expect_status(const double *xyz, size_t n, px_status want, const cha
     px_convex_destroy(c);
 }
 
+/* A lower-dimensional piece: its dimension, counts and validity. */
+static void expect_dimension(const double *xyz, size_t n, uint32_t dim, uint32_t nv, uint32_t ne, uint32_t nf,
+                             const char *what) {
+    px_error err;
+    px_convex *c = px_convex_create(xyz, n, NULL, &err);
+    CHECK(c && err.code == PX_OK, "%s: %s", what, err.message);
+    CHECK(px_convex_dimension(c) == dim && px_convex_vertex_count(c) == nv && px_convex_edge_count(c) == ne &&
+              px_convex_face_count(c) == nf,
+          "%s: dimension %u, V %u E %u F %u", what, px_convex_dimension(c), px_convex_vertex_count(c),
+          px_convex_edge_count(c), px_convex_face_count(c));
+    CHECK(px_convex_validate(c, &err) == PX_OK, "%s: %s", what, err.message);
+    px_convex_destroy(c);
+}
+
 static void test_degenerate_inputs(void) {
     static const double tet[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     expect_status(NULL, 4, PX_ERR_INVALID_ARGUMENT, NULL, "NULL points");
     expect_status(tet, 0, PX_ERR_INVALID_ARGUMENT, NULL, "count 0");
     expect_status(tet, ((size_t)1 << 26) + 1, PX_ERR_INVALID_ARGUMENT, NULL, "count above 2^26");
-    expect_status(tet, 1, PX_ERR_DEGENERATE, NULL, "1 point");
-    expect_status(tet, 2, PX_ERR_DEGENERATE, NULL, "2 points");
-    expect_status(tet, 3, PX_ERR_DEGENERATE, NULL, "3 points");
+    /* Fewer than 4 points, duplicates, collinear and coplanar sets are
+     * lower-dimensional pieces now (test_degenerate has the queries). */
+    expect_dimension(tet, 1, 0, 1, 0, 0, "1 point");
+    expect_dimension(tet, 2, 1, 2, 1, 0, "2 points");
+    expect_dimension(tet, 3, 2, 3, 3, 2, "3 points");
     double dup[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 0, 0};
-    expect_status(dup, 4, PX_ERR_DEGENERATE, NULL, "4 points, one duplicated");
+    expect_dimension(dup, 4, 2, 3, 3, 2, "4 points, one duplicated");
     double rep[30];
     for (int i = 0; i < 30; ++i) rep[i] = (i % 3 == 0) ? 0.5 : -2.25;
-    expect_status(rep, 10, PX_ERR_DEGENERATE, NULL, "one point repeated 10 times");
+    expect_dimension(rep, 10, 0, 1, 0, 0, "one point repeated 10 times");
     double col[60];
     for (int i = 0; i < 20; ++i) col[3 * i] = i, col[3 * i + 1] = 2.0 * i, col[3 * i + 2] = -3.0 * i;
-    expect_status(col, 20, PX_ERR_DEGENERATE, "collinear", "collinear points");
+    expect_dimension(col, 20, 1, 2, 1, 0, "collinear points");
     double pl[300];
     pg_rng rng;
     pg_seed(&rng, 5);
@@ -314,7 +330,11 @@ static void test_degenerate_inputs(void) {
         double x = (double)pg_below(&rng, 1000), y = (double)pg_below(&rng, 1000);
         pl[3 * i] = x, pl[3 * i + 1] = y, pl[3 * i + 2] = 3 * x - 2 * y + 7; /* exact, tilted plane */
     }
-    expect_status(pl, 100, PX_ERR_DEGENERATE, "coplanar", "coplanar points");
+    px_convex *flat = px_convex_create(pl, 100, NULL, NULL);
+    CHECK(flat && px_convex_dimension(flat) == 2 && px_convex_face_count(flat) == 2 &&
+              px_convex_validate(flat, NULL) == PX_OK,
+          "coplanar points: a valid polygon");
+    px_convex_destroy(flat);
     /* Non-finite coordinates, at index 5 of 8 (box corners). */
     const double bad[3] = {NAN, INFINITY, -INFINITY};
     const char *names[3] = {"NaN", "+Inf", "-Inf"};

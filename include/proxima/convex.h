@@ -8,6 +8,25 @@
 /// share across threads. Hulls are computed by CGAL's convex_hull_3 with
 /// exact predicates.
 ///
+/// Lower-dimensional pieces. A point set whose affine dimension (decided
+/// exactly by CGAL on the input doubles) is below 3 gives a lower-dimensional
+/// convex piece, which every query accepts like a solid
+/// (`px_convex_dimension`):
+///
+/// | dimension | input | V, E, F | Euler |
+/// |---|---|---|---|
+/// | 3 | a solid | its hull | V - E + F = 2 |
+/// | 2 | coplanar points (a triangle, a convex polygon) | n, n, 2 | V - E + F = 2 |
+/// | 1 | collinear points (a segment) | 2, 1, 0 | V - E = 1 |
+/// | 0 | one distinct point (repeated or not) | 1, 0, 0 | V = 1 |
+///
+/// A polygon is two-sided: faces 0 and 1 are the same polygon with
+/// opposite normals (face 1's plane is face 0's turned over, exactly), each
+/// listing the vertices counter-clockwise seen from its own side, and every
+/// edge lies between them. A segment's edge runs from vertex 0 to vertex 1.
+/// Points exactly collinear or coplanar count as such however they were
+/// produced; points one ulp off a plane make a solid (a very thin one, see
+/// PX_ERR_DEGENERATE below).
 /// Accessors: every accessor that takes an index returns PX_OK, or
 /// PX_ERR_INVALID_ARGUMENT with its outputs zeroed when the polytope or an
 /// output is NULL or the index is out of range. Counts of a NULL polytope
@@ -47,8 +66,12 @@ typedef struct px_convex_options {
 ///   option out of range or a reserved field not zero;
 /// - PX_ERR_NON_FINITE: a NaN or infinite coordinate (index in the message);
 /// - PX_ERR_RANGE: coordinates outside the supported range (below);
-/// - PX_ERR_DEGENERATE: fewer than 4 distinct points, or all points
-///   collinear or coplanar (the message says which): the hull is not a solid;
+/// - PX_ERR_DEGENERATE: the hull exists but double precision cannot hold
+///   its planes (a solid thinner than rounding, such as a slab 2^-1060
+///   thick at unit size, or a polygon whose normal or edge directions come
+///   out wrong, such as a triangle collinear but for the last bits of its
+///   coordinates); the message says which. Flat, collinear and
+///   single-point input is accepted (above);
 /// - PX_ERR_OUT_OF_MEMORY.
 /// On success `err->code` is PX_OK. `options` may be NULL.
 PX_API px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,
@@ -57,10 +80,15 @@ PX_API px_convex *px_convex_create(const double *xyz, size_t count, const px_con
 /// Frees a polytope with the allocator it was created with; NULL is a no-op.
 PX_API void px_convex_destroy(px_convex *convex);
 
-/// Feature counts. Euler: V - E + F = 2.
+/// Feature counts. Euler: V - E + F = 2 for solids and polygons, V - E = 1
+/// for segments and points (table above).
 PX_API uint32_t px_convex_vertex_count(const px_convex *convex);
 PX_API uint32_t px_convex_edge_count(const px_convex *convex);
 PX_API uint32_t px_convex_face_count(const px_convex *convex);
+
+/// Affine dimension of the piece: 3 (solid), 2 (polygon), 1 (segment) or
+/// 0 (point); 0 for NULL.
+PX_API uint32_t px_convex_dimension(const px_convex *convex);
 
 /// Vertex `i` in the body frame.
 PX_API px_status px_convex_vertex(const px_convex *convex, uint32_t i, px_vec3 *out);
@@ -93,9 +121,12 @@ PX_API px_status px_convex_bounds(const px_convex *convex, const px_pose *pose, 
 /// Bytes owned by the polytope (all arrays, planes and lookup table).
 PX_API size_t px_convex_memory_bytes(const px_convex *convex);
 
-/// Checks every structural invariant: Euler's formula, consistent
-/// half-edge adjacency, outward unit normals, convexity (every vertex on or
-/// below every face plane within a relative 1e-9), planar faces. PX_OK or
+/// Checks every structural invariant: Euler's formula for the piece's
+/// dimension (table above) and the vertex degrees it implies, consistent
+/// half-edge adjacency, outward unit normals (a polygon: two faces, one the
+/// other turned over), convexity (every vertex on or below every face plane
+/// within a relative 1e-9; a polygon also turns left at every vertex and
+/// keeps every vertex inside every edge), planar faces. PX_OK or
 /// PX_ERR_INTERNAL with the first violation in `err`.
 PX_API px_status px_convex_validate(const px_convex *convex, px_error *err);
 

@@ -97,23 +97,32 @@ static px_vec3 unit(px_vec3 a) {
     return pxi_scale(a, 1.0 / pxi_len(a));
 }
 
-static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err) {
+static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_error *err) {
     int ok = 1;
     size_t nhalf = h->face_offsets[h->face_count];
-    if (h->vertex_count < 4 || h->face_count < 4 || nhalf % 2 != 0 || nhalf / 2 > UINT32_MAX / 2)
-        return pxi_error(err, PX_ERR_INTERNAL, "hull from CGAL is not a closed polytope (V=%zu, F=%zu)",
+    /* What pxcd.h promises for each dimension: a closed polytope, a
+     * two-sided polygon, a segment's two end points, one point. */
+    int shape_ok = dim == 3   ? h->vertex_count >= 4 && h->face_count >= 4
+                   : dim == 2 ? h->vertex_count >= 3 && h->face_count == 2 && nhalf == 2 * h->vertex_count
+                   : dim == 1 ? h->vertex_count == 2 && h->face_count == 0
+                              : dim == 0 && h->vertex_count == 1 && h->face_count == 0;
+    if (!shape_ok || nhalf % 2 != 0 || nhalf / 2 > UINT32_MAX / 2)
+        return pxi_error(err, PX_ERR_INTERNAL,
+                         "hull from CGAL is not a closed polytope of dimension %d (V=%zu, F=%zu)", dim,
                          h->vertex_count, h->face_count);
+    c->dim = (uint32_t)dim;
     c->nv = (uint32_t)h->vertex_count;
     c->nf = (uint32_t)h->face_count;
-    c->ne = (uint32_t)(nhalf / 2);
+    c->ne = dim >= 2 ? (uint32_t)(nhalf / 2) : (uint32_t)dim; /* a segment: 1 edge, a point: none */
+    size_t nh2 = 2 * (size_t)c->ne;                           /* == nhalf for dim >= 2 */
     c->v = take(c, c->nv, sizeof *c->v, &ok);
     c->f = take(c, c->nf, sizeof *c->f, &ok);
     c->e = take(c, c->ne, sizeof *c->e, &ok);
-    c->f_verts = take(c, nhalf, sizeof *c->f_verts, &ok);
-    c->f_edges = take(c, nhalf, sizeof *c->f_edges, &ok);
+    c->f_verts = take(c, nh2, sizeof *c->f_verts, &ok);
+    c->f_edges = take(c, nh2, sizeof *c->f_edges, &ok);
     c->v_first = take(c, (size_t)c->nv + 1, sizeof *c->v_first, &ok);
-    c->v_edges = take(c, nhalf, sizeof *c->v_edges, &ok);
-    c->v_adj = take(c, nhalf, sizeof *c->v_adj, &ok);
+    c->v_edges = take(c, nh2, sizeof *c->v_edges, &ok);
+    c->v_adj = take(c, nh2, sizeof *c->v_adj, &ok);
     half *hs = pxi_alloc_array(&c->alloc, nhalf, sizeof *hs);
     if (!ok || !hs) {
         pxi_free(&c->alloc, hs, nhalf * sizeof *hs);
@@ -143,11 +152,13 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     }
     c->origin = pxi_v(org[0], org[1], org[2]);
     for (uint32_t i = 0; i < c->nv; ++i) c->v[i] = pxi_sub(c->v[i], c->origin);
-    memcpy(c->f_verts, h->face_indices, nhalf * sizeof(uint32_t));
+    if (nhalf) memcpy(c->f_verts, h->face_indices, nhalf * sizeof(uint32_t));
+    if (dim == 1) c->f_verts[0] = 0, c->f_verts[1] = 1, c->f_edges[0] = c->f_edges[1] = 0; /* unused */
 
     /* Outward orientation is the contract of pxcd.h, but it costs O(F) to
      * make sure: the signed volume of the fans from an interior point must
-     * be positive; if it is negative every loop is reversed. */
+     * be positive; if it is negative every loop is reversed. (A polygon has
+     * both orientations, and no volume.) */
     px_vec3 mid = {0, 0, 0};
     double big = 0.0;
     for (uint32_t i = 0; i < c->nv; ++i) {
@@ -168,7 +179,7 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
             vol += pxi_dot(a, pxi_cross(pxi_sub(pxi_scale(c->v[ids[k]], inv), mid),
                                         pxi_sub(pxi_scale(c->v[ids[k + 1]], inv), mid)));
     }
-    if (vol < 0.0) {
+    if (vol < 0.0 && dim == 3) {
         for (uint32_t f = 0; f < c->nf; ++f) {
             uint32_t *ids = c->f_verts + h->face_offsets[f];
             uint32_t n = (uint32_t)(h->face_offsets[f + 1] - h->face_offsets[f]);
@@ -186,10 +197,16 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
         pxi_face *F = &c->f[f];
         F->first = first;
         F->count = n;
-        F->n = unit(polygon_normal(c->v, c->f_verts + first, n));
-        double d = 0.0;
-        for (uint32_t k = 0; k < n; ++k) d += pxi_dot(F->n, c->v[c->f_verts[first + k]]);
-        F->d = d / n;
+        if (dim == 2 && f == 1) {
+            /* The polygon's back: exactly the front's plane turned over. */
+            F->n = pxi_neg(c->f[0].n);
+            F->d = -c->f[0].d;
+        } else {
+            F->n = unit(polygon_normal(c->v, c->f_verts + first, n));
+            double d = 0.0;
+            for (uint32_t k = 0; k < n; ++k) d += pxi_dot(F->n, c->v[c->f_verts[first + k]]);
+            F->d = d / n;
+        }
         for (uint32_t k = 0; k < n; ++k) {
             uint32_t a = c->f_verts[first + k], b = c->f_verts[first + (k + 1) % n];
             half *x = &hs[first + k];
@@ -225,6 +242,15 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, px_error *err
     }
     pxi_free(&c->alloc, hs, nhalf * sizeof *hs);
     if (st != PX_OK) return st;
+    if (dim == 1) {
+        /* The segment's one edge: no face on either side, zero side planes. */
+        pxi_edge *E = &c->e[0];
+        E->tail = 0;
+        E->head = 1;
+        E->left = E->right = PXI_NO_FACE;
+        E->u = unit(pxi_sub(c->v[1], c->v[0]));
+        E->wl = E->wr = pxi_v(0, 0, 0);
+    }
 
     /* Vertex -> incident edges (CSR). */
     memset(c->v_first, 0, ((size_t)c->nv + 1) * sizeof *c->v_first);
@@ -336,28 +362,17 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
                       i / 3, "xyz"[i % 3]);
             return NULL;
         }
-    if (count < 4) {
-        pxi_error(err, PX_ERR_DEGENERATE,
-                  "px_convex_create: %zu points cannot span a solid (at least 4 are needed)", count);
-        return NULL;
-    }
     pxcd_hull *hull = NULL;
     int dim = 3;
     char msg[200] = {0};
     pxcd_status hs = pxcd_hull_compute(xyz, count, &hull, &dim, msg, sizeof msg);
-    if (hs == PXCD_DEGENERATE) {
-        static const char *what[] = {"all points coincide", "all points are collinear",
-                                     "all points are coplanar"};
-        pxi_error(err, PX_ERR_DEGENERATE, "px_convex_create: %s, so the hull is not a solid (dimension %d)",
-                  what[dim >= 0 && dim <= 2 ? dim : 2], dim);
-        return NULL;
-    }
     if (hs == PXCD_OUT_OF_MEMORY) {
         pxi_error(err, PX_ERR_OUT_OF_MEMORY,
                   "px_convex_create: out of memory computing the hull of %zu points", count);
         return NULL;
     }
-    if (hs != PXCD_OK || !hull) {
+    if (hs != PXCD_OK || !hull || dim < 0 || dim > 3) {
+        pxcd_hull_free(hull);
         pxi_error(err, PX_ERR_INTERNAL, "px_convex_create: hull computation failed: %s", msg);
         return NULL;
     }
@@ -370,9 +385,11 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
     memset(c, 0, sizeof *c);
     c->alloc = alloc;
     c->bytes = sizeof *c;
-    px_status st = build_from_hull(c, hull, err);
+    px_status st = build_from_hull(c, hull, dim, err);
     pxcd_hull_free(hull);
-    if (st == PX_OK && !(c->scale >= PXI_MIN_SIZE && c->scale <= PXI_MAX_SIZE))
+    /* A point has no size (it is stored as its own origin): any finite
+     * point is in range. */
+    if (st == PX_OK && c->dim > 0 && !(c->scale >= PXI_MIN_SIZE && c->scale <= PXI_MAX_SIZE))
         st = pxi_error(err, PX_ERR_RANGE,
                        "px_convex_create: the hull's size %.3g is outside the supported range [%.3g, %.3g] "
                        "(2^-1000 .. 2^1000; where the points sit in the double range does not matter)",
@@ -406,6 +423,7 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
 uint32_t px_convex_vertex_count(const px_convex *c) { return c ? c->nv : 0; }
 uint32_t px_convex_edge_count(const px_convex *c) { return c ? c->ne : 0; }
 uint32_t px_convex_face_count(const px_convex *c) { return c ? c->nf : 0; }
+uint32_t px_convex_dimension(const px_convex *c) { return c ? c->dim : 0; }
 size_t px_convex_memory_bytes(const px_convex *c) { return c ? c->bytes : 0; }
 
 px_status px_convex_vertex(const px_convex *c, uint32_t i, px_vec3 *out) {
@@ -479,8 +497,17 @@ px_status px_convex_bounds(const px_convex *c, const px_pose *pose, px_bounds *o
  * adjacency, unit outward normals, planar faces, convex dihedrals, vertex
  * adjacency. px_convex_create runs them on every polytope it builds. */
 static px_status validate_local(const px_convex *c, px_error *err) {
-    if ((int64_t)c->nv - (int64_t)c->ne + (int64_t)c->nf != 2)
-        return pxi_error(err, PX_ERR_INTERNAL, "Euler's formula fails: V=%u E=%u F=%u", c->nv, c->ne, c->nf);
+    /* Euler per dimension: V - E + F = 2 for a solid and for a two-sided
+     * polygon, a segment is V = 2, E = 1, a point V = 1. */
+    static const uint32_t degree_lo[4] = {0, 1, 2, 3}, degree_hi[4] = {0, 1, 2, UINT32_MAX};
+    uint32_t dim = c->dim;
+    int counts_ok = dim == 3   ? c->nf >= 4
+                    : dim == 2 ? c->nf == 2 && c->ne == c->nv && c->nv >= 3
+                    : dim == 1 ? c->nv == 2 && c->ne == 1 && c->nf == 0
+                               : dim == 0 && c->nv == 1 && c->ne == 0 && c->nf == 0;
+    if (!counts_ok || (int64_t)c->nv - (int64_t)c->ne + (int64_t)c->nf != (dim >= 2 ? 2 : 1))
+        return pxi_error(err, PX_ERR_INTERNAL, "Euler's formula fails for dimension %u: V=%u E=%u F=%u", dim,
+                         c->nv, c->ne, c->nf);
     double tol = 1e-9 * (c->scale > 0 ? c->scale : 1.0);
     for (uint32_t f = 0; f < c->nf; ++f) {
         const pxi_face *F = &c->f[f];
@@ -497,15 +524,40 @@ static px_status validate_local(const px_convex *c, px_error *err) {
                                  "face %u boundary %u->%u disagrees with edge adjacency", f, a, b);
             if (fabs(pxi_dot(F->n, c->v[a]) - F->d) > tol)
                 return pxi_error(err, PX_ERR_INTERNAL, "face %u is not planar at vertex %u", f, a);
+            if (dim == 2) {
+                /* A polygon is convex where its boundary turns left about
+                 * its normal at every vertex (the dihedral test below is
+                 * void: its two faces are one plane). */
+                const pxi_edge *E2 = &c->e[c->f_edges[F->first + (k + 1) % F->count]];
+                px_vec3 u1 = left ? E->u : pxi_neg(E->u), u2 = E2->tail == b ? E2->u : pxi_neg(E2->u);
+                double turn = pxi_dot(pxi_cross(u1, u2), F->n);
+                if (turn < -1e-12)
+                    return pxi_error(err, PX_ERR_INTERNAL, "polygon face %u turns right at vertex %u (%.3g)",
+                                     f, b, turn);
+            }
         }
-        /* Outward: the centre lies strictly below every face plane. */
-        if (!(pxi_dot(F->n, c->center) < F->d))
+        /* Outward: the centre lies strictly below every face plane (a
+         * polygon: on its plane, the back face the front turned over). */
+        if (dim == 3 && !(pxi_dot(F->n, c->center) < F->d))
             return pxi_error(err, PX_ERR_INTERNAL, "face %u normal points inward", f);
     }
+    if (dim == 2 &&
+        (c->f[1].n.x != -c->f[0].n.x || c->f[1].n.y != -c->f[0].n.y || c->f[1].n.z != -c->f[0].n.z ||
+         c->f[1].d != -c->f[0].d || !(fabs(pxi_dot(c->f[0].n, c->center) - c->f[0].d) <= tol)))
+        return pxi_error(err, PX_ERR_INTERNAL, "the polygon's two faces are not one plane turned over");
     for (uint32_t i = 0; i < c->ne; ++i) {
         const pxi_edge *E = &c->e[i];
-        if (E->tail >= c->nv || E->head >= c->nv || E->left >= c->nf || E->right >= c->nf ||
-            E->left == E->right)
+        if (E->tail >= c->nv || E->head >= c->nv || E->tail == E->head)
+            return pxi_error(err, PX_ERR_INTERNAL, "edge %u has invalid adjacency", i);
+        if (!(fabs(pxi_len(E->u) - 1.0) <= 1e-12))
+            return pxi_error(err, PX_ERR_INTERNAL, "edge %u direction not unit", i);
+        if (dim == 1) {
+            if (E->left != PXI_NO_FACE || E->right != PXI_NO_FACE || pxi_max_abs(E->wl) != 0.0 ||
+                pxi_max_abs(E->wr) != 0.0)
+                return pxi_error(err, PX_ERR_INTERNAL, "the segment's edge has a face");
+            continue;
+        }
+        if (E->left >= c->nf || E->right >= c->nf || E->left == E->right)
             return pxi_error(err, PX_ERR_INTERNAL, "edge %u has invalid adjacency", i);
         /* Convex dihedral: (n_L x n_R) . u >= 0 (REFERENCES §1.8). */
         double turn = pxi_dot(pxi_cross(c->f[E->left].n, c->f[E->right].n), E->u);
@@ -513,7 +565,8 @@ static px_status validate_local(const px_convex *c, px_error *err) {
     }
     for (uint32_t v = 0; v < c->nv; ++v) {
         uint32_t deg = c->v_first[v + 1] - c->v_first[v];
-        if (deg < 3) return pxi_error(err, PX_ERR_INTERNAL, "vertex %u has degree %u", v, deg);
+        if (deg < degree_lo[dim] || deg > degree_hi[dim])
+            return pxi_error(err, PX_ERR_INTERNAL, "vertex %u has degree %u", v, deg);
         for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
             const pxi_edge *E = &c->e[c->v_edges[k]];
             if ((E->tail != v || E->head != c->v_adj[k]) && (E->head != v || E->tail != c->v_adj[k]))
@@ -535,6 +588,15 @@ px_status px_convex_validate(const px_convex *c, px_error *err) {
             for (uint32_t v = 0; v < c->nv; ++v)
                 if (pxi_dot(c->f[f].n, c->v[v]) - c->f[f].d > tol)
                     return pxi_error(err, PX_ERR_INTERNAL, "vertex %u lies above face %u: not convex", v, f);
+    }
+    if (c->dim == 2 && (uint64_t)c->nv * c->ne <= 4000000u) {
+        /* In the polygon's plane: every vertex on the inner side of every
+         * edge (wl points into the polygon). */
+        for (uint32_t i = 0; i < c->ne; ++i)
+            for (uint32_t v = 0; v < c->nv; ++v)
+                if (pxi_dot(pxi_sub(c->v[v], c->v[c->e[i].tail]), c->e[i].wl) < -tol)
+                    return pxi_error(err, PX_ERR_INTERNAL, "vertex %u lies outside edge %u: not convex", v,
+                                     i);
     }
     return PX_OK;
 }

@@ -11,6 +11,16 @@
  * - VR(vertex v): (p - v) . u_out <= 0 for every incident edge leaving v;
  * - VR(edge e):   (p - t) . u >= 0, (p - h) . u <= 0, (p - t) . wl <= 0, (p - t) . wr <= 0;
  * - VR(face f):   (p - t_e) . w_{f,e} >= 0 for each boundary edge, n_f . p >= d_f.
+ * Lower-dimensional pieces (dim < 3) use the same structure:
+ * - a polygon (dim 2) is two-sided: faces 0 and 1 share every edge, with
+ *   n_1 = -n_0 and d_1 = -d_0 exactly; each edge has one face on each side,
+ *   so wl = n_L x u = u x n_R = wr and its region is the half-space outside
+ *   the edge (both sides of the plane) between its two VE planes; vertices
+ *   have degree 2. V - E + F = 2 still holds.
+ * - a segment (dim 1) is 2 vertices and 1 edge (tail 0, head 1), no face:
+ *   left = right = PXI_NO_FACE and wl = wr = 0, so the edge's region is the
+ *   slab between its VE planes (the zero planes are never violated).
+ * - a point (dim 0) is 1 vertex of degree 0: its region is all of space.
  */
 #ifndef PXI_CONVEX_H
 #define PXI_CONVEX_H
@@ -19,6 +29,9 @@
 
 #include "proxima/convex.h"
 #include "proxima/query.h"
+
+/* The left and right face of a segment's edge (it has none). */
+#define PXI_NO_FACE UINT32_MAX
 
 typedef struct pxi_edge {
     uint32_t tail, head;  /* vertex ids */
@@ -51,6 +64,7 @@ typedef struct pxi_lut {
 
 struct px_convex {
     uint32_t nv, ne, nf;
+    uint32_t dim;      /* affine dimension: 3 solid, 2 polygon, 1 segment, 0 point */
     px_vec3 *v;        /* nv vertex positions, body frame minus origin */
     uint32_t *v_first; /* nv + 1: incident edges of v are v_edges[v_first[v] .. v_first[v+1]) */
     uint32_t *v_edges; /* 2 * ne incident edge ids */

@@ -1,0 +1,604 @@
+/* Lower-dimensional convex pieces (issue 9 §1): polygons, triangles,
+ * segments and points, against each other and against solids, through
+ * every query and every method.
+ *
+ * Oracles, all independent of src/ (they read a px_convex through the
+ * public accessors only):
+ *   - brute force over feature pairs: each piece is cut into simplices (a
+ *     polygon into the triangles of a fan, a solid into the fans of its
+ *     faces, a segment, a point) and the distance is the least distance of
+ *     two simplices, 0 when a vertex of a piece lies inside a solid;
+ *   - CGAL's exact Polytope_distance_d (check.h: tc_exact), which takes
+ *     point sets of any dimension, on a subset of every shape pair;
+ *   - a separating-axis oracle extended to flat pieces: the candidate axes
+ *     are the face normals of both (a polygon's normal both ways), every
+ *     edge-edge cross product, and for a segment or a point axes
+ *     perpendicular to it (so that a flat A - B finds its own normal). The
+ *     least support value h_{A-B}(n) over them is the penetration depth;
+ *     over the same axes the line {tau d} enters B - A at
+ *     max_{n.d<0} h_{B-A}(n) / (n.d) and leaves it at the min over n.d > 0
+ *     (the translation oracle).
+ * Per shape pair (ordered, 32 of them: 4 lower-dimensional kinds against
+ * 6 kinds) >= 1,000 random poses (PROXIMA_TEST_SCALE; fewer under
+ * sanitizers), a quarter of them aligned (pieces in one plane, a polygon
+ * on a box's face plane) where the degenerate contacts happen. On every
+ * pose: px_distance with each method, unsigned and signed, px_intersect
+ * and px_translate (forward and both ways) along a random and an aimed
+ * direction.
+ *
+ * Then the construction itself: dimension, counts, Euler, validation,
+ * bounds, exact duplicates, collinear points that are not exactly so, a
+ * slab too thin for a solid. */
+#include <float.h>
+
+#include "check.h"
+#include "math/vec3.h"
+#include "px_gen.h"
+#include "test_util.h"
+
+static const char *method_names[3] = {"lin-canny", "gjk", "hybrid"};
+
+/* ---- A piece, read through the public accessors. ---- */
+
+typedef struct piece {
+    const char *name;
+    px_convex *c;
+    uint32_t dim, nv, ne, nf;
+    px_vec3 *v;   /* body frame */
+    uint32_t *ev; /* 2 * ne */
+    /* simplices: triangles (3 ids) of the faces' fans, or for dim < 2 the
+     * piece itself */
+    uint32_t ntri;
+    uint32_t *tri;
+    px_vec3 *fn; /* body-frame face normals (accessor) */
+    double *fd;
+} piece;
+
+static int piece_init(piece *p, const char *name, const double *xyz, size_t n) {
+    memset(p, 0, sizeof *p);
+    p->name = name;
+    px_error err;
+    p->c = px_convex_create(xyz, n, NULL, &err);
+    CHECK(p->c != NULL, "%s: px_convex_create failed: %s", name, err.message);
+    if (!p->c) return -1;
+    p->dim = px_convex_dimension(p->c);
+    p->nv = px_convex_vertex_count(p->c);
+    p->ne = px_convex_edge_count(p->c);
+    p->nf = px_convex_face_count(p->c);
+    p->v = calloc(p->nv, sizeof *p->v);
+    p->ev = calloc(2 * (size_t)p->ne + 1, sizeof *p->ev);
+    p->fn = calloc(p->nf + 1, sizeof *p->fn);
+    p->fd = calloc(p->nf + 1, sizeof *p->fd);
+    for (uint32_t i = 0; i < p->nv; ++i) px_convex_vertex(p->c, i, &p->v[i]);
+    for (uint32_t e = 0; e < p->ne; ++e) px_convex_edge(p->c, e, &p->ev[2 * e]);
+    size_t cap = 0;
+    for (uint32_t f = 0; f < p->nf; ++f) {
+        uint32_t k;
+        px_convex_face(p->c, f, &p->fn[f], &p->fd[f], &k);
+        cap += k;
+    }
+    p->tri = calloc(3 * cap + 3, sizeof *p->tri);
+    uint32_t nfan = p->dim == 2 ? 1 : p->nf; /* a polygon's two faces are one set */
+    for (uint32_t f = 0; f < nfan; ++f) {
+        uint32_t k, v0, v1, v2;
+        px_convex_face(p->c, f, NULL, NULL, &k);
+        px_convex_face_vertex(p->c, f, 0, &v0);
+        for (uint32_t j = 1; j + 1 < k; ++j) {
+            px_convex_face_vertex(p->c, f, j, &v1);
+            px_convex_face_vertex(p->c, f, j + 1, &v2);
+            p->tri[3 * p->ntri] = v0, p->tri[3 * p->ntri + 1] = v1, p->tri[3 * p->ntri + 2] = v2;
+            p->ntri++;
+        }
+    }
+    return 0;
+}
+
+static void piece_free(piece *p) {
+    px_convex_destroy(p->c);
+    free(p->v);
+    free(p->ev);
+    free(p->tri);
+    free(p->fn);
+    free(p->fd);
+}
+
+/* ---- Brute-force distance (world frame). ---- */
+
+static px_vec3 xf(const px_pose *T, px_vec3 p) { return pxi_xform(T, p); }
+
+/* Distance from p to triangle abc: the least of its three edges, and of
+ * the plane when p's projection falls inside (sign tests about the normal).
+ * Edges first: on a sliver, barycentric coordinates are ill conditioned
+ * but the distances to its edges are not. */
+static double pt_tri(px_vec3 p, px_vec3 a, px_vec3 b, px_vec3 c) {
+    double d = fmin(or_pt_seg(p, a, b, NULL), fmin(or_pt_seg(p, b, c, NULL), or_pt_seg(p, c, a, NULL)));
+    px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
+    double l = pxi_len(n);
+    if (!(l > 0)) return d;
+    n = pxi_scale(n, 1.0 / l);
+    double s1 = pxi_dot(pxi_cross(pxi_sub(b, a), pxi_sub(p, a)), n);
+    double s2 = pxi_dot(pxi_cross(pxi_sub(c, b), pxi_sub(p, b)), n);
+    double s3 = pxi_dot(pxi_cross(pxi_sub(a, c), pxi_sub(p, c)), n);
+    if (s1 >= 0 && s2 >= 0 && s3 >= 0) d = fmin(d, fabs(pxi_dot(pxi_sub(p, a), n)));
+    return d;
+}
+
+/* 1 when segment pq crosses triangle abc transversally (strict signs). */
+static int seg_crosses_tri(px_vec3 p, px_vec3 q, px_vec3 a, px_vec3 b, px_vec3 c) {
+    px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
+    double hp = pxi_dot(n, pxi_sub(p, a)), hq = pxi_dot(n, pxi_sub(q, a));
+    if (!((hp > 0 && hq < 0) || (hp < 0 && hq > 0))) return 0;
+    px_vec3 x = pxi_add(p, pxi_scale(pxi_sub(q, p), hp / (hp - hq)));
+    double s1 = pxi_dot(pxi_cross(pxi_sub(b, a), pxi_sub(x, a)), n);
+    double s2 = pxi_dot(pxi_cross(pxi_sub(c, b), pxi_sub(x, b)), n);
+    double s3 = pxi_dot(pxi_cross(pxi_sub(a, c), pxi_sub(x, c)), n);
+    return (s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0);
+}
+
+/* A simplex: 1 to 3 world points. */
+typedef struct simplex {
+    int n;
+    px_vec3 p[3];
+} simplex;
+
+static double pt_simplex(px_vec3 x, const simplex *s) {
+    if (s->n == 1) return pxi_len(pxi_sub(x, s->p[0]));
+    if (s->n == 2) return or_pt_seg(x, s->p[0], s->p[1], NULL);
+    return pt_tri(x, s->p[0], s->p[1], s->p[2]);
+}
+
+static double simplex_distance(const simplex *s, const simplex *t) {
+    double d = INFINITY;
+    for (int i = 0; i < s->n; ++i) d = fmin(d, pt_simplex(s->p[i], t));
+    for (int i = 0; i < t->n; ++i) d = fmin(d, pt_simplex(t->p[i], s));
+    if (s->n >= 2 && t->n >= 2)
+        for (int i = 0; i < (s->n == 3 ? 3 : 1); ++i)
+            for (int j = 0; j < (t->n == 3 ? 3 : 1); ++j)
+                d = fmin(d, or_seg_seg(s->p[i], s->p[(i + 1) % s->n], t->p[j], t->p[(j + 1) % t->n], NULL, NULL));
+    if (s->n == 3 && t->n >= 2)
+        for (int j = 0; j < (t->n == 3 ? 3 : 1); ++j)
+            if (seg_crosses_tri(t->p[j], t->p[(j + 1) % t->n], s->p[0], s->p[1], s->p[2])) d = 0.0;
+    if (t->n == 3 && s->n >= 2)
+        for (int i = 0; i < (s->n == 3 ? 3 : 1); ++i)
+            if (seg_crosses_tri(s->p[i], s->p[(i + 1) % s->n], t->p[0], t->p[1], t->p[2])) d = 0.0;
+    return d;
+}
+
+static int piece_simplices(const piece *p, const px_vec3 *w, simplex *out) {
+    if (p->dim < 2) {
+        out[0].n = (int)p->nv;
+        for (uint32_t i = 0; i < p->nv; ++i) out[0].p[i] = w[i];
+        return 1;
+    }
+    for (uint32_t t = 0; t < p->ntri; ++t) {
+        out[t].n = 3;
+        for (int k = 0; k < 3; ++k) out[t].p[k] = w[p->tri[3 * t + k]];
+    }
+    return (int)p->ntri;
+}
+
+/* max over faces of n . x - d (world): <= 0 inside a solid. */
+static double solid_depth(const piece *p, const px_pose *pose, px_vec3 x) {
+    px_vec3 q = pxi_sub(x, pose->t);
+    q = pxi_rot_t(pose->r, q); /* body frame */
+    double worst = -INFINITY;
+    for (uint32_t f = 0; f < p->nf; ++f) worst = fmax(worst, pxi_dot(p->fn[f], q) - p->fd[f]);
+    return worst;
+}
+
+/* World vertices of a piece at a pose (w: nv). */
+static void world_vertices(const piece *p, const px_pose *pose, px_vec3 *w) {
+    for (uint32_t i = 0; i < p->nv; ++i) w[i] = xf(pose, p->v[i]);
+}
+
+enum { MAXV = 64, MAXT = 256 };
+
+static double brute_distance(const piece *a, const px_pose *pa, const piece *b, const px_pose *pb) {
+    px_vec3 wa[MAXV], wb[MAXV];
+    world_vertices(a, pa, wa);
+    world_vertices(b, pb, wb);
+    if (a->dim == 3 && b->dim < 3)
+        for (uint32_t i = 0; i < b->nv; ++i)
+            if (solid_depth(a, pa, wb[i]) <= 0.0) return 0.0;
+    if (b->dim == 3 && a->dim < 3)
+        for (uint32_t i = 0; i < a->nv; ++i)
+            if (solid_depth(b, pb, wa[i]) <= 0.0) return 0.0;
+    static simplex sa[MAXT], sb[MAXT];
+    int na = piece_simplices(a, wa, sa), nb = piece_simplices(b, wb, sb);
+    double d = INFINITY;
+    for (int i = 0; i < na; ++i)
+        for (int j = 0; j < nb; ++j) d = fmin(d, simplex_distance(&sa[i], &sb[j]));
+    return d;
+}
+
+/* Distance from the world point x to the piece (0 inside a solid). */
+static double brute_point_distance(const piece *p, const px_pose *pose, px_vec3 x) {
+    if (p->dim == 3 && solid_depth(p, pose, x) <= 0.0) return 0.0;
+    px_vec3 w[MAXV];
+    world_vertices(p, pose, w);
+    static simplex s[MAXT];
+    int n = piece_simplices(p, w, s);
+    double d = INFINITY;
+    for (int i = 0; i < n; ++i) d = fmin(d, pt_simplex(x, &s[i]));
+    return d;
+}
+
+/* ---- Separating axes, extended to flat pieces. ---- */
+
+typedef struct axes {
+    int n;
+    px_vec3 a[4096];
+} axes;
+
+static void add_axis(axes *x, px_vec3 n, double min_len) {
+    double l = pxi_len(n);
+    if (!(l > min_len) || x->n + 2 > (int)(sizeof x->a / sizeof x->a[0])) return;
+    x->a[x->n++] = pxi_scale(n, 1.0 / l);
+    x->a[x->n++] = pxi_scale(n, -1.0 / l);
+}
+
+static void collect_axes(const piece *a, const px_pose *pa, const piece *b, const px_pose *pb, axes *x) {
+    x->n = 0;
+    const piece *ps[2] = {a, b};
+    const px_pose *qs[2] = {pa, pb};
+    static const px_vec3 ex[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int s = 0; s < 2; ++s) {
+        const piece *p = ps[s];
+        for (uint32_t f = 0; f < p->nf; ++f) add_axis(x, pxi_rot(qs[s]->r, p->fn[f]), 0.5);
+        if (p->dim == 1) { /* perpendicular to the segment */
+            px_vec3 u = pxi_rot(qs[s]->r, pxi_sub(p->v[1], p->v[0]));
+            for (int k = 0; k < 3; ++k) add_axis(x, pxi_cross(u, ex[k]), 1e-3 * pxi_len(u));
+        }
+        if (p->dim == 0)
+            for (int k = 0; k < 3; ++k) add_axis(x, ex[k], 0.5);
+    }
+    for (uint32_t i = 0; i < a->ne; ++i) {
+        px_vec3 ua = pxi_rot(pa->r, pxi_sub(a->v[a->ev[2 * i + 1]], a->v[a->ev[2 * i]]));
+        for (uint32_t j = 0; j < b->ne; ++j) {
+            px_vec3 ub = pxi_rot(pb->r, pxi_sub(b->v[b->ev[2 * j + 1]], b->v[b->ev[2 * j]]));
+            add_axis(x, pxi_cross(ua, ub), 1e-14 * pxi_len(ua) * pxi_len(ub));
+        }
+    }
+}
+
+/* h_{A-B}(n) = max_a a.n - min_b b.n, measured from `o` (a point near the pair). */
+static double support_diff(const piece *a, const px_vec3 *wa, const piece *b, const px_vec3 *wb, px_vec3 n,
+                           px_vec3 o) {
+    double ha = -INFINITY, lb = INFINITY;
+    for (uint32_t i = 0; i < a->nv; ++i) ha = fmax(ha, pxi_dot(pxi_sub(wa[i], o), n));
+    for (uint32_t i = 0; i < b->nv; ++i) lb = fmin(lb, pxi_dot(pxi_sub(wb[i], o), n));
+    return ha - lb;
+}
+
+/* Least h_{A-B} over the axes: the depth when positive. */
+static double sat_depth(const piece *a, const px_pose *pa, const piece *b, const px_pose *pb, px_vec3 *best_n) {
+    static axes x;
+    collect_axes(a, pa, b, pb, &x);
+    px_vec3 wa[MAXV], wb[MAXV];
+    world_vertices(a, pa, wa);
+    world_vertices(b, pb, wb);
+    double best = INFINITY;
+    for (int k = 0; k < x.n; ++k) {
+        double h = support_diff(a, wa, b, wb, x.a[k], pb->t);
+        if (h < best) best = h, *best_n = x.a[k];
+    }
+    return best;
+}
+
+/* The interval of tau over which A + tau d meets B (B - A over the axes):
+ * [lo, hi], empty when lo > hi. `slack` receives the least |n.d| used
+ * relative to |d| (grazing lines are skipped by the caller). */
+static void sat_translation(const piece *a, const px_pose *pa, const piece *b, const px_pose *pb, px_vec3 d,
+                            double *lo, double *hi, double *parallel_gap) {
+    static axes x;
+    collect_axes(a, pa, b, pb, &x);
+    px_vec3 wa[MAXV], wb[MAXV];
+    world_vertices(a, pa, wa);
+    world_vertices(b, pb, wb);
+    *lo = -INFINITY;
+    *hi = INFINITY;
+    *parallel_gap = -INFINITY;
+    double dl = pxi_len(d);
+    for (int k = 0; k < x.n; ++k) {
+        px_vec3 n = x.a[k];
+        double h = support_diff(b, wb, a, wa, n, pb->t); /* h_{B-A}(n) */
+        double nd = pxi_dot(n, d);
+        if (fabs(nd) <= 1e-12 * dl) {
+            *parallel_gap = fmax(*parallel_gap, -h);
+            if (h < 0) *lo = INFINITY; /* the line misses */
+        } else if (nd < 0) {
+            *lo = fmax(*lo, h / nd);
+        } else {
+            *hi = fmin(*hi, h / nd);
+        }
+    }
+}
+
+/* ---- Shapes. All lower-dimensional ones lie in z = 0 of their body
+ * frame (so that poses turning about z and moving in z = 0 keep two of
+ * them in one plane), the segment along a line of that plane. ---- */
+
+enum { K_TRI, K_POLY, K_SEG, K_PT, K_BOX, K_HULL, K_COUNT };
+static const char *kind_names[K_COUNT] = {"triangle", "polygon", "segment", "point", "box", "hull"};
+
+static int make_kind(piece *p, int kind, pg_rng *rng) {
+    double xyz[3 * 64];
+    size_t n = 0;
+    switch (kind) {
+    case K_TRI:
+        for (int i = 0; i < 3; ++i) xyz[3 * i] = pg_range(rng, -1, 1), xyz[3 * i + 1] = pg_range(rng, -1, 1);
+        for (int i = 0; i < 3; ++i) xyz[3 * i + 2] = 0;
+        n = 3;
+        break;
+    case K_POLY: /* points of a disc, some inside: the polygon of the extreme ones */
+        n = 20;
+        for (size_t i = 0; i < n; ++i) {
+            double t = pg_range(rng, 0, 2 * M_PI), r = i < 12 ? 1.0 : pg_range(rng, 0, 1);
+            xyz[3 * i] = r * cos(t), xyz[3 * i + 1] = 0.7 * r * sin(t), xyz[3 * i + 2] = 0;
+        }
+        break;
+    case K_SEG: { /* collinear exactly: small integers along (3, 1, 0) */
+        n = 6;
+        for (size_t i = 0; i < n; ++i) {
+            double k = (double)pg_below(rng, 9) - 4;
+            xyz[3 * i] = 0.25 * (3 * k + 1), xyz[3 * i + 1] = 0.25 * (k - 2), xyz[3 * i + 2] = 0;
+        }
+        xyz[0] = 0.25 * (3 * -4 + 1), xyz[1] = 0.25 * (-4 - 2); /* both ends present */
+        xyz[3] = 0.25 * (3 * 4 + 1), xyz[4] = 0.25 * (4 - 2);
+        break;
+    }
+    case K_PT:
+        n = 3; /* one point, repeated */
+        for (size_t i = 0; i < n; ++i) xyz[3 * i] = 0.125, xyz[3 * i + 1] = -0.25, xyz[3 * i + 2] = 0;
+        break;
+    case K_BOX:
+        pg_box(0.6, 0.4, 0.5, xyz);
+        n = 8;
+        break;
+    default:
+        n = 30;
+        pg_points_ball(rng, n, 0.8, xyz);
+        break;
+    }
+    return piece_init(p, kind_names[kind], xyz, n);
+}
+
+/* ---- The pose loop. ---- */
+
+typedef struct stats {
+    long poses, queries, exact_checked, pen_checked, tr_checked, intersect_checked;
+    double worst_brute[3], worst_exact[3], worst_depth[3], worst_tau;
+    long fallbacks[3];
+} stats;
+static stats g;
+
+static double rel(double err, double size) { return err / size; }
+
+/* Pose of B: random, or aligned with A (same plane; for a solid, a face
+ * plane z = 0.5 of the box against the pieces' plane z = 0). */
+static void make_poses(pg_rng *rng, const piece *a, const piece *b, int aligned, px_pose *pa, px_pose *pb) {
+    double span = 1.2;
+    if (!aligned) {
+        *pa = pg_pose_random(rng, 0.5);
+        *pb = pg_pose_random(rng, span);
+        return;
+    }
+    double ra[9], rb[9];
+    pg_rot_axis_angle(pxi_v(0, 0, 1), pg_range(rng, 0, 2 * M_PI), ra);
+    pg_rot_axis_angle(pxi_v(0, 0, 1), pg_range(rng, 0, 2 * M_PI), rb);
+    px_vec3 ta = pxi_v(pg_range(rng, -0.3, 0.3), pg_range(rng, -0.3, 0.3), 0);
+    px_vec3 tb = pxi_v(pg_range(rng, -span, span), pg_range(rng, -span, span), 0);
+    /* a box B rests on A's plane with its face z = -0.5 (or A's on B's) */
+    if (b->dim == 3) tb.z = 0.5;
+    if (a->dim == 3) ta.z = -0.5;
+    memcpy(pa->r, ra, sizeof ra);
+    memcpy(pb->r, rb, sizeof rb);
+    pa->t = ta;
+    pb->t = tb;
+    (void)a;
+}
+
+static void check_pose(const piece *a, const piece *b, const px_pose *pa, const px_pose *pb, pg_rng *rng,
+                       int exact, px_pair_cache caches[3]) {
+    double size = tc_scale(a->c, pa, b->c, pb);
+    double tol = 1e-12 * size; /* classification band around touching */
+    double bd = brute_distance(a, pa, b, pb);
+    double ed = -1.0;
+    int ez = 0;
+    if (exact) {
+        CHECK(tc_exact(a->c, pa, b->c, pb, &ed, &ez) == 0, "exact oracle failed");
+        g.exact_checked++;
+    }
+    px_vec3 sat_n = {0, 0, 0};
+    double depth = bd <= tol ? sat_depth(a, pa, b, pb, &sat_n) : 0.0;
+    g.poses++;
+    for (int m = 0; m < 3; ++m) {
+        px_query_options opt = {0};
+        opt.method = (uint32_t)m;
+        for (int sgn = 0; sgn < 2; ++sgn) {
+            opt.flags = sgn ? PX_QUERY_SIGNED : 0;
+            px_distance_result r;
+            px_pair_cache *cache = (g.poses & 1) ? &caches[m] : NULL; /* warm from a stale pair or cold */
+            px_status st = px_distance(a->c, pa, b->c, pb, &opt, cache, &r);
+            g.queries++;
+            g.fallbacks[m] += r.diag.fallbacks;
+            CHECK(st == PX_OK, "%s/%s %s: status %s", a->name, b->name, method_names[m], px_status_string(st));
+            if (st != PX_OK) continue;
+            CHECK(isfinite(r.distance) && isfinite(r.signed_distance) && pxi_is_finite3(r.point_a) &&
+                      pxi_is_finite3(r.point_b) && pxi_is_finite3(r.normal),
+                  "%s/%s %s: non-finite result", a->name, b->name, method_names[m]);
+            double e = fabs(r.distance - bd);
+            if (rel(e, size) > g.worst_brute[m]) g.worst_brute[m] = rel(e, size);
+            CHECK(e <= tol, "%s/%s %s%s: distance %.17g, brute force %.17g (size %.3g)", a->name, b->name,
+                  method_names[m], sgn ? " signed" : "", r.distance, bd, size);
+            if (exact) {
+                double ee = fabs(r.distance - ed);
+                if (rel(ee, size) > g.worst_exact[m]) g.worst_exact[m] = rel(ee, size);
+                CHECK(ee <= 64 * DBL_EPSILON * size || (ez && r.intersecting),
+                      "%s/%s %s: distance %.17g, exact %.17g", a->name, b->name, method_names[m], r.distance, ed);
+            }
+            if (bd > 2 * tol || bd == 0.0)
+                CHECK(r.intersecting == (bd <= tol), "%s/%s %s: intersecting %d, brute distance %.3g", a->name,
+                      b->name, method_names[m], r.intersecting, bd);
+            if (!r.intersecting) {
+                double w = pxi_len(pxi_sub(r.point_b, r.point_a));
+                CHECK(fabs(w - r.distance) <= tol, "%s/%s %s: witnesses %.17g apart, distance %.17g", a->name,
+                      b->name, method_names[m], w, r.distance);
+                /* the witnesses lie on their pieces */
+                double ona = fabs(brute_point_distance(a, pa, r.point_a)),
+                       onb = fabs(brute_point_distance(b, pb, r.point_b));
+                CHECK(ona <= tol && onb <= tol, "%s/%s %s: witnesses off their pieces by %.3g, %.3g", a->name,
+                      b->name, method_names[m], ona, onb);
+                if (getenv("DEGEN_DEBUG") && !(ona <= tol && onb <= tol)) {
+                    for (uint32_t i = 0; i < a->nv; ++i) {
+                        px_vec3 wv = xf(pa, a->v[i]);
+                        fprintf(stderr, "  A v%u %.17g %.17g %.17g\n", i, wv.x, wv.y, wv.z);
+                    }
+                    fprintf(stderr, "  pa %.17g %.17g %.17g  d %.17g fa %u:%u fb %u:%u\n", r.point_a.x, r.point_a.y,
+                            r.point_a.z, r.distance, r.feature_a.type, r.feature_a.index, r.feature_b.type,
+                            r.feature_b.index);
+                }
+            }
+            if (sgn && r.intersecting && bd <= tol) {
+                g.pen_checked++;
+                double dd = fabs(-r.signed_distance - depth);
+                if (rel(dd, size) > g.worst_depth[m]) g.worst_depth[m] = rel(dd, size);
+                CHECK(dd <= 1e-9 * size, "%s/%s %s: depth %.17g, separating axes %.17g", a->name, b->name,
+                      method_names[m], -r.signed_distance, depth);
+                if (r.signed_distance < 0) {
+                    /* moving A by signed_distance * normal makes the pair touch */
+                    px_pose moved = *pa;
+                    moved.t = pxi_madd(moved.t, r.normal, r.signed_distance * (1 + 1e-9) - 1e-12 * size);
+                    double after = brute_distance(a, &moved, b, pb);
+                    CHECK(after <= 2e-9 * size, "%s/%s %s: pushed out by the depth, %.3g apart", a->name, b->name,
+                          method_names[m], after);
+                    px_vec3 nn;
+                    double left = sat_depth(a, &moved, b, pb, &nn);
+                    CHECK(left <= 2e-9 * size, "%s/%s %s: pushed out by the depth, still %.3g deep", a->name,
+                          b->name, method_names[m], left);
+                }
+            }
+        }
+        /* px_intersect by this method */
+        px_query_options io = {0};
+        io.method = (uint32_t)m;
+        px_intersect_result ir;
+        px_status st = px_intersect(a->c, pa, b->c, pb, &io, NULL, &ir);
+        CHECK(st == PX_OK, "intersect status %s", px_status_string(st));
+        if (bd > 2 * tol || bd == 0.0) {
+            g.intersect_checked++;
+            CHECK(ir.intersecting == (bd <= tol), "%s/%s %s: px_intersect %d, brute distance %.3g", a->name,
+                  b->name, method_names[m], ir.intersecting, bd);
+        }
+    }
+    /* Translation: a random direction and one aimed from A at B. */
+    for (int k = 0; k < 2; ++k) {
+        px_vec3 d = k == 0 ? pg_unit(rng) : pxi_add(pxi_sub(pb->t, pa->t), pxi_scale(pg_unit(rng), 0.3));
+        if (!(pxi_len(d) > 1e-3)) continue;
+        double lo, hi, pgap;
+        sat_translation(a, pa, b, pb, d, &lo, &hi, &pgap);
+        for (int both = 0; both < 2; ++both) {
+            px_query_options to = {0};
+            to.flags = both ? PX_QUERY_BOTH_WAYS : 0;
+            px_translate_result tr;
+            px_status st = px_translate(a->c, pa, b->c, pb, d, &to, NULL, &tr);
+            CHECK(st == PX_OK, "translate status %s", px_status_string(st));
+            if (st != PX_OK) continue;
+            double dl = pxi_len(d), ttol = 1e-9 * size / dl;
+            /* the oracle's answer, where it is clear of ties */
+            int oracle_hit = lo <= hi;
+            double want = both ? lo : (hi < 0 ? INFINITY : fmax(lo, 0.0));
+            if (!both && hi < 0) oracle_hit = 0;
+            int clear = fabs(hi - lo) > 4 * ttol && (both || fabs(hi) > 4 * ttol) && isfinite(lo) == isfinite(hi);
+            if (clear && lo <= hi) {
+                g.tr_checked++;
+                CHECK(tr.hit == oracle_hit, "%s/%s translate%s: hit %d, oracle [%.17g, %.17g]", a->name, b->name,
+                      both ? " both ways" : "", tr.hit, lo, hi);
+                if (tr.hit && oracle_hit) {
+                    double e = fabs(tr.tau - want) * dl;
+                    if (rel(e, size) > g.worst_tau) g.worst_tau = rel(e, size);
+                    CHECK(e <= 1e-9 * size, "%s/%s translate%s: tau %.17g, oracle %.17g", a->name, b->name,
+                          both ? " both ways" : "", tr.tau, want);
+                }
+            } else if (clear && lo > hi + 4 * ttol) {
+                g.tr_checked++;
+                CHECK(!tr.hit, "%s/%s translate%s: hit at %.17g, oracle misses [%.17g, %.17g]", a->name,
+                      b->name, both ? " both ways" : "", tr.tau, lo, hi);
+            }
+            if (tr.hit) {
+                /* the distance check: touching at tau, apart a little before */
+                px_pose at = *pa;
+                at.t = pxi_madd(at.t, d, tr.tau);
+                double d_at = brute_distance(a, &at, b, pb);
+                CHECK(d_at <= 1e-9 * size, "%s/%s translate: %.3g apart at tau", a->name, b->name, d_at);
+                double back = 1e-6 * size / dl;
+                if (!tr.in_contact && tr.tau > 2 * back) {
+                    px_pose before = *pa;
+                    before.t = pxi_madd(before.t, d, tr.tau - back);
+                    double d_before = brute_distance(a, &before, b, pb);
+                    CHECK(d_before > 0.0 || lo >= hi - 4 * ttol,
+                          "%s/%s translate%s: touching before tau %.17g (oracle [%.17g, %.17g], in contact %d, "
+                          "d %g %g %g)",
+                          a->name, b->name, both ? " both ways" : "", tr.tau, lo, hi, tr.in_contact, d.x, d.y, d.z);
+                }
+            } else if (!tr.in_contact) {
+                /* the miss certificate: A below the plane, B above it */
+                px_vec3 wa[MAXV], wb[MAXV];
+                world_vertices(a, pa, wa);
+                world_vertices(b, pb, wb);
+                double worst = -INFINITY;
+                for (uint32_t i = 0; i < a->nv; ++i)
+                    worst = fmax(worst, pxi_dot(tr.normal, pxi_sub(wa[i], tr.point_a)));
+                for (uint32_t i = 0; i < b->nv; ++i)
+                    worst = fmax(worst, -pxi_dot(tr.normal, pxi_sub(wb[i], tr.point_b)));
+                /* n . d <= 0 up to the rounding of a normal made orthogonal
+                 * to d (test_translation's 1e-9) */
+                CHECK(tr.gap > 0 && worst <= 1e-12 * size && pxi_dot(tr.normal, d) <= 1e-9 * dl,
+                      "%s/%s translate%s: miss certificate gap %.3g, worst %.3g, n.d %.3g, quality %u, oracle [%.17g, "
+                      "%.17g]",
+                      a->name, b->name, both ? " both ways" : "", tr.gap, worst, pxi_dot(tr.normal, d), tr.diag.quality,
+                      lo, hi);
+            }
+        }
+    }
+}
+
+static void test_pairs(void) {
+    int poses = tu_scaled(tu_sanitized() ? 150 : 1000);
+    int exact_every = tu_sanitized() ? 50 : 10;
+    pg_rng rng;
+    pg_seed(&rng, 9001);
+    double t0 = tu_now();
+    int pairs = 0;
+    for (int ka = 0; ka < K_COUNT; ++ka)
+        for (int kb = 0; kb < K_COUNT; ++kb) {
+            if (ka >= K_BOX && kb >= K_BOX) continue; /* solid pairs: the other suites */
+            pairs++;
+            px_pair_cache caches[3];
+            memset(caches, 0, sizeof caches);
+            for (int i = 0; i < poses; ++i) {
+                piece a, b;
+                if (make_kind(&a, ka, &rng) || make_kind(&b, kb, &rng)) return;
+                px_pose pa, pb;
+                make_poses(&rng, &a, &b, i % 4 == 3, &pa, &pb);
+                check_pose(&a, &b, &pa, &pb, &rng, i % exact_every == 0, caches);
+                piece_free(&a);
+                piece_free(&b);
+            }
+        }
+    printf("  %d shape pairs x %d poses: %ld poses, %ld distance queries, %ld exact, %ld depths, %ld "
+           "intersects, %ld translations checked (%.1f s)\n",
+           pairs, poses, g.poses, g.queries, g.exact_checked, g.pen_checked, g.intersect_checked, g.tr_checked,
+           tu_now() - t0);
+    for (int m = 0; m < 3; ++m)
+        printf("  %-9s worst |d - brute| %.2g S, |d - exact| %.2g eps S, |depth - SAT| %.2g S, fallbacks %ld\n",
+               method_names[m], g.worst_brute[m], g.worst_exact[m] / DBL_EPSILON, g.worst_depth[m],
+               g.fallbacks[m]);
+    printf("  translation worst |tau - oracle| %.2g S\n", g.worst_tau);
+}
+
+int main(void) {
+    tu_init("test_degenerate");
+    test_pairs();
+    return tu_finish();
+}

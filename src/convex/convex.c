@@ -252,6 +252,20 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_e
         E->wl = E->wr = pxi_v(0, 0, 0);
     }
 
+    /* Can Lin-Canny walk it? A polygon must turn clearly left about its
+     * normal at every vertex (convex.h, PXI_WALK_MIN_TURN). */
+    c->walk_ok = 1;
+    if (dim == 2) {
+        const pxi_face *F = &c->f[0];
+        for (uint32_t k = 0; k < F->count; ++k) {
+            const pxi_edge *E1 = &c->e[c->f_edges[F->first + k]];
+            const pxi_edge *E2 = &c->e[c->f_edges[F->first + (k + 1) % F->count]];
+            uint32_t b = c->f_verts[F->first + (k + 1) % F->count];
+            px_vec3 u1 = E1->head == b ? E1->u : pxi_neg(E1->u), u2 = E2->tail == b ? E2->u : pxi_neg(E2->u);
+            if (!(pxi_dot(pxi_cross(u1, u2), F->n) > PXI_WALK_MIN_TURN)) c->walk_ok = 0;
+        }
+    }
+
     /* Vertex -> incident edges (CSR). */
     memset(c->v_first, 0, ((size_t)c->nv + 1) * sizeof *c->v_first);
     for (uint32_t i = 0; i < c->ne; ++i) {

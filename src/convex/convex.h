@@ -30,6 +30,12 @@
 #include "proxima/convex.h"
 #include "proxima/query.h"
 
+/* A polygon turning by less than this (the sine of its exterior angle, about
+ * its normal) at some vertex is a sliver whose normal and in-plane region
+ * planes rounding decides: Lin-Canny's walk can cycle on them, and the
+ * queries serve it from support functions alone (query.c's table). */
+#define PXI_WALK_MIN_TURN 1e-9
+
 /* The left and right face of a segment's edge (it has none). */
 #define PXI_NO_FACE UINT32_MAX
 
@@ -65,6 +71,8 @@ typedef struct pxi_lut {
 struct px_convex {
     uint32_t nv, ne, nf;
     uint32_t dim;      /* affine dimension: 3 solid, 2 polygon, 1 segment, 0 point */
+    uint32_t walk_ok;  /* 1 when Lin-Canny can walk it: always, but for a polygon that turns by less
+                          than PXI_WALK_MIN_TURN at a vertex (a sliver: its normal is rounding) */
     px_vec3 *v;        /* nv vertex positions, body frame minus origin */
     uint32_t *v_first; /* nv + 1: incident edges of v are v_edges[v_first[v] .. v_first[v+1]) */
     uint32_t *v_edges; /* 2 * ne incident edge ids */

@@ -18,6 +18,17 @@
  *                 mode from it
  *   GJK           enhanced GJK                              LC_FINISH     LC_FINISH
  *   HYBRID        the seed 001 hybrid                       GJK           GJK
+ *   GJK_NW        enhanced GJK, on a pair Lin-Canny         HYBRID_NW     HYBRID_NW
+ *                 cannot walk
+ *   HYBRID_NW     the hybrid, on such a pair                (its own answer, flagged)
+ *
+ * A pair Lin-Canny cannot walk holds a sliver polygon (px_convex.walk_ok:
+ * a polygon turning by less than 1e-9 at a vertex, whose normal and side
+ * planes rounding decides). Every query then starts at GJK_NW (the hybrid
+ * method at HYBRID_NW), from support functions alone, which are exact on
+ * any vertex set; asking for Lin-Canny then counts one fallback. Points,
+ * segments and every other polygon are walked like solids (convex.h has
+ * their Voronoi regions).
  *
  * Signed distance adds EPA (from GJK's simplex) and, when EPA's polytope
  * budget runs out, a translation query along its best normal. Translation
@@ -126,7 +137,9 @@ typedef enum step {
     STEP_LC_FINISH,
     STEP_LC_RESTART,
     STEP_GJK,
-    STEP_HYBRID
+    STEP_HYBRID,
+    STEP_GJK_NW,
+    STEP_HYBRID_NW
 } step;
 
 typedef struct next_row {
@@ -142,7 +155,12 @@ static const next_row k_next[] = {
     [STEP_LC_RESTART] = {STEP_END, STEP_END, 0},
     [STEP_GJK] = {STEP_LC_FINISH, STEP_LC_FINISH, 0},
     [STEP_HYBRID] = {STEP_GJK, STEP_GJK, 0},
+    [STEP_GJK_NW] = {STEP_HYBRID_NW, STEP_HYBRID_NW, 0},
+    [STEP_HYBRID_NW] = {STEP_END, STEP_END, 0},
 };
+
+/* Whether Lin-Canny can walk the pair (convex.h, walk_ok). */
+static inline int pair_walk_ok(const px_convex *a, const px_convex *b) { return a->walk_ok && b->walk_ok; }
 
 /* Lin-Canny from a start; its answer. */
 static void run_lc(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_feature fa, px_feature fb,
@@ -222,14 +240,17 @@ static void run_step(step s, const px_convex *a, const px_convex *b, const px_po
     case STEP_LC_SEEDED: run_lc_seeded(a, b, t_ab, ans); break;
     case STEP_LC_FINISH: run_lc(a, b, t_ab, prev->fa, prev->fb, 0, 0, ans); break;
     case STEP_LC_RESTART: run_lc_restart(a, b, t_ab, ans); break;
-    case STEP_GJK: pxi_gjk_distance(a, b, t_ab, cache, ans, simplex); break;
-    case STEP_HYBRID: pxi_hybrid(a, b, t_ab, cache, ans); break;
+    case STEP_GJK:
+    case STEP_GJK_NW: pxi_gjk_distance(a, b, t_ab, cache, ans, simplex); break;
+    case STEP_HYBRID:
+    case STEP_HYBRID_NW: pxi_hybrid(a, b, t_ab, cache, ans); break;
     case STEP_END: break;
     }
 }
 
 /* The first step of a method on this pair. */
 static step first_step(uint32_t method, const px_convex *a, const px_convex *b, const px_pair_cache *cache) {
+    if (!pair_walk_ok(a, b)) return method == PX_METHOD_HYBRID ? STEP_HYBRID_NW : STEP_GJK_NW;
     switch (method) {
     case PX_METHOD_GJK: return STEP_GJK;
     case PX_METHOD_HYBRID: return STEP_HYBRID;
@@ -456,7 +477,11 @@ static PXI_NOINLINE void follow_table(const px_convex *a, const px_convex *b, co
         }
         step next = out->outcome == PXI_UNPROVEN ? k_next[s].unproven : k_next[s].out_of_steps;
         if (!seed) ++*fallbacks;
-        if (next == STEP_END) break;
+        if (next == STEP_END) { /* the end of a row without a proof: the last answer, flagged */
+            out->quality |= PX_QUALITY_UNPROVEN;
+            out->outcome = PXI_DONE;
+            break;
+        }
         s = next;
         prev = *out;
         run_step(s, a, b, t_ab, NULL, &prev, simplex, out); /* fallbacks run cold */
@@ -471,6 +496,8 @@ void pxi_distance_pair(const px_convex *a, const px_convex *b, const px_pose *t_
     pxi_simplex_pairs simplex;
     simplex.n = 0;
     step s = first_step(policy->method, a, b, cache);
+    /* Lin-Canny asked for a pair it cannot walk: handed to GJK, a fallback. */
+    if (policy->method == PX_METHOD_LIN_CANNY && s == STEP_GJK_NW) ++*fallbacks;
     /* The first step answers into out directly: most queries end there. */
     run_step(s, a, b, t_ab, cache, NULL, &simplex, out);
     if (out->outcome != PXI_DONE) follow_table(a, b, t_ab, policy, s, &simplex, out, fallbacks);
@@ -523,7 +550,7 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
      * would take, without its dispatch); anything it does not prove goes
      * through the table from the start. */
     int done = 0;
-    if (method == PX_METHOD_LIN_CANNY && !policy.signed_depth && cache &&
+    if (method == PX_METHOD_LIN_CANNY && !policy.signed_depth && cache && pair_walk_ok(a, b) &&
         pxi_feature_valid(a, cache->feature_a) && pxi_feature_valid(b, cache->feature_b)) {
         pxi_lc_start start = {cache->feature_a, cache->feature_b, 0, 0};
         pxi_lin_canny(a, b, t_ab, &start, &ans);

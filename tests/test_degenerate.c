@@ -154,7 +154,8 @@ static double simplex_distance(const simplex *s, const simplex *t) {
     if (s->n >= 2 && t->n >= 2)
         for (int i = 0; i < (s->n == 3 ? 3 : 1); ++i)
             for (int j = 0; j < (t->n == 3 ? 3 : 1); ++j)
-                d = fmin(d, or_seg_seg(s->p[i], s->p[(i + 1) % s->n], t->p[j], t->p[(j + 1) % t->n], NULL, NULL));
+                d = fmin(
+                    d, or_seg_seg(s->p[i], s->p[(i + 1) % s->n], t->p[j], t->p[(j + 1) % t->n], NULL, NULL));
     if (s->n == 3 && t->n >= 2)
         for (int j = 0; j < (t->n == 3 ? 3 : 1); ++j)
             if (seg_crosses_tri(t->p[j], t->p[(j + 1) % t->n], s->p[0], s->p[1], s->p[2])) d = 0.0;
@@ -271,7 +272,8 @@ static double support_diff(const piece *a, const px_vec3 *wa, const piece *b, co
 }
 
 /* Least h_{A-B} over the axes: the depth when positive. */
-static double sat_depth(const piece *a, const px_pose *pa, const piece *b, const px_pose *pb, px_vec3 *best_n) {
+static double sat_depth(const piece *a, const px_pose *pa, const piece *b, const px_pose *pb,
+                        px_vec3 *best_n) {
     static axes x;
     collect_axes(a, pa, b, pb, &x);
     px_vec3 wa[MAXV], wb[MAXV];
@@ -422,7 +424,12 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
             px_status st = px_distance(a->c, pa, b->c, pb, &opt, cache, &r);
             g.queries++;
             g.fallbacks[m] += r.diag.fallbacks;
-            CHECK(st == PX_OK, "%s/%s %s: status %s", a->name, b->name, method_names[m], px_status_string(st));
+            if (getenv("DEGEN_DEBUG") && r.diag.fallbacks)
+                fprintf(stderr, "fallback %s/%s %s%s: d %.3g brute %.3g intersecting %d quality %u\n",
+                        a->name, b->name, method_names[m], sgn ? " signed" : "", r.distance, bd,
+                        r.intersecting, r.diag.quality);
+            CHECK(st == PX_OK, "%s/%s %s: status %s", a->name, b->name, method_names[m],
+                  px_status_string(st));
             if (st != PX_OK) continue;
             CHECK(isfinite(r.distance) && isfinite(r.signed_distance) && pxi_is_finite3(r.point_a) &&
                       pxi_is_finite3(r.point_b) && pxi_is_finite3(r.normal),
@@ -435,11 +442,12 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                 double ee = fabs(r.distance - ed);
                 if (rel(ee, size) > g.worst_exact[m]) g.worst_exact[m] = rel(ee, size);
                 CHECK(ee <= 64 * DBL_EPSILON * size || (ez && r.intersecting),
-                      "%s/%s %s: distance %.17g, exact %.17g", a->name, b->name, method_names[m], r.distance, ed);
+                      "%s/%s %s: distance %.17g, exact %.17g", a->name, b->name, method_names[m], r.distance,
+                      ed);
             }
             if (bd > 2 * tol || bd == 0.0)
-                CHECK(r.intersecting == (bd <= tol), "%s/%s %s: intersecting %d, brute distance %.3g", a->name,
-                      b->name, method_names[m], r.intersecting, bd);
+                CHECK(r.intersecting == (bd <= tol), "%s/%s %s: intersecting %d, brute distance %.3g",
+                      a->name, b->name, method_names[m], r.intersecting, bd);
             if (!r.intersecting) {
                 double w = pxi_len(pxi_sub(r.point_b, r.point_a));
                 CHECK(fabs(w - r.distance) <= tol, "%s/%s %s: witnesses %.17g apart, distance %.17g", a->name,
@@ -454,9 +462,9 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                         px_vec3 wv = xf(pa, a->v[i]);
                         fprintf(stderr, "  A v%u %.17g %.17g %.17g\n", i, wv.x, wv.y, wv.z);
                     }
-                    fprintf(stderr, "  pa %.17g %.17g %.17g  d %.17g fa %u:%u fb %u:%u\n", r.point_a.x, r.point_a.y,
-                            r.point_a.z, r.distance, r.feature_a.type, r.feature_a.index, r.feature_b.type,
-                            r.feature_b.index);
+                    fprintf(stderr, "  pa %.17g %.17g %.17g  d %.17g fa %u:%u fb %u:%u\n", r.point_a.x,
+                            r.point_a.y, r.point_a.z, r.distance, r.feature_a.type, r.feature_a.index,
+                            r.feature_b.type, r.feature_b.index);
                 }
             }
             if (sgn && r.intersecting && bd <= tol) {
@@ -470,8 +478,8 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                     px_pose moved = *pa;
                     moved.t = pxi_madd(moved.t, r.normal, r.signed_distance * (1 + 1e-9) - 1e-12 * size);
                     double after = brute_distance(a, &moved, b, pb);
-                    CHECK(after <= 2e-9 * size, "%s/%s %s: pushed out by the depth, %.3g apart", a->name, b->name,
-                          method_names[m], after);
+                    CHECK(after <= 2e-9 * size, "%s/%s %s: pushed out by the depth, %.3g apart", a->name,
+                          b->name, method_names[m], after);
                     px_vec3 nn;
                     double left = sat_depth(a, &moved, b, pb, &nn);
                     CHECK(left <= 2e-9 * size, "%s/%s %s: pushed out by the depth, still %.3g deep", a->name,
@@ -509,11 +517,12 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
             int oracle_hit = lo <= hi;
             double want = both ? lo : (hi < 0 ? INFINITY : fmax(lo, 0.0));
             if (!both && hi < 0) oracle_hit = 0;
-            int clear = fabs(hi - lo) > 4 * ttol && (both || fabs(hi) > 4 * ttol) && isfinite(lo) == isfinite(hi);
+            int clear =
+                fabs(hi - lo) > 4 * ttol && (both || fabs(hi) > 4 * ttol) && isfinite(lo) == isfinite(hi);
             if (clear && lo <= hi) {
                 g.tr_checked++;
-                CHECK(tr.hit == oracle_hit, "%s/%s translate%s: hit %d, oracle [%.17g, %.17g]", a->name, b->name,
-                      both ? " both ways" : "", tr.hit, lo, hi);
+                CHECK(tr.hit == oracle_hit, "%s/%s translate%s: hit %d, oracle [%.17g, %.17g]", a->name,
+                      b->name, both ? " both ways" : "", tr.hit, lo, hi);
                 if (tr.hit && oracle_hit) {
                     double e = fabs(tr.tau - want) * dl;
                     if (rel(e, size) > g.worst_tau) g.worst_tau = rel(e, size);
@@ -536,10 +545,12 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                     px_pose before = *pa;
                     before.t = pxi_madd(before.t, d, tr.tau - back);
                     double d_before = brute_distance(a, &before, b, pb);
-                    CHECK(d_before > 0.0 || lo >= hi - 4 * ttol,
-                          "%s/%s translate%s: touching before tau %.17g (oracle [%.17g, %.17g], in contact %d, "
-                          "d %g %g %g)",
-                          a->name, b->name, both ? " both ways" : "", tr.tau, lo, hi, tr.in_contact, d.x, d.y, d.z);
+                    CHECK(
+                        d_before > 0.0 || lo >= hi - 4 * ttol,
+                        "%s/%s translate%s: touching before tau %.17g (oracle [%.17g, %.17g], in contact %d, "
+                        "d %g %g %g)",
+                        a->name, b->name, both ? " both ways" : "", tr.tau, lo, hi, tr.in_contact, d.x, d.y,
+                        d.z);
                 }
             } else if (!tr.in_contact) {
                 /* the miss certificate: A below the plane, B above it */
@@ -554,10 +565,11 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                 /* n . d <= 0 up to the rounding of a normal made orthogonal
                  * to d (test_translation's 1e-9) */
                 CHECK(tr.gap > 0 && worst <= 1e-12 * size && pxi_dot(tr.normal, d) <= 1e-9 * dl,
-                      "%s/%s translate%s: miss certificate gap %.3g, worst %.3g, n.d %.3g, quality %u, oracle [%.17g, "
+                      "%s/%s translate%s: miss certificate gap %.3g, worst %.3g, n.d %.3g, quality %u, "
+                      "oracle [%.17g, "
                       "%.17g]",
-                      a->name, b->name, both ? " both ways" : "", tr.gap, worst, pxi_dot(tr.normal, d), tr.diag.quality,
-                      lo, hi);
+                      a->name, b->name, both ? " both ways" : "", tr.gap, worst, pxi_dot(tr.normal, d),
+                      tr.diag.quality, lo, hi);
             }
         }
     }
@@ -588,17 +600,193 @@ static void test_pairs(void) {
         }
     printf("  %d shape pairs x %d poses: %ld poses, %ld distance queries, %ld exact, %ld depths, %ld "
            "intersects, %ld translations checked (%.1f s)\n",
-           pairs, poses, g.poses, g.queries, g.exact_checked, g.pen_checked, g.intersect_checked, g.tr_checked,
-           tu_now() - t0);
+           pairs, poses, g.poses, g.queries, g.exact_checked, g.pen_checked, g.intersect_checked,
+           g.tr_checked, tu_now() - t0);
     for (int m = 0; m < 3; ++m)
-        printf("  %-9s worst |d - brute| %.2g S, |d - exact| %.2g eps S, |depth - SAT| %.2g S, fallbacks %ld\n",
-               method_names[m], g.worst_brute[m], g.worst_exact[m] / DBL_EPSILON, g.worst_depth[m],
-               g.fallbacks[m]);
+        printf(
+            "  %-9s worst |d - brute| %.2g S, |d - exact| %.2g eps S, |depth - SAT| %.2g S, fallbacks %ld\n",
+            method_names[m], g.worst_brute[m], g.worst_exact[m] / DBL_EPSILON, g.worst_depth[m],
+            g.fallbacks[m]);
     printf("  translation worst |tau - oracle| %.2g S\n", g.worst_tau);
+}
+
+/* ---- Fixed configurations where lower-dimensional contacts happen. ---- */
+
+static px_pose pose_at(double x, double y, double z) {
+    px_pose p = px_pose_identity();
+    p.t = pxi_v(x, y, z);
+    return p;
+}
+
+/* One fixed pair through every oracle of check_pose, plus the answers
+ * known in closed form: the distance (< 0: do not check), and for an
+ * overlapping pair whose A - B is flat, signed distance 0 with the pair
+ * touching. */
+static void special(const char *what, const double *xa, size_t na, const double *xb, size_t nb, px_pose pa,
+                    px_pose pb, double want_d, int flat_overlap) {
+    piece a, b;
+    if (piece_init(&a, what, xa, na) || piece_init(&b, what, xb, nb)) return;
+    pg_rng rng;
+    pg_seed(&rng, 77);
+    px_pair_cache caches[3];
+    memset(caches, 0, sizeof caches);
+    check_pose(&a, &b, &pa, &pb, &rng, 1, caches);
+    for (int m = 0; m < 3; ++m) {
+        px_query_options opt = {0};
+        opt.method = (uint32_t)m;
+        opt.flags = PX_QUERY_SIGNED;
+        px_distance_result r;
+        px_distance(a.c, &pa, b.c, &pb, &opt, NULL, &r);
+        if (want_d >= 0)
+            CHECK(fabs(r.distance - want_d) <= 1e-15 * (1 + want_d), "%s %s: distance %.17g, want %.17g",
+                  what, method_names[m], r.distance, want_d);
+        if (flat_overlap)
+            CHECK(r.intersecting && r.signed_distance == 0.0 && pxi_max_abs(r.normal) == 0.0 &&
+                      pxi_len(pxi_sub(r.point_a, r.point_b)) == 0.0,
+                  "%s %s: flat overlap gives intersecting %d, signed distance %.3g, normal %g %g %g", what,
+                  method_names[m], r.intersecting, r.signed_distance, r.normal.x, r.normal.y, r.normal.z);
+    }
+    piece_free(&a);
+    piece_free(&b);
+}
+
+static void test_special(void) {
+    const double tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const double tri2[9] = {0.5, 0.5, 0, 1.5, 0.5, 0, 0.5, 1.5, 0};
+    const double seg[6] = {-1, 0, 0, 1, 0, 0};
+    const double segz[6] = {0, 0, -1, 0, 0, 1};
+    const double pt[3] = {0.25, 0.25, 0};
+    double box[24];
+    pg_box(0.6, 0.4, 0.5, box);
+    px_pose id = px_pose_identity();
+    /* coplanar overlaps: A - B flat, depth 0 */
+    special("triangle on itself", tri, 3, tri, 3, id, id, 0, 1);
+    special("coplanar overlapping triangles", tri, 3, tri2, 3, id, id, 0, 1);
+    special("coplanar triangles sharing a vertex", tri, 3, tri2, 3, id, pose_at(0.5, -0.5, 0), 0, 1);
+    special("coplanar triangles apart", tri, 3, tri, 3, id, pose_at(1.5, 0, 0), 0.5, 0);
+    special("point in a triangle", pt, 1, tri, 3, id, id, 0, 1);
+    special("point above a triangle", pt, 1, tri, 3, pose_at(0, 0, 0.75), id, 0.75, 0);
+    special("point on a segment", pt, 1, seg, 2, id, pose_at(0, 0.25, 0), 0, 1);
+    special("point on itself", pt, 1, pt, 1, id, id, 0, 1);
+    special("two points", pt, 1, pt, 1, id, pose_at(3, 4, 0), 5, 0);
+    special("collinear segments overlapping", seg, 2, seg, 2, id, pose_at(1.5, 0, 0), 0, 1);
+    special("collinear segments end to end", seg, 2, seg, 2, id, pose_at(2, 0, 0), 0, 1);
+    special("collinear segments apart", seg, 2, seg, 2, id, pose_at(2.5, 0, 0), 0.5, 0);
+    special("parallel segments", seg, 2, seg, 2, id, pose_at(0.5, 0.75, 0), 0.75, 0);
+    special("crossing segments", seg, 2, segz, 2, id, id, 0, 1);
+    special("skew segments", seg, 2, segz, 2, id, pose_at(0, 0.5, 0), 0.5, 0);
+    special("segment in a triangle's plane across it", seg, 2, tri, 3, pose_at(0.3, 0.2, 0), id, 0, 1);
+    special("segment through a triangle", segz, 2, tri, 3, pose_at(0.2, 0.2, 0), id, 0, 0);
+    special("segment along a triangle's edge", seg, 2, tri, 3, pose_at(0.5, 0, 0), id, 0, 1);
+    special("point inside a box", pt, 1, box, 8, id, id, 0, 0);
+    special("point on a box face", pt, 1, box, 8, pose_at(0, 0, 0.5), id, 0, 0);
+    special("point at a box corner", pt, 1, box, 8, pose_at(0.6 - 0.25, 0.4 - 0.25, 0.5), id, 0, 0);
+    special("triangle resting on a box", tri, 3, box, 8, pose_at(-0.2, -0.2, 0.5), id, 0, 0);
+    special("triangle above a box", tri, 3, box, 8, pose_at(-0.2, -0.2, 0.875), id, 0.375, 0);
+    special("triangle through a box", tri, 3, box, 8, pose_at(-0.2, -0.2, 0.25), id, 0, 0);
+    special("segment inside a box", seg, 2, box, 8, pose_at(0, 0, 0.125), pose_at(0, 0, 0), 0, 0);
+    special("segment through a box", segz, 2, box, 8, id, id, 0, 0);
+    special("segment along a box edge", seg, 2, box, 8, pose_at(0, 0.4, 0.5), id, 0, 0);
+    special("box on a triangle", box, 8, tri, 3, pose_at(0.1, 0.1, 0.5), id, 0, 0);
+}
+
+/* Construction: dimension, Euler, validation, bounds, and the inputs at
+ * the edge of flatness. */
+static void test_construction(void) {
+    pg_rng rng;
+    pg_seed(&rng, 4242);
+    for (int kind = K_TRI; kind <= K_PT; ++kind)
+        for (int i = 0; i < 20; ++i) {
+            piece p;
+            if (make_kind(&p, kind, &rng)) return;
+            static const uint32_t want_dim[4] = {2, 2, 1, 0};
+            CHECK(p.dim == want_dim[kind], "%s: dimension %u", p.name, p.dim);
+            long euler = (long)p.nv - (long)p.ne + (long)p.nf;
+            CHECK(euler == (p.dim >= 2 ? 2 : 1), "%s: V - E + F = %ld", p.name, euler);
+            px_error err;
+            CHECK(px_convex_validate(p.c, &err) == PX_OK, "%s: %s", p.name, err.message);
+            /* bounds against the world vertices */
+            px_pose pose = pg_pose_random(&rng, 3);
+            px_bounds bb;
+            CHECK(px_convex_bounds(p.c, &pose, &bb) == PX_OK, "%s: bounds", p.name);
+            px_vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
+            double r = 0;
+            for (uint32_t k = 0; k < p.nv; ++k) {
+                px_vec3 w = xf(&pose, p.v[k]);
+                lo = pxi_v(fmin(lo.x, w.x), fmin(lo.y, w.y), fmin(lo.z, w.z));
+                hi = pxi_v(fmax(hi.x, w.x), fmax(hi.y, w.y), fmax(hi.z, w.z));
+                r = fmax(r, pxi_len(pxi_sub(w, bb.center)));
+            }
+            CHECK(pxi_max_abs(pxi_sub(lo, bb.min)) <= 1e-15 * 4 &&
+                      pxi_max_abs(pxi_sub(hi, bb.max)) <= 1e-15 * 4 && r <= bb.radius * (1 + 1e-12) + 1e-15,
+                  "%s: bounds off", p.name);
+            if (p.dim == 2) {
+                px_vec3 n0, n1;
+                double d0, d1;
+                px_convex_face(p.c, 0, &n0, &d0, NULL);
+                px_convex_face(p.c, 1, &n1, &d1, NULL);
+                CHECK(n0.x == -n1.x && n0.y == -n1.y && n0.z == -n1.z && d0 == -d1,
+                      "%s: the two faces are not one plane turned over", p.name);
+            }
+            piece_free(&p);
+        }
+    /* exact duplicates: a triangle given 4 times over is a triangle */
+    double dup[36];
+    const double tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    for (int k = 0; k < 4; ++k) memcpy(dup + 9 * k, tri, sizeof tri);
+    px_convex *c = px_convex_create(dup, 12, NULL, NULL);
+    CHECK(c && px_convex_dimension(c) == 2 && px_convex_vertex_count(c) == 3, "triangle four times");
+    px_convex_destroy(c);
+    /* collinear but for one ulp: CGAL says a (sliver) triangle, and its
+     * distances still agree with brute force and the exact oracle */
+    double sliver[9] = {0, 0, 0, 1, 1, 1, 2, 2, nextafter(2.0, 3.0)};
+    piece s;
+    if (piece_init(&s, "one-ulp sliver", sliver, 3) == 0) {
+        CHECK(s.dim == 2, "one-ulp sliver: dimension %u", s.dim);
+        piece bx;
+        double box[24];
+        pg_box(0.6, 0.4, 0.5, box);
+        if (piece_init(&bx, "box", box, 8) == 0) {
+            px_pair_cache caches[3];
+            memset(caches, 0, sizeof caches);
+            for (int i = 0; i < 200; ++i) {
+                px_pose pa = pg_pose_random(&rng, 0.5), pb = pg_pose_random(&rng, 2.0);
+                check_pose(&s, &bx, &pa, &pb, &rng, i % 10 == 0, caches);
+                check_pose(&bx, &s, &pb, &pa, &rng, 0, caches);
+            }
+            piece_free(&bx);
+        }
+        piece_free(&s);
+    }
+    /* a slab thinner than double precision resolves: its two sides round
+     * to one plane, so the input is coplanar and the piece a polygon */
+    double slab[24];
+    for (int i = 0; i < 8; ++i)
+        slab[3 * i] = (i & 1), slab[3 * i + 1] = (i & 2) ? 1 : 0, slab[3 * i + 2] = (i & 4) ? 1 + 1e-17 : 1;
+    c = px_convex_create(slab, 8, NULL, NULL);
+    CHECK(c && px_convex_dimension(c) == 2 && px_convex_vertex_count(c) == 4, "slab 1e-17 thick: a square");
+    px_convex_destroy(c);
+    /* a point anywhere in the double range has no size: accepted */
+    const double far[3] = {1e300, -1e300, 5};
+    c = px_convex_create(far, 1, NULL, NULL);
+    px_vec3 v;
+    CHECK(c && px_convex_dimension(c) == 0 && px_convex_vertex(c, 0, &v) == PX_OK && v.x == 1e300 &&
+              v.y == -1e300,
+          "a point at 1e300");
+    px_convex_destroy(c);
+    /* a segment shorter than the supported range: PX_ERR_RANGE */
+    const double tiny[6] = {0, 0, 0, 1e-310, 0, 0};
+    px_error err;
+    tu_untrap_fp();
+    c = px_convex_create(tiny, 2, NULL, &err);
+    tu_trap_fp();
+    CHECK(!c && err.code == PX_ERR_RANGE, "a 1e-310 segment: %s", px_status_string(err.code));
 }
 
 int main(void) {
     tu_init("test_degenerate");
+    test_construction();
+    test_special();
     test_pairs();
     return tu_finish();
 }

@@ -424,7 +424,7 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
             px_status st = px_distance(a->c, pa, b->c, pb, &opt, cache, &r);
             g.queries++;
             g.fallbacks[m] += r.diag.fallbacks;
-            if (getenv("DEGEN_DEBUG") && r.diag.fallbacks)
+            if (getenv("PROXIMA_TEST_DEBUG") && r.diag.fallbacks)
                 fprintf(stderr, "fallback %s/%s %s%s: d %.3g brute %.3g intersecting %d quality %u\n",
                         a->name, b->name, method_names[m], sgn ? " signed" : "", r.distance, bd,
                         r.intersecting, r.diag.quality);
@@ -457,7 +457,7 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                        onb = fabs(brute_point_distance(b, pb, r.point_b));
                 CHECK(ona <= tol && onb <= tol, "%s/%s %s: witnesses off their pieces by %.3g, %.3g", a->name,
                       b->name, method_names[m], ona, onb);
-                if (getenv("DEGEN_DEBUG") && !(ona <= tol && onb <= tol)) {
+                if (getenv("PROXIMA_TEST_DEBUG") && !(ona <= tol && onb <= tol)) {
                     for (uint32_t i = 0; i < a->nv; ++i) {
                         px_vec3 wv = xf(pa, a->v[i]);
                         fprintf(stderr, "  A v%u %.17g %.17g %.17g\n", i, wv.x, wv.y, wv.z);

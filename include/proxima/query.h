@@ -151,7 +151,10 @@ typedef struct px_distance_result {
     /// Euclidean distance between the two solids; 0 when they intersect.
     double distance;
     /// `distance` for separated pairs; for intersecting pairs minus the
-    /// penetration depth with PX_QUERY_SIGNED, else 0.
+    /// penetration depth with PX_QUERY_SIGNED, else 0. A pair whose
+    /// difference A - B is flat (two overlapping coplanar polygons, a point
+    /// on a polygon, crossing segments: lower-dimensional pieces, convex.h)
+    /// only touches: depth 0, normal 0 (docs/methods.md).
     double signed_distance;
     /// Closest points: |point_a - point_b| == distance. When the solids
     /// intersect both are one common point, except with PX_QUERY_SIGNED,

@@ -295,8 +295,10 @@ static void test_validation(void) {
     memset(&o, 0, sizeof o);
 
     EXPECT(NULL, NULL, PX_ERR_INVALID_ARGUMENT, "desc is NULL");
-    d = base, d.reserved[3] = 1;
-    EXPECT(&d, NULL, PX_ERR_INVALID_ARGUMENT, "reserved[3]");
+    d = base, d.reserved[2] = 1;
+    EXPECT(&d, NULL, PX_ERR_INVALID_ARGUMENT, "reserved[2]");
+    d = base, d.float_coordinates = 2;
+    EXPECT(&d, NULL, PX_ERR_INVALID_ARGUMENT, "float_coordinates");
     o.reserved[5] = 1;
     EXPECT(&base, &o, PX_ERR_INVALID_ARGUMENT, "options.reserved[5]");
     memset(&o, 0, sizeof o);
@@ -698,7 +700,9 @@ static void test_load_formats(void) {
         CHECK(part_has(m, 1, 11, 0, 0, 0) && part_has(m, 1, 10, 0, 1, 0), "obj tetrahedron");
         px_mesh_info info;
         px_mesh_get_info(m, &info);
-        CHECK(info.unit_metres == 0 && info.closed_parts == 2 && info.max.x == 11, "obj info");
+        CHECK(info.unit_metres == 0 && info.closed_parts == 2 && info.max.x == 11 &&
+                  info.float_coordinates == 1,
+              "obj info");
         px_mesh_destroy(m);
     }
     /* points and lines only: a point-set part */
@@ -718,6 +722,9 @@ static void test_load_formats(void) {
         CHECK(memcmp(px_mesh_vertices(m), v, sizeof v) == 0, "off vertices in file order");
         static const uint32_t t[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
         CHECK(memcmp(px_mesh_triangles(m), t, sizeof t) == 0, "off triangles as written");
+        px_mesh_info info;
+        px_mesh_get_info(m, &info);
+        CHECK(info.float_coordinates == 0, "plain OFF read at full precision");
         px_mesh_destroy(m);
     }
     /* inside out: closed, flipped at creation */
@@ -743,6 +750,9 @@ static void test_load_formats(void) {
         EXPECT_NODE(m, 1, "tet", 0);
         EXPECT_PART(m, 0, "tet/tet", 1, 12, 4, 1);
         CHECK(part_has(m, 0, 0, 0, 1, 0) && !part_has(m, 0, 1, 1, 0, 0), "stl vertices");
+        px_mesh_info info;
+        px_mesh_get_info(m, &info);
+        CHECK(info.float_coordinates == 0, "ASCII STL read at full precision");
         px_mesh_destroy(m);
     }
     unsigned char stl[84 + 4 * 50];
@@ -751,6 +761,9 @@ static void test_load_formats(void) {
         CHECK(px_mesh_part_count(m) == 1, "binary stl parts");
         EXPECT_PART(m, 0, NULL, px_mesh_node_count(m) > 1 ? 1 : 0, 12, 4, 1);
         CHECK(part_has(m, 0, 0, 1, 0, 0) && part_has(m, 0, 1, 0, 0, 0), "binary stl vertices");
+        px_mesh_info info;
+        px_mesh_get_info(m, &info);
+        CHECK(info.float_coordinates == 1, "binary STL: floats");
         px_mesh_destroy(m);
     }
 
@@ -946,11 +959,23 @@ static void test_bad_files(void) {
     tet_stl_binary(stl, 0);
     EXPECT_LOAD_ERROR(write_file("cut.stl", stl, 84 + 2 * 50), "declares 4 triangles");
     EXPECT_LOAD_ERROR(write_file("cut.dae", k_dae, strlen(k_dae) / 2), "malformed XML");
-    /* malformed text */
-    EXPECT_LOAD_ERROR(write_file("bad.stl",
-                                 "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n",
-                                 (size_t)-1),
-                      "real number");
+    /* malformed text: a PLY value that is not a number (the precheck),
+     * an ASCII STL vertex of two numbers (Assimp's own error) */
+    EXPECT_LOAD_ERROR(
+        write_file("bad.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nend_header\n0 0 0\n1 zero 0\n0 1 0\n",
+                   (size_t)-1),
+        NULL);
+    /* Assimp 5.2's STL reader leaks 2.4 KB when it throws on this file
+     * (LeakSanitizer: operator new under BaseImporter::ReadFile); the
+     * precheck does not read ASCII STL numbers yet (docs/io.md, known
+     * issues), so the sanitizer build skips it. */
+    if (!tu_sanitized())
+        EXPECT_LOAD_ERROR(write_file("bad.stl",
+                                     "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n",
+                                     (size_t)-1),
+                          "real number");
     EXPECT_LOAD_ERROR(write_file("garbage.obj", "garbage here\nxx yy\n", (size_t)-1), "no meshes");
     /* no triangles and no points: an OFF without faces */
     EXPECT_LOAD_ERROR(write_file("nofaces.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n", (size_t)-1),
@@ -1035,12 +1060,71 @@ static size_t read_off_exact(const char *path, double *xyz, size_t cap) {
     return nv;
 }
 
+/* Loads `path` and compares its nv vertices with `exact`: prints the errors
+ * and returns the largest relative one. */
+static double compare_loaded(const char *label, const char *path, const double *exact, size_t nv,
+                             double min_edge, uint32_t *float_coordinates) {
+    px_mesh *m = load(path, 0);
+    if (!m) return INFINITY;
+    px_mesh_info info;
+    px_mesh_get_info(m, &info);
+    *float_coordinates = info.float_coordinates;
+    CHECK(px_mesh_vertex_count(m) == nv, "%s: %u vertices", path, px_mesh_vertex_count(m));
+    const double *v = px_mesh_vertices(m);
+    double max_rel = 0, max_abs = 0, max_half_ulp = 0, max_coord = 0;
+    for (size_t j = 0; j < 3 * nv && px_mesh_vertex_count(m) == nv; ++j) {
+        double d = fabs(v[j] - exact[j]);
+        max_coord = fmax(max_coord, fabs(exact[j]));
+        max_abs = fmax(max_abs, d);
+        if (exact[j] == 0) continue;
+        max_rel = fmax(max_rel, d / fabs(exact[j]));
+        int e;
+        frexp(exact[j], &e);
+        max_half_ulp = fmax(max_half_ulp, d / ldexp(1.0, e - 25)); /* in half-ulps of float */
+    }
+    printf("float cost, %s (%s): %zu vertices, |x| up to %.0f, shortest edge %.3g: max error %.3g (%.3g of "
+           "the shortest edge), max relative error %.3g (%.2f half-ulps of float)\n",
+           label, info.float_coordinates ? "through Assimp's floats" : "read at full precision", nv,
+           max_coord, min_edge, max_abs, max_abs / min_edge, max_rel, max_half_ulp);
+    px_mesh_destroy(m);
+    return max_rel;
+}
+
+/* Writes the nv points (three per triangle) as OFF ("OFF" and the counts
+ * on separate lines, or on one line when `one_line`), ASCII STL or OBJ
+ * (`format` 0, 1, 2), with 17 significant digits. */
+static const char *write_points(const char *name, const double *p, size_t nv, int format, int one_line) {
+    size_t cap = nv * 90 + nv / 3 * 40 + 64, n = 0;
+    char *text = malloc(cap);
+    if (format == 0)
+        n = (size_t)snprintf(text, cap, one_line ? "OFF %zu %zu 0\n" : "OFF\n%zu %zu 0\n", nv, nv / 3);
+    if (format == 1) n = (size_t)snprintf(text, cap, "solid points\n");
+    for (size_t i = 0; i < nv; ++i) {
+        if (format == 1 && i % 3 == 0)
+            n += (size_t)snprintf(text + n, cap - n, "facet normal 0 0 0\nouter loop\n");
+        n += (size_t)snprintf(text + n, cap - n, "%s%.17g %.17g %.17g\n",
+                              format == 0   ? ""
+                              : format == 1 ? "vertex "
+                                            : "v ",
+                              p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+        if (format == 1 && i % 3 == 2) n += (size_t)snprintf(text + n, cap - n, "endloop\nendfacet\n");
+    }
+    for (size_t t = 0; t < nv / 3 && format != 1; ++t)
+        n += (size_t)snprintf(text + n, cap - n, format == 0 ? "3 %zu %zu %zu\n" : "f %zu %zu %zu\n",
+                              3 * t + (format == 2), 3 * t + 1 + (format == 2), 3 * t + 2 + (format == 2));
+    if (format == 1) n += (size_t)snprintf(text + n, cap - n, "endsolid points\n");
+    const char *path = write_file(name, text, n);
+    free(text);
+    return path;
+}
+
 /* The PUMA's link 2 (binary STL, inches) in millimetres and moved 1000 mm
- * along x: coordinates about 1e3, edges down to about 1e-2 mm, written
- * with 17 significant digits as OFF and as ASCII STL, then loaded through
- * Assimp and compared with the exact values. Prints the errors; the bound
- * checked is the float rounding a correct reader would make (2^-24
- * relative, half an ulp) with room for Assimp's own number parser. */
+ * along x: coordinates about 1e3, edges down to 1.5 mm, written with 17
+ * significant digits. OFF and ASCII STL are read at full precision
+ * (exact.c): no error at all. Through Assimp's floats (OBJ, and OFF with
+ * its counts on the "OFF" line, which exact.c leaves to Assimp) the error
+ * is printed and checked against 2^-23 relative (a correctly rounding
+ * reader would stay within 2^-24). Then a feature of 1e-3 at 1e3. */
 static void test_float_cost(void) {
     char path[1024];
     snprintf(path, sizeof path, "%s/models/puma560/nimasarli_puma560_description/meshes/puma_link2.stl",
@@ -1062,9 +1146,7 @@ static void test_float_cost(void) {
         }
     }
     fclose(f);
-    double min_edge = INFINITY, max_coord = 0;
-    for (size_t j = 0; j < 3 * nv; ++j)
-        if (fabs(exact[j]) > max_coord) max_coord = fabs(exact[j]);
+    double min_edge = INFINITY;
     for (long t = 0; t < nt; ++t) {
         for (int e = 0; e < 3; ++e) {
             const double *a = exact + 9 * t + 3 * e, *b = exact + 9 * t + 3 * ((e + 1) % 3);
@@ -1073,86 +1155,50 @@ static void test_float_cost(void) {
             if (d > 0 && d < min_edge) min_edge = d;
         }
     }
-    /* OFF: the vertices in file order; ASCII STL: three per facet */
-    size_t cap = nv * 80 + (size_t)nt * 40 + 64, n = 0;
-    char *text = malloc(cap);
-    n = (size_t)snprintf(text, cap, "OFF\n%zu %ld 0\n", nv, nt);
-    for (size_t i = 0; i < nv; ++i)
-        n += (size_t)snprintf(text + n, cap - n, "%.17g %.17g %.17g\n", exact[3 * i], exact[3 * i + 1],
-                              exact[3 * i + 2]);
-    for (long t = 0; t < nt; ++t)
-        n += (size_t)snprintf(text + n, cap - n, "3 %ld %ld %ld\n", 3 * t, 3 * t + 1, 3 * t + 2);
-    char off_path[512];
-    snprintf(off_path, sizeof off_path, "%s", write_file("link2_mm.off", text, n));
-    CHECK(read_off_exact(off_path, back, nv) == nv && memcmp(back, exact, nv * 3 * sizeof(double)) == 0,
+    const char *off = write_points("link2_mm.off", exact, nv, 0, 0);
+    CHECK(read_off_exact(off, back, nv) == nv && memcmp(back, exact, nv * 3 * sizeof(double)) == 0,
           "%%.17g round-trips");
-    n = (size_t)snprintf(text, cap, "solid link2\n");
-    for (long t = 0; t < nt; ++t) {
-        n += (size_t)snprintf(text + n, cap - n, "facet normal 0 0 0\nouter loop\n");
-        for (int c = 0; c < 3; ++c) {
-            const double *v = exact + 9 * t + 3 * c;
-            n += (size_t)snprintf(text + n, cap - n, "vertex %.17g %.17g %.17g\n", v[0], v[1], v[2]);
-        }
-        n += (size_t)snprintf(text + n, cap - n, "endloop\nendfacet\n");
-    }
-    n += (size_t)snprintf(text + n, cap - n, "endsolid link2\n");
-    char stl_path[512];
-    snprintf(stl_path, sizeof stl_path, "%s", write_file("link2_mm.stl", text, n));
-    free(text);
-
-    const char *paths[2] = {off_path, stl_path};
-    for (int i = 0; i < 2; ++i) {
-        px_mesh *m = load(paths[i], 0);
-        if (!m) continue;
-        CHECK(px_mesh_vertex_count(m) == nv, "%s: %u vertices", paths[i], px_mesh_vertex_count(m));
-        const double *v = px_mesh_vertices(m);
-        double max_rel = 0, max_abs = 0, max_half_ulp = 0;
-        for (size_t j = 0; j < 3 * nv && px_mesh_vertex_count(m) == nv; ++j) {
-            double d = fabs(v[j] - exact[j]);
-            if (d > max_abs) max_abs = d;
-            if (exact[j] != 0 && d / fabs(exact[j]) > max_rel) max_rel = d / fabs(exact[j]);
-            /* in float ulps of the exact value */
-            int e;
-            frexp(exact[j], &e);
-            double half_ulp = ldexp(1.0, e - 25);
-            if (exact[j] != 0 && d / half_ulp > max_half_ulp) max_half_ulp = d / half_ulp;
-        }
-        printf("float cost, %s: %zu vertices, |x| up to %.0f mm, shortest edge %.3g mm: max error %.3g mm "
-               "(%.3g of the shortest edge), max relative error %.3g (%.2f half-ulps of float)\n",
-               i ? "ASCII STL" : "OFF", nv, max_coord, min_edge, max_abs, max_abs / min_edge, max_rel,
-               max_half_ulp);
-        CHECK(max_rel <= 0x1p-23, "%s: relative error %g above 2^-23", paths[i], max_rel);
-        px_mesh_destroy(m);
-    }
+    uint32_t fc = 99;
+    double rel = compare_loaded("OFF, 17 digits", off, exact, nv, min_edge, &fc);
+    CHECK(rel == 0 && fc == 0, "OFF read at full precision: %g, float_coordinates %u", rel, fc);
+    rel = compare_loaded("ASCII STL, 17 digits", write_points("link2_mm.stl", exact, nv, 1, 0), exact, nv,
+                         min_edge, &fc);
+    CHECK(rel == 0 && fc == 0, "ASCII STL read at full precision: %g, float_coordinates %u", rel, fc);
+    rel = compare_loaded("OBJ, 17 digits", write_points("link2_mm.obj", exact, nv, 2, 0), exact, nv, min_edge,
+                         &fc);
+    CHECK(rel > 0 && rel <= 0x1p-23 && fc == 1, "OBJ through floats: relative error %g", rel);
+    rel = compare_loaded("OFF, counts on the OFF line", write_points("link2_mm_1.off", exact, nv, 0, 1),
+                         exact, nv, min_edge, &fc);
+    CHECK(rel > 0 && rel <= 0x1p-23 && fc == 1, "OFF left to Assimp: relative error %g", rel);
     free(exact);
     free(back);
 
     /* A feature of 1e-3 at coordinate 1e3: a tetrahedron of edge 1e-3 at
-     * (1000.1234..., 999.7, 1000.3). Float spacing there is 6.1e-5, so its
-     * corners move by up to ~3% of its size. */
+     * (1000.1234..., 999.7, 1000.3), three vertices per triangle. Float
+     * spacing there is 6.1e-5: through Assimp its corners move by ~3% of
+     * its size. */
+    static const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     const double base[3] = {1000.123456789012, 999.7, 1000.3};
-    double tet[12];
+    double corner[4][3], tet[36];
     for (int c = 0; c < 4; ++c)
-        for (int k = 0; k < 3; ++k) tet[3 * c + k] = base[k] + (c == k + 1 ? 1e-3 : 0);
-    char off[1024];
-    int len = snprintf(off, sizeof off, "OFF\n4 4 0\n");
-    for (int c = 0; c < 4; ++c)
-        len += snprintf(off + len, sizeof off - (size_t)len, "%.17g %.17g %.17g\n", tet[3 * c],
-                        tet[3 * c + 1], tet[3 * c + 2]);
-    len += snprintf(off + len, sizeof off - (size_t)len, "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
-    const char *tiny_path = write_file("tiny.off", off, (size_t)len);
-    double tiny[12];
-    CHECK(read_off_exact(tiny_path, tiny, 4) == 4 && memcmp(tiny, tet, sizeof tet) == 0, "tiny round-trips");
-    px_mesh *m = load(tiny_path, 0);
-    if (m) {
+        for (int k = 0; k < 3; ++k) corner[c][k] = base[k] + (c == k + 1 ? 1e-3 : 0);
+    for (int t = 0; t < 4; ++t)
+        for (int c = 0; c < 3; ++c) memcpy(tet + 9 * t + 3 * c, corner[faces[t][c]], sizeof corner[0]);
+    for (int format = 0; format < 3; format += 2) {
+        const char *p = write_points(format ? "tiny.obj" : "tiny.off", tet, 12, format, 0);
+        px_mesh *m = load(p, 0);
+        if (!m) continue;
         const double *v = px_mesh_vertices(m);
         double worst = 0;
-        for (int j = 0; j < 12; ++j) worst = fmax(worst, fabs(v[j] - tet[j]));
-        printf(
-            "float cost, a 1e-3 tetrahedron at 1e3 (OFF): corners moved by up to %.3g, %.1f%% of its edge; "
-            "volume %.4g instead of %.4g\n",
-            worst, 100 * worst / 1e-3, part_volume(m, 0), 1e-9 / 6);
-        CHECK(worst > 1e-6 && worst < 0.1e-3, "the tetrahedron's corners move by %g", worst);
+        for (int j = 0; j < 36; ++j) worst = fmax(worst, fabs(v[j] - tet[j]));
+        printf("float cost, a 1e-3 tetrahedron at 1e3 (%s): corners moved by up to %.3g, %.1f%% of its edge; "
+               "volume %.4g instead of %.4g\n",
+               format ? "OBJ, through floats" : "OFF, full precision", worst, 100 * worst / 1e-3,
+               part_volume(m, 0), 1e-9 / 6);
+        if (format)
+            CHECK(worst > 1e-6 && worst < 0.1e-3, "the tetrahedron's corners move by %g", worst);
+        else
+            CHECK(worst == 0, "the tetrahedron read exactly (%g)", worst);
         px_mesh_destroy(m);
     }
 }
@@ -1160,13 +1206,15 @@ static void test_float_cost(void) {
 /* Every allocation px_mesh_load makes through the options' allocator
  * (prechecks, Assimp's file system, the walk, the mesh) fails in turn. */
 static void test_load_alloc_failures(void) {
-    const char *files[3];
-    char paths[3][512];
+    const char *files[5];
+    char paths[5][512];
     snprintf(paths[0], sizeof paths[0], "%s", write_file("af.dae", k_dae, (size_t)-1));
     snprintf(paths[1], sizeof paths[1], "%s", write_gltf(0));
     snprintf(paths[2], sizeof paths[2], "%s", write_file("af.obj", k_two_obj, (size_t)-1));
-    for (int f = 0; f < 3; ++f) files[f] = paths[f];
-    for (int f = 0; f < 3; ++f) {
+    snprintf(paths[3], sizeof paths[3], "%s", write_file("af.off", k_tet_off, (size_t)-1));
+    snprintf(paths[4], sizeof paths[4], "%s", write_file("af.stl", k_tet_stl, (size_t)-1));
+    for (int f = 0; f < 5; ++f) files[f] = paths[f];
+    for (int f = 0; f < 5; ++f) {
         px_mesh_options o = counted_options();
         long k;
         for (k = 0; k < 1000; ++k) {

@@ -60,7 +60,11 @@ typedef struct px_mesh_desc {
     /// coordinates come out in metres) and glTF (metres by its
     /// specification), 0 for the formats without units (STL, OBJ, PLY, OFF).
     double unit_metres;
-    uint32_t reserved[4]; ///< must be zero
+    /// 1 when the coordinates passed through 32-bit floats on their way
+    /// here (`px_mesh_load` through Assimp), 0 when they are as precise as
+    /// their source. Recorded, not applied.
+    uint32_t float_coordinates;
+    uint32_t reserved[3]; ///< must be zero
 } px_mesh_desc;
 
 /// Options of mesh creation and loading; zero-initialise, zero = default.
@@ -143,7 +147,9 @@ typedef struct px_mesh_info {
     double unit_metres; ///< as given or read (0: unknown), times nothing: the scale option is not folded in
     double scale;       ///< the scale option that was applied (1 by default)
     uint32_t closed_parts; ///< parts with `closed` = 1
-    uint32_t reserved;
+    /// As given in the desc: 1 when the coordinates passed through 32-bit
+    /// floats (about 7 significant digits; docs/io.md has the cost).
+    uint32_t float_coordinates;
 } px_mesh_info;
 
 PX_API px_status px_mesh_get_info(const px_mesh *mesh, px_mesh_info *out);

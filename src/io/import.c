@@ -95,7 +95,7 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
     } else if (!scene->mRootNode) {
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s' has no root node", path);
     }
-    if (st == PX_OK && check) st = check(path, scene, ctx, err);
+    if (st == PX_OK && check) st = check(path, id, scene, ctx, err);
     if (st == PX_OK && post_flags) {
         /* On failure Assimp releases the scene itself and returns NULL. */
         const struct aiScene *post = aiApplyPostProcessing(scene, post_flags);
@@ -108,7 +108,7 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
         }
         scene = post;
     }
-    if (st == PX_OK && use) st = use(path, scene, ctx, err);
+    if (st == PX_OK && use) st = use(path, id, scene, ctx, err);
     aiReleaseImport(scene);
     pxi_io_fs_finish(&fs);
     return st;

@@ -5,14 +5,17 @@
 
 #include <assimp/scene.h>
 
+#include "io/precheck.h"
 #include "proxima/io.h"
 
 /* Node trees deeper than this are rejected (also catches cyclic graphs). */
 #define PXI_IO_MAX_DEPTH 1024
 
-/* Reads the imported scene; runs with the import lock held. Returns PX_OK
+/* Reads the imported scene of the file the precheck identified as `id`;
+ * runs with the import lock held. Returns PX_OK
  * or an error with `err` filled (naming `path`). */
-typedef px_status (*pxi_io_scene_fn)(const char *path, const struct aiScene *scene, void *ctx, px_error *err);
+typedef px_status (*pxi_io_scene_fn)(const char *path, const pxi_file_id *id, const struct aiScene *scene,
+                                     void *ctx, px_error *err);
 
 /* Imports the file at `path` (non-NULL, non-empty) the checked way:
  * precheck.c first (outside the lock), then, under the import lock,

@@ -32,6 +32,9 @@
  * moves as one body, so it is one part; a mesh that two nodes reference is
  * two parts.
  *
+ * Coordinates: Assimp's floats, or, for plain OFF and ASCII STL, the same
+ * vertices read again at full precision by exact.c.
+ *
  * The node tree is walked iteratively (BAD_INPUTS item 29: explicit stack,
  * depth cap PXI_IO_MAX_DEPTH), twice: once to count, once to fill. Nodes
  * are numbered in preorder, so a parent comes before its children. Each
@@ -50,6 +53,7 @@
 #include <assimp/scene.h>
 
 #include "core/core.h"
+#include "io/exact.h"
 #include "io/import.h"
 
 /* Polygons are triangulated by ear clipping, about n^2 steps for n corners
@@ -74,6 +78,12 @@ typedef struct load_ctx {
     size_t cap_v, cap_t, cap_names;
     uint32_t cap_p, cap_n;
     double unit_metres;
+    uint32_t float_coordinates;
+    /* full-precision positions (exact.c), or NULL: Assimp's floats */
+    double *exact;
+    size_t exact_count;
+    size_t *mesh_first; /* where each scene mesh starts in `exact` */
+    unsigned mesh_count;
 } load_ctx;
 
 typedef struct walk_entry {
@@ -92,7 +102,9 @@ static size_t ai_len(const struct aiString *s) {
 
 /* pxi_io_scene_fn, before Triangulate: every mesh present, face indices in
  * range, coordinates finite, polygon work bounded. */
-static px_status check_raw(const char *path, const struct aiScene *scene, void *vctx, px_error *err) {
+static px_status check_raw(const char *path, const pxi_file_id *id, const struct aiScene *scene, void *vctx,
+                           px_error *err) {
+    (void)id;
     (void)vctx;
     unsigned long long work = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
@@ -207,9 +219,13 @@ static px_status visit(const char *path, const struct aiScene *scene, load_ctx *
             for (unsigned g = k; g < end; ++g) {
                 unsigned gi = node->mMeshes[g];
                 const struct aiMesh *m = scene->mMeshes[gi];
+                const double *exact = c->exact ? c->exact + 3 * c->mesh_first[gi] : NULL;
                 for (unsigned v = 0; v < m->mNumVertices; ++v, out += 3) {
                     const struct aiVector3D *q = &m->mVertices[v];
-                    pxi_xform_apply(world, q->x, q->y, q->z, out);
+                    if (exact)
+                        pxi_xform_apply(world, exact[3 * v], exact[3 * v + 1], exact[3 * v + 2], out);
+                    else
+                        pxi_xform_apply(world, q->x, q->y, q->z, out);
                     if (!isfinite(out[0]) || !isfinite(out[1]) || !isfinite(out[2]))
                         return pxi_error(err, PX_ERR_IO,
                                          "mesh file '%s': vertex %u of mesh %u is NaN or infinite under the "
@@ -271,6 +287,13 @@ static px_status walk(const char *path, const struct aiScene *scene, load_ctx *c
     return st;
 }
 
+static void free_exact(load_ctx *c) {
+    pxi_free(c->alloc, c->exact, c->exact_count * 3 * sizeof(double));
+    pxi_free(c->alloc, c->mesh_first, c->mesh_count * sizeof(size_t));
+    c->exact = NULL;
+    c->mesh_first = NULL;
+}
+
 static void free_arrays(load_ctx *c) {
     pxi_free(c->alloc, c->xyz, c->cap_v * 3 * sizeof(double));
     pxi_free(c->alloc, c->tri, c->cap_t * 3 * sizeof(uint32_t));
@@ -299,7 +322,8 @@ static double scene_unit(const struct aiScene *scene) {
 }
 
 /* pxi_io_scene_fn, after Triangulate: the desc's arrays. */
-static px_status build(const char *path, const struct aiScene *scene, void *vctx, px_error *err) {
+static px_status build(const char *path, const pxi_file_id *id, const struct aiScene *scene, void *vctx,
+                       px_error *err) {
     load_ctx *c = vctx;
     walk_entry *stack = pxi_alloc_array(c->alloc, PXI_IO_MAX_DEPTH + 1, sizeof *stack);
     if (!stack) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
@@ -322,12 +346,27 @@ static px_status build(const char *path, const struct aiScene *scene, void *vctx
                            "out of memory reading mesh file '%s' (%zu vertices, %zu triangles)", path,
                            c->cap_v, c->cap_t);
     }
+    if (st == PX_OK) st = pxi_io_exact_positions(path, id, scene, c->alloc, &c->exact, &c->exact_count, err);
+    if (st == PX_OK && c->exact) {
+        c->mesh_count = scene->mNumMeshes;
+        c->mesh_first = pxi_alloc_array(c->alloc, c->mesh_count, sizeof(size_t));
+        if (!c->mesh_first)
+            st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", path);
+        size_t at = 0;
+        for (unsigned i = 0; st == PX_OK && i < c->mesh_count; ++i) {
+            c->mesh_first[i] = at;
+            at += scene->mMeshes[i]->mNumVertices;
+        }
+    }
     if (st == PX_OK) st = walk(path, scene, c, stack, 1, err);
     pxi_free(c->alloc, stack, (PXI_IO_MAX_DEPTH + 1) * sizeof *stack);
+    int exact = c->exact != NULL;
+    free_exact(c);
     if (st != PX_OK) {
         free_arrays(c);
         return st;
     }
+    c->float_coordinates = !exact;
     c->unit_metres = scene_unit(scene);
     return PX_OK;
 }
@@ -373,6 +412,7 @@ px_mesh *px_mesh_load(const char *path, const px_mesh_options *options, px_error
     d.nodes = c.nodes;
     d.node_count = c.nn;
     d.unit_metres = c.unit_metres;
+    d.float_coordinates = c.float_coordinates;
     px_error inner;
     memset(&inner, 0, sizeof inner);
     px_mesh *mesh = px_mesh_create(&d, options, &inner);

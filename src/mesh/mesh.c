@@ -248,7 +248,7 @@ static px_status check_overlap(const px_mesh_desc *d, range_rec *tmp, int which,
 /* Everything mesh.h lists, except the overlap of parts (needs memory) and
  * check_part_triangles. */
 static px_status check_desc(const px_mesh_desc *d, double scale, px_error *err) {
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < 3; ++i)
         if (d->reserved[i])
             return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: desc.reserved[%d] is not zero",
                              i);
@@ -267,6 +267,9 @@ static px_status check_desc(const px_mesh_desc *d, double scale, px_error *err) 
             "px_mesh_create: an array is NULL while its count is not zero (xyz %zu, triangles %zu, "
             "parts %u, nodes %u)",
             d->vertex_count, d->triangle_count, d->part_count, d->node_count);
+    if (d->float_coordinates > 1)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_mesh_create: float_coordinates %u must be 0 or 1",
+                         d->float_coordinates);
     if (!isfinite(d->unit_metres) || d->unit_metres < 0)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                          "px_mesh_create: unit_metres %g must be finite and >= 0 (0: unknown)",
@@ -503,6 +506,7 @@ px_mesh *px_mesh_create(const px_mesh_desc *desc, const px_mesh_options *options
     px_mesh_info *info = &m->info;
     for (uint32_t i = 0; i < np; ++i) info->closed_parts += m->parts[i].closed;
     info->unit_metres = desc->unit_metres;
+    info->float_coordinates = desc->float_coordinates;
     info->scale = scale;
     if (nv) {
         double lo[3] = {m->xyz[0], m->xyz[1], m->xyz[2]}, hi[3] = {lo[0], lo[1], lo[2]};

@@ -91,10 +91,13 @@ static int is_blank_or_comment(char *line) {
 /* OFF: header line "OFF", counts line "V F [E]", then V vertex lines. */
 static int read_off(FILE *f, char *line, double *xyz, size_t total) {
     int r;
-    while ((r = next_line(f, line)) == 1 && is_blank_or_comment(line)) {}
+    while ((r = next_line(f, line)) == 1 && is_blank_or_comment(line)) {
+    }
     /* "OFF" alone on its line */
-    if (r != 1 || strncmp(skip_blank(line), "OFF", 3) != 0 || *skip_blank(skip_blank(line) + 3) != '\0') return 0;
-    while ((r = next_line(f, line)) == 1 && is_blank_or_comment(line)) {}
+    if (r != 1 || strncmp(skip_blank(line), "OFF", 3) != 0 || *skip_blank(skip_blank(line) + 3) != '\0')
+        return 0;
+    while ((r = next_line(f, line)) == 1 && is_blank_or_comment(line)) {
+    }
     if (r != 1) return 0;
     char *p = skip_blank(line), *end;
     unsigned long long counts[3] = {0, 0, 0};

@@ -1024,6 +1024,20 @@ static void test_bad_files(void) {
         EXPECT_LOAD_ERROR(write_file("big_polygon.obj", big, n), "too large to triangulate");
         free(big);
     }
+    /* a coordinate the scale option makes infinite: the file's fault, PX_ERR_IO */
+    {
+        px_error e;
+        px_mesh_options so = counted_options();
+        so.scale = 1e300;
+        const char *p = write_file("big.off",
+                                   "OFF\n4 4 0\n0 0 0\n1e10 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n"
+                                   "3 0 3 2\n3 1 2 3\n",
+                                   (size_t)-1);
+        px_mesh *m = px_mesh_load(p, &so, &e);
+        CHECK(!m && e.code == PX_ERR_IO && strstr(e.message, p) && strstr(e.message, "overflows"),
+              "scaled to infinity: %s", e.message);
+        px_mesh_destroy(m);
+    }
     /* bad arguments */
     px_error err;
     CHECK(px_mesh_load(NULL, NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "NULL path");

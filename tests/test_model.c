@@ -562,6 +562,84 @@ static void test_arguments(void) {
     px_model_cache_release(NULL);
 }
 
+/* ---- Triangle leaves against convex leaves -------------------------------- */
+
+/* A triangle model against a point-set model and against one px_convex:
+ * brute force over (triangle, piece) pairs, each triangle a flat px_convex
+ * measured by GJK. */
+static void test_mixed(void) {
+    pg_rng rng;
+    pg_seed(&rng, 606);
+    tri_mesh t;
+    torus(&t, 0.8, 0.25, 12, 6, (px_vec3){0, 0, 0});
+    px_mesh *mt = make_mesh(&t, 1);
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_TRIANGLES;
+    px_model *mtri = px_model_create_from_mesh(mt, &o, NULL);
+    px_convex **tris = malloc(sizeof(px_convex *) * t.nt);
+    for (uint32_t k = 0; k < t.nt; ++k) {
+        double xyz[9];
+        for (int c = 0; c < 3; ++c)
+            for (int j = 0; j < 3; ++j) xyz[3 * c + j] = t.xyz[3 * t.tri[3 * k + c] + j];
+        tris[k] = px_convex_create(xyz, 3, NULL, NULL);
+    }
+    pieces pc;
+    make_pieces(&rng, &pc, 6, 1.0);
+    px_model *mp = px_model_create_from_points(pc.xyz, pc.end, pc.n, NULL, NULL);
+    CHECK(mtri && mp, "mixed models");
+    int n = tu_scaled(tu_sanitized() ? 8 : 60);
+    double worst = 0.0;
+    px_model_cache cache = {0};
+    for (int i = 0; i < n && mtri && mp; ++i) {
+        px_pose pa = random_pose(&rng, 0.3), pb = random_pose(&rng, 2.5);
+        double bf = brute_convex(tris, t.nt, &pa, pc.c, pc.n, &pb);
+        px_model_distance_result r;
+        CHECK(px_model_distance(mtri, &pa, mp, &pb, &cache, &r) == PX_OK, "triangles vs pieces");
+        CHECK(fabs(r.distance - bf) <= 1e-12 * (1.0 + bf), "pose %d: %.17g, brute %.17g", i, r.distance, bf);
+        worst = fmax(worst, fabs(r.distance - bf) / (1.0 + bf));
+        CHECK(fabs(vlen(r.point_a, r.point_b) - r.distance) <= 1e-12 * (1.0 + bf), "witnesses");
+        CHECK(r.feature_a.type >= PX_FEATURE_VERTEX && r.feature_a.type <= PX_FEATURE_FACE &&
+                  r.feature_a.index < 3 && r.feature_a.piece == r.leaf_a,
+              "triangle feature %u/%u", r.feature_a.type, r.feature_a.index);
+        px_model_distance_result rc;
+        CHECK(px_model_distance(mp, &pb, mtri, &pa, NULL, &rc) == PX_OK &&
+                  fabs(rc.distance - bf) <= 1e-12 * (1.0 + bf),
+              "pieces vs triangles: %.17g", rc.distance);
+        double bc = brute_convex(tris, t.nt, &pa, pc.c, 1, &pb);
+        CHECK(px_model_distance_convex(mtri, &pa, pc.c[0], &pb, NULL, &rc) == PX_OK &&
+                  fabs(rc.distance - bc) <= 1e-12 * (1.0 + bc),
+              "triangles vs convex: %.17g brute %.17g", rc.distance, bc);
+        px_model_collide_result c;
+        CHECK(px_model_collide_convex(mtri, &pa, pc.c[0], &pb, NULL, &c) == PX_OK, "collide convex");
+        if (bc > 1e-9) CHECK(!c.hit, "collide hit at %g", bc);
+        if (bc == 0.0) CHECK(c.hit, "collide missed an overlap");
+    }
+    /* A box inside the closed torus' tube counts as a collision, though no
+     * triangle touches it. */
+    double box[24];
+    pg_box(0.05, 0.05, 0.05, box);
+    px_convex *small = px_convex_create(box, 8, NULL, NULL);
+    px_pose id = px_pose_identity(), in_tube = id;
+    in_tube.t = (px_vec3){0.8, 0, 0};
+    px_model_collide_result c;
+    CHECK(px_model_collide_convex(mtri, &id, small, &in_tube, NULL, &c) == PX_OK && c.hit && c.contained,
+          "box inside the tube: hit %d contained %d", c.hit, c.contained);
+    in_tube.t = (px_vec3){0, 0, 0}; /* in the hole: outside the solid */
+    CHECK(px_model_collide_convex(mtri, &id, small, &in_tube, NULL, &c) == PX_OK && !c.hit,
+          "box in the hole");
+    printf("mixed: %d poses, worst relative error %.3g\n", n, worst);
+    px_convex_destroy(small);
+    px_model_cache_release(&cache);
+    for (uint32_t k = 0; k < t.nt; ++k) px_convex_destroy(tris[k]);
+    free(tris);
+    px_model_destroy(mtri);
+    px_model_destroy(mp);
+    px_mesh_destroy(mt);
+    mesh_free(&t);
+    free_pieces(&pc);
+}
+
 /* ---- .pxm files ---------------------------------------------------------- */
 
 static unsigned char *read_all(const char *path, size_t *size) {
@@ -689,5 +767,6 @@ int main(void) {
     test_containment();
     test_bracket();
     test_pxm();
+    test_mixed();
     return tu_finish();
 }

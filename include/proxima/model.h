@@ -28,7 +28,10 @@
 /// the one that says they intersect.
 ///
 /// Models are immutable after creation and safe to share across threads.
-/// Queries never allocate except through a caller-owned `px_model_cache`.
+/// Queries allocate only through a caller-owned `px_model_cache` (its node
+/// pair table), and for a triangle leaf met with a convex leaf, where the
+/// triangle is made a flat px_convex for that pair (~3 us, through the
+/// cache's allocator, malloc without one; docs/model.md).
 #ifndef PROXIMA_MODEL_H
 #define PROXIMA_MODEL_H
 

@@ -141,7 +141,8 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
     px_vec3 bc = pxi_xform(t_ab, b->center);
     px_vec3 d = pxi_sub(bc, a->center);
     px_vec3 ba[3];
-    for (int k = 0; k < 3; ++k) ba[k] = pxi_rot(t_ab->r, pxi_v(b->axis[3 * k], b->axis[3 * k + 1], b->axis[3 * k + 2]));
+    for (int k = 0; k < 3; ++k)
+        ba[k] = pxi_rot(t_ab->r, pxi_v(b->axis[3 * k], b->axis[3 * k + 1], b->axis[3 * k + 2]));
     px_vec3 aa[3];
     for (int k = 0; k < 3; ++k) aa[k] = pxi_v(a->axis[3 * k], a->axis[3 * k + 1], a->axis[3 * k + 2]);
     double ha[3] = {a->half.x, a->half.y, a->half.z}, hb[3] = {b->half.x, b->half.y, b->half.z};

@@ -34,7 +34,8 @@ static px_pose compose(const px_pose *a, const px_pose *b) {
     px_pose out;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            out.r[3 * i + j] = a->r[3 * i] * b->r[j] + a->r[3 * i + 1] * b->r[3 + j] + a->r[3 * i + 2] * b->r[6 + j];
+            out.r[3 * i + j] =
+                a->r[3 * i] * b->r[j] + a->r[3 * i + 1] * b->r[3 + j] + a->r[3 * i + 2] * b->r[6 + j];
     out.t = px_pose_apply(a, b->t);
     return out;
 }
@@ -43,8 +44,15 @@ static px_pose compose(const px_pose *a, const px_pose *b) {
 static px_pose origin(double x, double y, double z, double roll, double pitch, double yaw) {
     double cr = cos(roll), sr = sin(roll), cp = cos(pitch), sp = sin(pitch), cy = cos(yaw), sy = sin(yaw);
     px_pose p;
-    double r[9] = {cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, sy * cp, sy * sp * sr + cy * cr,
-                   sy * sp * cr - cy * sr, -sp, cp * sr, cp * cr};
+    double r[9] = {cy * cp,
+                   cy * sp * sr - sy * cr,
+                   cy * sp * cr + sy * sr,
+                   sy * cp,
+                   sy * sp * sr + cy * cr,
+                   sy * sp * cr - cy * sr,
+                   -sp,
+                   cp * sr,
+                   cp * cr};
     memcpy(p.r, r, sizeof r);
     p.t = (px_vec3){x, y, z};
     return p;
@@ -68,12 +76,15 @@ static void arm_poses(const double q[6], px_pose out[NLINK]) {
     const px_vec3 z = {0, 0, 1}, y = {0, 1, 0};
     px_pose link = px_pose_identity();
     out[0] = origin(0, 0, 0, 0, 0, pi / 2);
-    px_pose joints[6] = {origin(0, 0, 0.6718, pi / 2, 0, 0), origin(0, 0, 0, 0, 0, 0),
-                         origin(0.4318, -0.0203, 0.1501, 0, 0, -pi / 2), origin(0, 0, 0, pi / 2, 0, pi / 2),
-                         origin(0, 0, 0.4331, pi / 2, 0, 0), origin(0, 0.0558, 0, -pi / 2, 0, 0)};
-    px_pose visuals[6] = {origin(0, 0, -0.1, 0, 0, 0), origin(0, 0, 0.1936, 0, 0, 0), origin(0, 0, 0, 0, 0, 0),
-                          origin(0, 0, 0.3621, 0, 0, pi / 2), origin(0, 0, 0, pi, 0, pi / 2),
-                          origin(0, 0, -0.010, 0, 0, 0)};
+    px_pose joints[6] = {origin(0, 0, 0.6718, pi / 2, 0, 0),
+                         origin(0, 0, 0, 0, 0, 0),
+                         origin(0.4318, -0.0203, 0.1501, 0, 0, -pi / 2),
+                         origin(0, 0, 0, pi / 2, 0, pi / 2),
+                         origin(0, 0, 0.4331, pi / 2, 0, 0),
+                         origin(0, 0.0558, 0, -pi / 2, 0, 0)};
+    px_pose visuals[6] = {origin(0, 0, -0.1, 0, 0, 0),    origin(0, 0, 0.1936, 0, 0, 0),
+                          origin(0, 0, 0, 0, 0, 0),       origin(0, 0, 0.3621, 0, 0, pi / 2),
+                          origin(0, 0, 0, pi, 0, pi / 2), origin(0, 0, -0.010, 0, 0, 0)};
     for (int j = 0; j < 6; ++j) {
         px_pose rot = about(j == 0 ? y : z, q[j]);
         px_pose a = compose(&link, &joints[j]);
@@ -103,7 +114,8 @@ int main(int argc, char **argv) {
     uint32_t triangles = 0;
     for (int i = 0; i < NLINK; ++i) {
         char path[1024];
-        snprintf(path, sizeof path, "%s/puma560/nimasarli_puma560_description/meshes/puma_link%d.stl", models, i + 1);
+        snprintf(path, sizeof path, "%s/puma560/nimasarli_puma560_description/meshes/puma_link%d.stl", models,
+                 i + 1);
         px_mesh_options mo;
         memset(&mo, 0, sizeof mo);
         mo.scale = 0.0254; /* the STLs are in inches */
@@ -129,15 +141,15 @@ int main(int argc, char **argv) {
         px_model_get_info(tri[i], &ti);
         px_model_get_info(hull[i], &hi);
         printf("link %d: %5u triangles, %s, h = %.4f m (hull %.1f KB, triangle tree %.1f KB)\n", i + 1,
-               px_mesh_triangle_count(mesh), part.closed ? "closed" : "open  ", hi.max_h, hi.memory_bytes / 1024.0,
-               ti.memory_bytes / 1024.0);
+               px_mesh_triangle_count(mesh), part.closed ? "closed" : "open  ", hi.max_h,
+               hi.memory_bytes / 1024.0, ti.memory_bytes / 1024.0);
         triangles += px_mesh_triangle_count(mesh);
         tri_bytes += ti.memory_bytes;
         hull_bytes += hi.memory_bytes;
         px_mesh_destroy(mesh);
     }
-    printf("built %u triangles into 14 models in %.2f s (%.0f bytes per triangle for the exact trees)\n", triangles,
-           now() - t0, (double)tri_bytes / triangles);
+    printf("built %u triangles into 14 models in %.2f s (%.0f bytes per triangle for the exact trees)\n",
+           triangles, now() - t0, (double)tri_bytes / triangles);
 
     /* A box obstacle beside the arm's path. */
     double box[24];
@@ -160,7 +172,8 @@ int main(int argc, char **argv) {
     memset(box_cache, 0, sizeof box_cache);
 
     const int steps = 120;
-    double *t_tri = malloc(sizeof(double) * steps * npairs), *t_hull = malloc(sizeof(double) * steps * npairs);
+    double *t_tri = malloc(sizeof(double) * steps * npairs),
+           *t_hull = malloc(sizeof(double) * steps * npairs);
     double *t_cold = malloc(sizeof(double) * steps * npairs);
     int nt = 0, checks = 0, failures = 0, hits = 0;
     double widest = 0.0, closest = INFINITY;
@@ -178,7 +191,8 @@ int main(int argc, char **argv) {
         for (int k = 0; k < npairs; ++k) {
             px_model_distance_result r, h, c;
             double a = now();
-            px_status st = px_model_distance(tri[pa[k]], &pose[pa[k]], tri[pb[k]], &pose[pb[k]], &tri_cache[k], &r);
+            px_status st =
+                px_model_distance(tri[pa[k]], &pose[pa[k]], tri[pb[k]], &pose[pb[k]], &tri_cache[k], &r);
             double b = now();
             st |= px_model_distance(hull[pa[k]], &pose[pa[k]], hull[pb[k]], &pose[pb[k]], &hull_cache[k], &h);
             double c0 = now();
@@ -200,9 +214,11 @@ int main(int argc, char **argv) {
             if (!ok_status || !ok_bracket || !ok_warm || !ok_collide) {
                 ++failures;
                 fprintf(stderr,
-                        "model_demo: step %d links %d-%d: status %d, exact %.17g, bracket [%.17g, %.17g], cold %.17g, "
+                        "model_demo: step %d links %d-%d: status %d, exact %.17g, bracket [%.17g, %.17g], "
+                        "cold %.17g, "
                         "collide %d\n",
-                        s, pa[k] + 1, pb[k] + 1, (int)st, r.distance, h.distance, h.upper_bound, c.distance, col.hit);
+                        s, pa[k] + 1, pb[k] + 1, (int)st, r.distance, h.distance, h.upper_bound, c.distance,
+                        col.hit);
             }
             hits += col.hit;
             widest = fmax(widest, h.upper_bound - h.distance);
@@ -213,7 +229,8 @@ int main(int argc, char **argv) {
         for (int i = 0; i < NLINK; ++i) {
             px_model_distance_result r;
             px_model_collide_result col;
-            px_status st = px_model_distance_convex(tri[i], &pose[i], obstacle, &obstacle_pose, &box_cache[i], &r);
+            px_status st =
+                px_model_distance_convex(tri[i], &pose[i], obstacle, &obstacle_pose, &box_cache[i], &r);
             st |= px_model_collide_convex(tri[i], &pose[i], obstacle, &obstacle_pose, NULL, &col);
             checks += 1;
             if (st != PX_OK && st != PX_ERR_DEGENERATE) ++failures;
@@ -240,23 +257,27 @@ int main(int argc, char **argv) {
         px_model_distance_result r0, r1;
         px_model_distance(hull[i], &id, hull[(i + 1) % NLINK], &off, NULL, &r0);
         px_model_distance(l, &id, hull[(i + 1) % NLINK], &off, NULL, &r1);
-        if (fabs(r0.distance - r1.distance) > 1e-14 || r0.upper_bound - r0.distance != r1.upper_bound - r1.distance)
+        if (fabs(r0.distance - r1.distance) > 1e-14 ||
+            r0.upper_bound - r0.distance != r1.upper_bound - r1.distance)
             pxm_ok = 0;
         px_model_destroy(l);
         checks += 1;
     }
     failures += !pxm_ok;
 
-    printf("\n%d link pairs x %d poses: closest approach %.3f mm, %d poses in collision, widest bracket %.1f mm\n",
+    printf("\n%d link pairs x %d poses: closest approach %.3f mm, %d poses in collision, widest bracket %.1f "
+           "mm\n",
            npairs, steps, 1000.0 * closest, hits, 1000.0 * widest);
     double mt = median(t_tri, nt), mh = median(t_hull, nt), mc = median(t_cold, nt);
-    printf("median time per query: exact tracked %.1f us, exact cold %.1f us, part hulls tracked %.2f us\n", 1e6 * mt,
-           1e6 * mc, 1e6 * mh);
+    printf("median time per query: exact tracked %.1f us, exact cold %.1f us, part hulls tracked %.2f us\n",
+           1e6 * mt, 1e6 * mc, 1e6 * mh);
     size_t cache_tri = 0, cache_hull = 0;
-    for (int k = 0; k < npairs; ++k) cache_tri += tri_cache[k].memory_bytes, cache_hull += hull_cache[k].memory_bytes;
-    printf("cache memory after the path: %zu bytes for the exact trees' node pairs, %zu for the hulls'\n", cache_tri,
-           cache_hull);
-    printf("checks: %d (bracket, warm = cold, collide = distance, .pxm round trip), failures: %d\n", checks, failures);
+    for (int k = 0; k < npairs; ++k)
+        cache_tri += tri_cache[k].memory_bytes, cache_hull += hull_cache[k].memory_bytes;
+    printf("cache memory after the path: %zu bytes for the exact trees' node pairs, %zu for the hulls'\n",
+           cache_tri, cache_hull);
+    printf("checks: %d (bracket, warm = cold, collide = distance, .pxm round trip), failures: %d\n", checks,
+           failures);
     for (int k = 0; k < npairs; ++k) {
         px_model_cache_release(&tri_cache[k]);
         px_model_cache_release(&hull_cache[k]);

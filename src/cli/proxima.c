@@ -29,7 +29,8 @@ static const char *usage_text =
     "  --pieces   leaves of a model built from a mesh: `triangles` (exact, the\n"
     "             default for distance) or `parts` (one convex hull per part,\n"
     "             with a certified bound h; the default for build)\n"
-    "  --scale S  multiplies the mesh's coordinates (e.g. 0.0254: inches to metres)\n"
+    "  --scale S  multiplies the mesh files' coordinates (e.g. 0.0254: inches to\n"
+    "             metres); a .pxm model keeps the scale it was built with\n"
     "  --pose-a, --pose-b P   the model's pose: tx,ty,tz or tx,ty,tz,qw,qx,qy,qz\n"
     "             (translation, then a quaternion of any non-zero length)\n"
     "Exit status: 0 success, 1 an error (the message names the file), 2 bad usage.\n";

@@ -101,51 +101,41 @@ void pxi_box_fit(const px_vec3 *p, size_t n, pxi_box *out) {
     out->half = pxi_v(half[0], half[1], half[2]);
 }
 
-void pxi_box_of_triangle(const px_vec3 t[3], pxi_box *out) {
-    px_vec3 e0 = pxi_unit_safe(pxi_sub(t[1], t[0]));
-    px_vec3 n = pxi_unit_safe(pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0])));
-    if (!(pxi_len2(e0) > 0.5) || !(pxi_len2(n) > 0.5) || !pxi_is_finite3(n)) {
-        pxi_box_fit(t, 3, out); /* a zero-area triangle */
-        return;
-    }
-    px_vec3 e1 = pxi_cross(n, e0);
-    px_vec3 ax[3] = {e0, e1, n};
-    px_vec3 o = t[0];
-    double lo[3], hi[3], reach = 0.0;
-    for (int k = 0; k < 3; ++k) {
-        lo[k] = hi[k] = 0.0;
-        for (int j = 1; j < 3; ++j) {
-            px_vec3 d = pxi_sub(t[j], o);
-            double v = pxi_dot(ax[k], d);
-            lo[k] = fmin(lo[k], v);
-            hi[k] = fmax(hi[k], v);
-            reach = fmax(reach, pxi_max_abs(d));
-        }
-    }
-    double pad = 16.0 * DBL_EPSILON * (4.0 * reach + pxi_max_abs(o)) + 0x1p-1000;
-    px_vec3 c = o;
-    double half[3];
-    for (int k = 0; k < 3; ++k) {
-        c = pxi_madd(c, ax[k], 0.5 * (lo[k] + hi[k]));
-        half[k] = 0.5 * (hi[k] - lo[k]) + pad;
-        out->axis[3 * k] = ax[k].x;
-        out->axis[3 * k + 1] = ax[k].y;
-        out->axis[3 * k + 2] = ax[k].z;
-    }
-    out->center = c;
-    out->half = pxi_v(half[0], half[1], half[2]);
+/* Projection radius of a box (axes ax[], half extents h[]) on u. */
+static inline double box_radius(const px_vec3 ax[3], const double h[3], px_vec3 u) {
+    return h[0] * fabs(pxi_dot(ax[0], u)) + h[1] * fabs(pxi_dot(ax[1], u)) + h[2] * fabs(pxi_dot(ax[2], u));
 }
 
-double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint) {
-    /* B's axes and centre in A's frame, then in A's box basis. */
-    px_vec3 bc = pxi_xform(t_ab, b->center);
-    px_vec3 d = pxi_sub(bc, a->center);
-    px_vec3 ba[3];
-    for (int k = 0; k < 3; ++k)
+double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint,
+                   double limit) {
+    /* B's axes and centre in A's frame. */
+    px_vec3 d = pxi_sub(pxi_xform(t_ab, b->center), a->center);
+    px_vec3 aa[3], ba[3];
+    for (int k = 0; k < 3; ++k) {
+        aa[k] = pxi_v(a->axis[3 * k], a->axis[3 * k + 1], a->axis[3 * k + 2]);
         ba[k] = pxi_rot(t_ab->r, pxi_v(b->axis[3 * k], b->axis[3 * k + 1], b->axis[3 * k + 2]));
-    px_vec3 aa[3];
-    for (int k = 0; k < 3; ++k) aa[k] = pxi_v(a->axis[3 * k], a->axis[3 * k + 1], a->axis[3 * k + 2]);
+    }
     double ha[3] = {a->half.x, a->half.y, a->half.z}, hb[3] = {b->half.x, b->half.y, b->half.z};
+    /* Rounding of every gap: a few ulps of the sizes involved (divided by
+     * the axis length for the cross products). */
+    double dl = pxi_len(d);
+    double margin = 64.0 * DBL_EPSILON * (dl + ha[0] + ha[1] + ha[2] + hb[0] + hb[1] + hb[2]);
+    double best = -INFINITY;
+    /* Cheapest and most often decisive first, each returning as soon as
+     * the bound exceeds `limit`: the caller's hint (the direction between
+     * the closest points found so far, which sees two parallel surfaces
+     * facing each other), then the line of centres (boxes lying
+     * diagonally from each other). */
+    if (hint) {
+        best = fabs(pxi_dot(d, *hint)) - box_radius(aa, ha, *hint) - box_radius(ba, hb, *hint) - margin;
+        if (best > limit) return best;
+    }
+    if (dl > 0.0) {
+        px_vec3 u = pxi_scale(d, 1.0 / dl);
+        best = max2(best, dl - box_radius(aa, ha, u) - box_radius(ba, hb, u) - margin);
+        if (best > limit) return best;
+    }
+    /* The 15 axes of the separating-axis test, in A's box basis. */
     double r[3][3], ar[3][3], t[3];
     for (int i = 0; i < 3; ++i) {
         t[i] = pxi_dot(aa[i], d);
@@ -154,45 +144,19 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
             ar[i][j] = fabs(r[i][j]);
         }
     }
-    /* Rounding of every gap: a few ulps of the sizes involved (divided by
-     * the axis length for the cross products). */
-    double size = pxi_len(d) + ha[0] + ha[1] + ha[2] + hb[0] + hb[1] + hb[2];
-    double margin = 64.0 * DBL_EPSILON * size;
-    double best = -INFINITY;
-    /* A's axes. */
-    for (int i = 0; i < 3; ++i) {
-        double rb = hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2];
-        best = max2(best, fabs(t[i]) - ha[i] - rb - margin);
-    }
-    /* B's axes. */
+    for (int i = 0; i < 3; ++i)
+        best = max2(best,
+                    fabs(t[i]) - ha[i] - (hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2]) - margin);
+    if (best > limit) return best;
     for (int j = 0; j < 3; ++j) {
-        double ra = ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j];
         double tb = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
-        best = max2(best, fabs(tb) - ra - hb[j] - margin);
+        best =
+            max2(best, fabs(tb) - (ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j]) - hb[j] - margin);
     }
-    /* The line of centres, the best axis when the boxes lie diagonally
-     * from each other (no face or edge axis sees the whole gap then). */
-    double dl = pxi_len(d);
-    if (dl > 0.0) {
-        double ra = 0.0, rb = 0.0;
-        for (int k = 0; k < 3; ++k) {
-            ra += ha[k] * fabs(t[k]);
-            rb += hb[k] * fabs(pxi_dot(ba[k], d));
-        }
-        best = max2(best, (dl * dl - ra - rb) / dl - margin);
-    }
-    /* The caller's hint (a unit vector, A's frame): the direction between
-     * the closest points found so far, which sees the gap between two
-     * parallel surfaces facing each other. */
-    if (hint) {
-        double ra = 0.0, rb = 0.0;
-        for (int k = 0; k < 3; ++k) {
-            ra += ha[k] * fabs(pxi_dot(aa[k], *hint));
-            rb += hb[k] * fabs(pxi_dot(ba[k], *hint));
-        }
-        best = max2(best, fabs(pxi_dot(d, *hint)) - ra - rb - margin);
-    }
-    /* Cross products A_i x B_j, normalised (|A_i x B_j| = sqrt(1 - r_ij^2)). */
+    if (best > limit) return best;
+    /* Cross products A_i x B_j, normalised (|A_i x B_j| = sqrt(1 - r_ij^2));
+     * nearly parallel pairs are skipped (their gap is ill-conditioned and
+     * the face axes already cover them). */
     for (int i = 0; i < 3; ++i) {
         int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
@@ -205,5 +169,35 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
             best = max2(best, (tt - ra - rb - margin) / sqrt(len2));
         }
     }
+    return best;
+}
+
+double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_box, const px_vec3 *hint,
+                       double limit) {
+    px_vec3 c = t_box ? pxi_xform(t_box, b->center) : b->center;
+    px_vec3 ax[3];
+    for (int k = 0; k < 3; ++k) {
+        px_vec3 a = pxi_v(b->axis[3 * k], b->axis[3 * k + 1], b->axis[3 * k + 2]);
+        ax[k] = t_box ? pxi_rot(t_box->r, a) : a;
+    }
+    double h[3] = {b->half.x, b->half.y, b->half.z};
+    px_vec3 e1 = pxi_sub(t[1], t[0]), e2 = pxi_sub(t[2], t[0]);
+    px_vec3 d0 = pxi_sub(t[0], c);
+    double margin = 64.0 * DBL_EPSILON * (pxi_len(d0) + pxi_len(e1) + pxi_len(e2) + h[0] + h[1] + h[2]);
+    double best = -INFINITY;
+    /* On a unit axis u: the triangle's interval against the box's. */
+#define PXI_TRI_AXIS(u, unit_len)                                                                            \
+    do {                                                                                                     \
+        double p0 = pxi_dot(d0, u), p1 = p0 + pxi_dot(e1, u), p2 = p0 + pxi_dot(e2, u);                      \
+        double lo = fmin(p0, fmin(p1, p2)), hi = max2(p0, max2(p1, p2)), rr = box_radius(ax, h, u);          \
+        best = max2(best, (max2(lo - rr, -rr - hi) - margin) / (unit_len));                                  \
+        if (best > limit) return best;                                                                       \
+    } while (0)
+    if (hint) PXI_TRI_AXIS(*hint, 1.0);
+    for (int k = 0; k < 3; ++k) PXI_TRI_AXIS(ax[k], 1.0);
+    px_vec3 n = pxi_cross(e1, e2);
+    double nl = pxi_len(n);
+    if (nl > 0.0) PXI_TRI_AXIS(n, nl);
+#undef PXI_TRI_AXIS
     return best;
 }

@@ -108,14 +108,19 @@ int pxi_segment_crosses_tri(px_vec3 p, px_vec3 q, const px_vec3 t[3]);
 /* Computes the box of `n` points (box.c). */
 void pxi_box_fit(const px_vec3 *p, size_t n, pxi_box *out);
 
-/* The box of one triangle: in its plane, along its first edge. */
-void pxi_box_of_triangle(const px_vec3 t[3], pxi_box *out);
-
 /* A lower bound on the distance between box a (frame A) and box b (frame
  * B, mapped into A by t_ab): the largest gap of the separating-axis test
  * over the 15 axes, the line of centres and `hint` (a unit vector in A's
- * frame, or NULL), minus a rounding margin; <= 0 when they may overlap. */
-double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint);
+ * frame, or NULL), minus a rounding margin; <= 0 when they may overlap;
+ * a value above `limit` may be returned before every axis is tried. */
+double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint,
+                   double limit);
+
+/* The same between triangle t (A's frame) and box b (its frame mapped into
+ * A's by t_box; NULL: already in A's) over the box's axes, the triangle's
+ * normal and the hint. Both return as soon as the bound exceeds `limit`. */
+double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_box, const px_vec3 *hint,
+                       double limit);
 
 /* Ray parity: 1 when p lies inside the solid bounded by the model's closed
  * parts, 0 outside, found by casting rays and counting crossings with the

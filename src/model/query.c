@@ -215,6 +215,32 @@ static void record(qctx *q, double d, uint32_t ia, uint32_t ib, px_vec3 pa, px_v
     q->fb = fb;
 }
 
+/* max of a and b without libm's call. */
+static inline double max2(double a, double b) { return a > b ? a : b; }
+
+/* Gap between the projections of s and t on u (any length: divided by it). */
+static double axis_gap(const px_vec3 s[3], const px_vec3 t[3], px_vec3 u) {
+    double s0 = pxi_dot(u, s[0]), s1 = pxi_dot(u, s[1]), s2 = pxi_dot(u, s[2]);
+    double t0 = pxi_dot(u, t[0]), t1 = pxi_dot(u, t[1]), t2 = pxi_dot(u, t[2]);
+    double slo = fmin(s0, fmin(s1, s2)), shi = max2(s0, max2(s1, s2));
+    double tlo = fmin(t0, fmin(t1, t2)), thi = max2(t0, max2(t1, t2));
+    double gap = max2(tlo - shi, slo - thi);
+    double len = pxi_len(u);
+    return len > 0.0 ? gap / len : -INFINITY;
+}
+
+/* A lower bound on the distance of two triangles (A's frame) from a few
+ * separating axes, minus a rounding margin: the hint, and both normals. */
+static double tri_gap(const px_vec3 s[3], const px_vec3 t[3], const px_vec3 *hint) {
+    double g = -INFINITY;
+    if (hint) g = axis_gap(s, t, *hint);
+    g = max2(g, axis_gap(s, t, pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]))));
+    g = max2(g, axis_gap(s, t, pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]))));
+    double size = pxi_max_abs(s[0]) + pxi_max_abs(t[0]) + pxi_len(pxi_sub(s[1], s[0])) +
+                  pxi_len(pxi_sub(s[2], s[0])) + pxi_len(pxi_sub(t[1], t[0])) + pxi_len(pxi_sub(t[2], t[0]));
+    return g - 64.0 * DBL_EPSILON * size;
+}
+
 /* The triangle feature of a feature of its px_convex copy (whose vertex
  * numbering is CGAL's): vertices matched by position. */
 static px_feature triangle_feature(const px_convex *c, px_feature f, const px_vec3 t[3]) {
@@ -297,6 +323,10 @@ static void leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
         tri_of(q->a, la, s);
         tri_of(q->b, lb, t);
         for (int k = 0; k < 3; ++k) t[k] = pxi_xform(&q->t_ab, t[k]);
+        /* A cheap bound first: the two triangles projected on the
+         * direction between the best witnesses and on each one's normal. */
+        double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : 0.0;
+        if (tri_gap(s, t, q->has_hint ? &q->hint : NULL) > limit) return;
         d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
         pa = pxi_xform(q->pa, pa);
         pb = pxi_xform(q->pa, pb);
@@ -321,26 +351,24 @@ static double pair_bound(qctx *q, uint32_t ia, uint32_t ib, double limit) {
     q->node_pairs++;
     double lb = sphere_bound(q, na, nb);
     if (lb > limit) return lb;
-    /* Boxes: inner nodes keep theirs; a triangle leaf's is made on the fly
-     * (against an inner node only: two triangles are measured directly). */
+    /* Boxes: inner nodes keep theirs; a triangle leaf against an inner node
+     * is tested against the box directly (two triangles are measured). */
+    const px_vec3 *hint = q->has_hint ? &q->hint : NULL;
     const pxi_box *ba = na->box != PXI_NONE ? &q->a->boxes[na->box] : NULL;
     const pxi_box *bb = nb->box != PXI_NONE ? &q->b->boxes[nb->box] : NULL;
-    pxi_box tmp;
-    if (!ba && bb && !na->hull) {
+    if (ba && bb) {
+        lb = max2(lb, pxi_box_gap(ba, bb, &q->t_ab, hint, limit));
+    } else if (!ba && bb && !na->hull) {
         px_vec3 t[3];
         tri_of(q->a, na->child[0], t);
-        pxi_box_of_triangle(t, &tmp);
-        ba = &tmp;
+        lb = max2(lb, pxi_tri_box_gap(t, bb, &q->t_ab, hint, limit));
     } else if (ba && !bb && !nb->hull) {
         px_vec3 t[3];
         tri_of(q->b, nb->child[0], t);
-        pxi_box_of_triangle(t, &tmp);
-        bb = &tmp;
+        for (int k = 0; k < 3; ++k) t[k] = pxi_xform(&q->t_ab, t[k]);
+        lb = max2(lb, pxi_tri_box_gap(t, ba, NULL, hint, limit));
     }
-    if (ba && bb) {
-        lb = fmax(lb, pxi_box_gap(ba, bb, &q->t_ab, q->has_hint ? &q->hint : NULL));
-        if (lb > limit) return lb;
-    }
+    if (lb > limit) return lb;
     if (!na->hull || !nb->hull) return lb;
     px_distance_result r;
     if (!hull_distance(q, ia, ib, &r)) return INFINITY;

@@ -405,24 +405,32 @@ static void descend(qctx *q) {
         qpair e = stack[--top];
         if (!keep(q, e.lb, e.a, e.b)) continue;
         const pxi_mnode *na = &a->nodes[e.a], *nb = &b->nodes[e.b];
-        int split_a = !is_leaf(na) && (is_leaf(nb) || na->radius >= nb->radius);
-        qpair kids[2];
+        /* Both nodes split when both are inner (four child pairs, a level
+         * of each tree per step), else the inner one. */
+        uint32_t ca_list[2] = {e.a, e.a}, cb_list[2] = {e.b, e.b}, nca = 1, ncb = 1;
+        if (!is_leaf(na)) ca_list[0] = na->child[0], ca_list[1] = na->child[1], nca = 2;
+        if (!is_leaf(nb)) cb_list[0] = nb->child[0], cb_list[1] = nb->child[1], ncb = 2;
+        qpair kids[4];
         uint32_t nk = 0;
-        for (int k = 0; k < 2 && !done(q); ++k) {
-            uint32_t ca = split_a ? na->child[k] : e.a, cb = split_a ? e.b : nb->child[k];
-            if (is_leaf(&a->nodes[ca]) && is_leaf(&b->nodes[cb])) {
-                double lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
-                if (keep(q, lb, ca, cb)) leaf_pair(q, ca, cb);
-                continue;
+        for (uint32_t i = 0; i < nca && !done(q); ++i) {
+            for (uint32_t j = 0; j < ncb && !done(q); ++j) {
+                uint32_t ca = ca_list[i], cb = cb_list[j];
+                if (is_leaf(&a->nodes[ca]) && is_leaf(&b->nodes[cb])) {
+                    double lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
+                    if (keep(q, lb, ca, cb)) leaf_pair(q, ca, cb);
+                    continue;
+                }
+                double lb = pair_bound(q, ca, cb, current_limit(q));
+                if (keep(q, lb, ca, cb)) kids[nk++] = (qpair){ca, cb, lb};
             }
-            double lb = pair_bound(q, ca, cb, current_limit(q));
-            if (keep(q, lb, ca, cb)) kids[nk++] = (qpair){ca, cb, lb};
         }
-        if (nk == 2 && kids[0].lb < kids[1].lb) {
-            qpair t = kids[0];
-            kids[0] = kids[1];
-            kids[1] = t;
-        }
+        /* Farthest pushed first, so the nearest is taken next. */
+        for (uint32_t i = 1; i < nk; ++i)
+            for (uint32_t j = i; j > 0 && kids[j - 1].lb < kids[j].lb; --j) {
+                qpair t = kids[j];
+                kids[j] = kids[j - 1];
+                kids[j - 1] = t;
+            }
         for (uint32_t k = 0; k < nk; ++k) {
             if (top == sizeof stack / sizeof stack[0]) {
                 q->status = PX_ERR_INTERNAL;

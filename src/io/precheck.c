@@ -65,6 +65,7 @@
 #define sat_add pxi_sat_add
 #define sat_mul pxi_sat_mul
 #define lower pxi_lower
+#define signature_has pxi_signature_has
 
 /* 1 if the file starts with `s` (ASCII letters compared case-insensitively). */
 static int starts_with_ci(const io_head *h, const char *s) {
@@ -78,7 +79,7 @@ static int starts_with_ci(const io_head *h, const char *s) {
 /* Assimp's signature test (SearchFileHeaderForToken with default arguments):
  * 1 if lowercase `token` occurs in the first 200 bytes, lowercased, once the
  * NUL bytes are removed. */
-static int signature_has(const io_head *h, const char *token) {
+int pxi_signature_has(const io_head *h, const char *token) {
     char buf[SIGNATURE_BYTES + 1];
     size_t n = 0;
     for (size_t i = 0; i < h->len && i < SIGNATURE_BYTES; ++i)
@@ -516,6 +517,28 @@ static px_status check_unchecked(const io_head *h, px_error *err) {
     return PX_OK;
 }
 
+/* Compressed files Assimp 5.2 inflates whole into memory before reading
+ * them, with no bound but the memory it gets: XGL's importer a .zgl file
+ * (raw deflate), the Blender importer a gzip stream (a 3 MB .blend of
+ * 3 GiB of zeros, and a 3 MB .zgl, ended in std::bad_alloc after 1 GB,
+ * under a 2 GiB address-space limit). The size they inflate to is not
+ * written anywhere reliable (gzip's trailer holds it modulo 2^32, unchecked),
+ * so they are refused. */
+static px_status check_compressed(const io_head *h, px_error *err) {
+    if (strcmp(h->ext, "zgl") == 0)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': ZGL (compressed XGL) files are not accepted (Assimp 5.2 inflates "
+                         "them whole, unchecked): decompress it to .xgl",
+                         h->path);
+    const int gzip = h->len >= 2 && h->data[0] == 0x1F && h->data[1] == 0x8B;
+    if (gzip && (strcmp(h->ext, "blend") == 0 || signature_has(h, "blender")))
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': compressed (gzip) Blender files are not accepted (Assimp 5.2 "
+                         "inflates them whole, unchecked): save it uncompressed",
+                         h->path);
+    return PX_OK;
+}
+
 /* ---------------------------------------------------------------- entry */
 
 /* Lowercased extension of the file name in `path` (after the last '.' of
@@ -533,12 +556,12 @@ static void file_extension(const char *path, char *ext, size_t size) {
 }
 
 /* Runs the checks of every format Assimp could read the file as. */
-/* Runs the checks of every format Assimp could read the file as. */
 static px_status check_formats(const io_head *h, px_error *err) {
     const int off = strcmp(h->ext, "off") == 0, ply = strcmp(h->ext, "ply") == 0,
               stl = strcmp(h->ext, "stl") == 0, dae = strcmp(h->ext, "dae") == 0,
               gltf = strcmp(h->ext, "gltf") == 0 || strcmp(h->ext, "glb") == 0;
     px_status st = check_unchecked(h, err);
+    if (st == PX_OK) st = check_compressed(h, err);
     if (st == PX_OK && (off || starts_with_ci(h, "off"))) st = check_off(h, err);
     /* PLYImporter::CanRead: "ply" anywhere in the signature bytes. */
     if (st == PX_OK && (ply || signature_has(h, "ply"))) st = pxi_check_ply(h, err);
@@ -555,6 +578,8 @@ static px_status check_formats(const io_head *h, px_error *err) {
         ++b;
     if (st == PX_OK && (gltf || starts_with_ci(h, "gltf") || (b < h->len && h->data[b] == '{')))
         st = pxi_check_gltf(h, err);
+    /* AC3D, BVH, FBX, OpenGEX and XML nesting (nest.c). */
+    if (st == PX_OK) st = pxi_check_nesting(h, err);
     return st;
 }
 

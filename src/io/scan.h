@@ -89,4 +89,12 @@ px_status pxi_check_ply(const io_head *h, px_error *err);
 px_status pxi_check_dae(const io_head *h, px_error *err);
 px_status pxi_check_gltf(const io_head *h, px_error *err);
 
+/* Nesting depth of AC3D, BVH, FBX, OpenGEX and XML files (nest.c). */
+px_status pxi_check_nesting(const io_head *h, px_error *err);
+
+/* Assimp's signature test (BaseImporter::SearchFileHeaderForToken with its
+ * default arguments): 1 if lowercase `token` occurs in the first 200 bytes,
+ * lowercased, once the NUL bytes are removed (precheck.c). */
+int pxi_signature_has(const io_head *h, const char *token);
+
 #endif

@@ -219,6 +219,20 @@ typedef struct dae_ref {
     g_str target;
 } dae_ref;
 
+/* A <float_array>, <Name_array> or <IDREF_array>: Assimp 5.2 reads
+ * `count` values from it (0 without the attribute). */
+typedef struct dae_array {
+    g_str id;
+    u64 count;
+} dae_array;
+
+/* An <accessor>: the values it reads from its source array. */
+typedef struct dae_accessor {
+    g_str source; /* without the '#' */
+    u64 count, offset, stride;
+    u64 params, size; /* its <param>s, and their width (float4x4: 16) */
+} dae_accessor;
+
 typedef struct dae_scan {
     const unsigned char *d;
     size_t size;
@@ -229,6 +243,13 @@ typedef struct dae_scan {
     u32 nref, rcap;
     int bad_attr;
     int bad_p; /* a <p> index list with a byte Assimp's reader never passes */
+    /* Data arrays and accessors (dae_accessors). */
+    dae_array *arr;
+    u32 narr, arrcap;
+    dae_accessor *acc;
+    u32 nacc, acccap;
+    u32 acc_depth;  /* element depth of the open <accessor>, or ~0u */
+    int bad_number; /* a count, offset or stride that is not a plain number */
 } dae_scan;
 
 static u64 hash_str(const unsigned char *s, u32 len) {
@@ -322,6 +343,39 @@ static int p_content_ok(const dae_scan *s, size_t i) {
     return 1;
 }
 
+/* Grows a table of `size`-byte records to hold one more. */
+static void *dae_grow(dae_scan *s, void *a, u32 n, u32 *cap, size_t size) {
+    if (n < *cap) return a;
+    if (n >= MAX_EDGES) return s->g.too_many = 1, NULL;
+    u32 c = *cap ? *cap * 2 : 64;
+    void *b = pxi_alloc_array(s->g.alloc, c, size);
+    if (!b) return s->g.oom = 1, NULL;
+    if (a) {
+        memcpy(b, a, (size_t)n * size);
+        pxi_free(s->g.alloc, a, (size_t)*cap * size);
+    }
+    *cap = c;
+    return b;
+}
+
+/* An attribute value as pugixml's as_uint would read it, when it is plain
+ * decimal digits (blank space around them allowed) of at most 32 bits; else
+ * sets bad_number. An absent attribute is `absent`. */
+static u64 dae_number(dae_scan *s, g_str v, int present, u64 absent) {
+    if (!present) return absent;
+    const unsigned char *p = s->d + v.off, *e = p + v.len;
+    while (p < e && is_xml_space(*p)) ++p;
+    while (e > p && is_xml_space(e[-1])) --e;
+    u64 x = 0;
+    if (p == e) s->bad_number = 1;
+    for (; p < e; ++p) {
+        if (*p < '0' || *p > '9' || x > 0xFFFFFFFFull) return s->bad_number = 1, 0;
+        x = x * 10 + (u64)(*p - '0');
+    }
+    if (x > 0x7FFFFFFFull) s->bad_number = 1; /* accessor counts are read as int */
+    return x;
+}
+
 /* Scans the document's tags. Returns 0 on a refusal (flags in s). */
 static int dae_tags(dae_scan *s, int *too_deep) {
     /* Open elements: the graph vertex each is, or ~0u. */
@@ -360,6 +414,7 @@ static int dae_tags(dae_scan *s, int *too_deep) {
         if (s->size - i >= 2 && d[i + 1] == '/') { /* end tag: closes the innermost element */
             if (depth) {
                 --depth;
+                if (depth == s->acc_depth) s->acc_depth = none;
                 if (open[depth] != none) {
                     vtop = none;
                     for (u32 k = depth; k-- > 0;)
@@ -377,8 +432,10 @@ static int dae_tags(dae_scan *s, int *too_deep) {
         size_t j = i + 1, name0 = j;
         while (j < s->size && !is_xml_space(d[j]) && d[j] != '/' && d[j] != '>') ++j;
         size_t name_len = j - name0;
-        g_str id = {0, 0}, name = {0, 0}, url = {0, 0};
-        int has_url = 0, self_closing = 0;
+        g_str id = {0, 0}, name = {0, 0}, url = {0, 0}, count = {0, 0}, offset = {0, 0}, stride = {0, 0},
+              source = {0, 0}, type = {0, 0};
+        int has_url = 0, self_closing = 0, has_id = 0, has_count = 0, has_offset = 0, has_stride = 0,
+            has_source = 0, has_type = 0;
         for (;;) {
             while (j < s->size && is_xml_space(d[j])) ++j;
             if (j >= s->size) break;
@@ -406,17 +463,54 @@ static int dae_tags(dae_scan *s, int *too_deep) {
             j = qe ? (size_t)(qe - d) : s->size;
             g_str val = {(u32)v0, (u32)(j - v0)};
             if (j < s->size) ++j;
-            int want = (a_len == 2 && memcmp(d + a0, "id", 2) == 0)     ? 1
-                       : (a_len == 4 && memcmp(d + a0, "name", 4) == 0) ? 2
-                       : (a_len == 3 && memcmp(d + a0, "url", 3) == 0)  ? 3
-                                                                        : 0;
-            if (!want) continue;
-            if (want == 1) id = val;
-            if (want == 2) name = val;
-            if (want == 3) url = val, has_url = 1;
+#define ATTR_IS(s_) (a_len == sizeof(s_) - 1 && memcmp(d + a0, s_, a_len) == 0)
+            if (ATTR_IS("id")) id = val, has_id = 1;
+            if (ATTR_IS("name")) name = val;
+            if (ATTR_IS("url")) url = val, has_url = 1;
+            if (ATTR_IS("count")) count = val, has_count = 1;
+            if (ATTR_IS("offset")) offset = val, has_offset = 1;
+            if (ATTR_IS("stride")) stride = val, has_stride = 1;
+            if (ATTR_IS("source")) source = val, has_source = 1;
+            if (ATTR_IS("type")) type = val, has_type = 1;
+#undef ATTR_IS
         }
         i = j;
         if (name_len == 1 && d[name0] == 'p' && !self_closing && !p_content_ok(s, i)) return s->bad_p = 1, 0;
+#define NAME_IS(s_) (name_len == sizeof(s_) - 1 && memcmp(d + name0, s_, name_len) == 0)
+        if (NAME_IS("float_array") || NAME_IS("Name_array") || NAME_IS("IDREF_array")) {
+            if (has_id) {
+                if (!plain_value(d + id.off, id.len)) return s->bad_attr = 1, 0;
+                dae_array *a = dae_grow(s, s->arr, s->narr, &s->arrcap, sizeof *a);
+                if (!a) return 0;
+                s->arr = a;
+                a[s->narr].id = id;
+                a[s->narr].count = dae_number(s, count, has_count, 0);
+                ++s->narr;
+            }
+        } else if (NAME_IS("accessor") && s->acc_depth == none) {
+            dae_accessor *a = dae_grow(s, s->acc, s->nacc, &s->acccap, sizeof *a);
+            if (!a) return 0;
+            s->acc = a;
+            a += s->nacc++;
+            memset(a, 0, sizeof *a);
+            if (has_source && source.len && d[source.off] == '#') {
+                if (!plain_value(d + source.off, source.len)) return s->bad_attr = 1, 0;
+                a->source.off = source.off + 1;
+                a->source.len = source.len - 1;
+            }
+            a->count = dae_number(s, count, has_count, 0);
+            a->offset = dae_number(s, offset, has_offset, 0);
+            a->stride = dae_number(s, stride, has_stride, 1);
+            if (!self_closing) s->acc_depth = depth;
+        } else if (NAME_IS("param") && s->acc_depth != none) {
+            /* ReadAccessor: each <param> below the accessor; a typed one
+             * adds its width. */
+            dae_accessor *a = &s->acc[s->nacc - 1];
+            ++a->params;
+            if (has_type) a->size += type.len == 8 && memcmp(d + type.off, "float4x4", 8) == 0 ? 16 : 1;
+        }
+#undef NAME_IS
+        if (s->bad_number) return 0;
         int is_node = (name_len == 4 && memcmp(d + name0, "node", 4) == 0) ||
                       (name_len == 12 && memcmp(d + name0, "visual_scene", 12) == 0);
         int is_inst = name_len == 13 && memcmp(d + name0, "instance_node", 13) == 0;
@@ -490,6 +584,53 @@ static void dae_name(const dae_scan *s, u32 v, char *out, size_t size) {
     snprintf(out, size, "'%.*s'", (int)(a.len < 60 ? a.len : 60), (const char *)s->d + a.off);
 }
 
+/* The accessors, checked against the arrays they read (Assimp 5.2 does not):
+ * ColladaParser::ExtractDataObjectFromChannel reads, for an index below the
+ * accessor's count, the values offset + index * stride + (0 .. params - 1)
+ * of its source array, and ColladaLoader::ReadFloat offset + index * stride
+ * + (0 .. width - 1), where the array holds the `count` values its count
+ * attribute declares (none without it). An accessor reading past them made
+ * Assimp read past the array's heap block: a SIGSEGV (no count attribute,
+ * or an offset of 100000), or garbage points returned as PX_OK (a count of
+ * 3 for 24 values, a stride of 1000). A duplicate array id counts with its
+ * smallest count. Returns the first accessor that reads too far, or ~0u;
+ * *need and *have get its values. */
+static u32 dae_accessors(dae_scan *s, u64 *need, u64 *have) {
+    u32 size = 16, bad = ~0u;
+    while (size < 2 * s->narr) size *= 2;
+    u32 *table = pxi_alloc_array(s->g.alloc, size, sizeof(u32));
+    if (!table) return s->g.oom = 1, ~0u;
+    memset(table, 0xFF, (size_t)size * sizeof(u32));
+    for (u32 a = 0; a < s->narr; ++a) {
+        const g_str id = s->arr[a].id;
+        u32 k = (u32)hash_str(s->d + id.off, id.len) & (size - 1);
+        for (; table[k] != ~0u; k = (k + 1) & (size - 1))
+            if (str_eq(s, s->arr[table[k]].id, id)) break;
+        if (table[k] == ~0u)
+            table[k] = a;
+        else if (s->arr[a].count < s->arr[table[k]].count)
+            s->arr[table[k]].count = s->arr[a].count;
+    }
+    for (u32 c = 0; c < s->nacc && bad == ~0u; ++c) {
+        const dae_accessor *a = &s->acc[c];
+        if (!a->count || !a->source.len) continue;
+        u32 k = (u32)hash_str(s->d + a->source.off, a->source.len) & (size - 1);
+        for (; table[k] != ~0u; k = (k + 1) & (size - 1))
+            if (str_eq(s, s->arr[table[k]].id, a->source)) break;
+        if (table[k] == ~0u) continue; /* Assimp: "Unable to resolve library reference" */
+        u64 width = a->params > a->size ? a->params : a->size;
+        if (width < 1) width = 1;
+        const u64 n = pxi_sat_add(pxi_sat_add(a->offset, pxi_sat_mul(a->count - 1, a->stride)), width);
+        if (n > s->arr[table[k]].count) {
+            bad = c;
+            *need = n;
+            *have = s->arr[table[k]].count;
+        }
+    }
+    pxi_free(s->g.alloc, table, (size_t)size * sizeof(u32));
+    return bad;
+}
+
 px_status pxi_check_dae(const io_head *h, px_error *err) {
     unsigned char *doc;
     px_status st = pxi_read_all(h, &doc, err);
@@ -499,6 +640,7 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
     s.d = doc;
     s.size = (size_t)h->size;
     s.g.alloc = h->alloc;
+    s.acc_depth = ~0u;
     int too_deep = 0;
     u64 *count = NULL;
     if (h->size >= ~0u) {
@@ -511,6 +653,13 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
         else if (too_deep)
             st = pxi_error(err, PX_ERR_IO, "mesh file '%s': its XML is nested more than %d elements deep",
                            h->path, XML_MAX_DEPTH);
+        else if (s.bad_number)
+            st = pxi_error(
+                err, PX_ERR_IO,
+                "mesh file '%s': a COLLADA accessor or data array has a count, offset or stride that "
+                "is not a plain number below 2^31 (not accepted: what Assimp 5.2 reads could not be "
+                "checked)",
+                h->path);
         else if (s.bad_p)
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': a COLLADA <p> index list holds something other than integers and "
@@ -525,6 +674,23 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': its COLLADA node graph has more than %llu nodes or %u links",
                            h->path, (u64)PX_IO_MAX_NODES, MAX_EDGES);
+        goto done;
+    }
+    u64 need = 0, have = 0;
+    const u32 bad_acc = dae_accessors(&s, &need, &have);
+    if (s.g.oom) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        goto done;
+    }
+    if (bad_acc != ~0u) {
+        const dae_accessor *a = &s.acc[bad_acc];
+        st = pxi_error(
+            err, PX_ERR_IO,
+            "mesh file '%s': a COLLADA accessor of array '%.*s' reads %llu values (offset %llu, "
+            "count %llu, stride %llu), but the array declares %llu (its count attribute; Assimp 5.2 "
+            "would read past it)",
+            h->path, (int)(a->source.len < 60 ? a->source.len : 60), (const char *)s.d + a->source.off, need,
+            a->offset, a->count, a->stride, have);
         goto done;
     }
     count = pxi_alloc_array(h->alloc, s.g.n ? s.g.n : 1, sizeof(u64));
@@ -543,6 +709,8 @@ done:
     if (count) pxi_free(h->alloc, count, (size_t)(s.g.n ? s.g.n : 1) * sizeof(u64));
     if (s.v) pxi_free(h->alloc, s.v, (size_t)s.vcap * sizeof *s.v);
     if (s.r) pxi_free(h->alloc, s.r, (size_t)s.rcap * sizeof *s.r);
+    if (s.arr) pxi_free(h->alloc, s.arr, (size_t)s.arrcap * sizeof *s.arr);
+    if (s.acc) pxi_free(h->alloc, s.acc, (size_t)s.acccap * sizeof *s.acc);
     g_free(&s.g);
     pxi_free(h->alloc, doc, (size_t)h->size + 1);
     return st;

@@ -726,6 +726,7 @@ typedef struct json {
     int dup;         /* a member that matters given twice */
     int bad_child;   /* a child that is not a node index */
     int v1_children; /* glTF 1.0 nodes with children */
+    int sparse;      /* an accessor with a "sparse" member */
     g_graph g;
     u32 nodes; /* elements of "nodes" */
     int have_nodes, have_scenes;
@@ -979,6 +980,24 @@ static int scene_element(json *j, u32 index, int depth, void *ctx) {
     return push_u32(j, &j->scene_end, &j->nscenes, &j->scap, j->nroots);
 }
 
+/* glTF 2.0 sparse accessors (glTF2Asset.inl Accessor::Read and
+ * Sparse::PatchData) are refused: Assimp 5.2 dereferences their "indices"
+ * and its "bufferView" without checking they exist (SIGSEGV on a 400-byte
+ * file), reads sparse.count indices and values without checking them
+ * against their buffer views, and allocates count * element size bytes for
+ * an accessor without a buffer view (the review's gltf_sparse.gltf: 1.8 GB
+ * before std::bad_alloc). */
+static int accessor_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    (void)ctx;
+    if (key_is(k, n, "sparse")) return j->sparse = 1, 0;
+    return j_value(j, depth);
+}
+
+static int accessor_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index, (void)ctx;
+    return j_object(j, depth, accessor_member, NULL);
+}
+
 static int top_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     (void)ctx;
     if (key_is(k, n, "nodes")) {
@@ -987,6 +1006,7 @@ static int top_member(json *j, const unsigned char *k, size_t n, int depth, void
         if (j->p < j->end && *j->p == '{') return j_object(j, depth, node_v1_member, NULL);
         return j_array(j, depth, node_element, NULL);
     }
+    if (key_is(k, n, "accessors")) return j_array(j, depth, accessor_element, NULL);
     if (key_is(k, n, "scenes")) {
         if (j->have_scenes++) return j->dup = 1, 0;
         j_ws(j);
@@ -1044,6 +1064,11 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
     if (!ok) {
         if (j.g.oom)
             st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        else if (j.sparse)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a glTF sparse accessor (not accepted: Assimp 5.2 reads sparse "
+                           "accessors without checking their indices, values and size)",
+                           h->path);
         else if (j.v1_children)
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': a glTF 1.0 node with children (not accepted: convert the file to "

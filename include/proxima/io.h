@@ -38,14 +38,20 @@
 /// modification time). A refused file fails the import with PX_ERR_IO naming
 /// it and why, also where Assimp would have gone on without it (an OBJ
 /// material library); a missing referenced file is left to Assimp.
+/// References are resolved as the format defines them, relative to the mesh
+/// file's directory, ".." included: the import is not confined to that
+/// directory (a glTF buffer "../x.bin" is a legitimate reference). Loading a
+/// file thus reads any regular file within the limits that the calling
+/// process may read and the file names; do not load untrusted files with
+/// privileges the file's author should not have.
 ///
 /// Limits: a file is checked before Assimp reads it, so that a lying or
 /// malformed file cannot make the import allocate memory the file cannot
 /// back, loop forever, or crash Assimp 5.2 (Debian bookworm's 5.2.5, whose
 /// readers the checks follow). Headers are read from the first 64 KiB; PLY
-/// and OFF bodies are walked through once, COLLADA and glTF documents read
-/// whole. Refused with PX_ERR_IO, the message naming the file and the
-/// problem:
+/// and OFF bodies are walked through once; COLLADA, glTF, AC3D, BVH, FBX,
+/// OpenGEX and XML documents are read whole. Refused with PX_ERR_IO, the
+/// message naming the file and the problem:
 /// - anything but a regular file (directory, device, pipe), an empty file,
 ///   or a file of more than PX_IO_MAX_FILE_BYTES;
 /// - an OFF, PLY or binary STL file whose header declares more vertices,
@@ -84,6 +90,27 @@
 ///   escapes, duplicate glTF "nodes", "scenes" or "children" members, and
 ///   glTF 1.0 nodes with children; a glTF or JSON file that is not valid
 ///   JSON;
+/// - COLLADA: an <accessor> that reads past its source array, that is
+///   offset + (count - 1) * stride + (its <param>s, a float4x4 counting 16)
+///   values beyond the count attribute of the <float_array>, <Name_array> or
+///   <IDREF_array> (none without it: Assimp reads that many values and then
+///   indexes past them), and accessor or array counts, offsets and strides
+///   that are not plain numbers below 2^31;
+/// - glTF sparse accessors (Assimp 5.2 reads them unchecked: a missing
+///   "indices" crashes it, and it allocates count * element size for one
+///   without a buffer view);
+/// - nesting deeper than Assimp 5.2's recursive readers can take on the
+///   stack: more than 256 levels of AC3D objects (kids), BVH joints, FBX
+///   scopes (ASCII or binary) or OpenGEX structures, and XML (X3D, XGL, AMF,
+///   Irrlicht, Ogre and any file read as XML) nested more than 512 elements
+///   deep; XML in UTF-16 (COLLADA included), and AC3D or OpenGEX text with
+///   a UTF-16 byte-order mark, which the checks do not decode;
+/// - AC3D: a kids, numvert, numsurf or refs count above the bytes after it,
+///   a numsurf count exceeding the surfaces that follow by more than 65536
+///   (Assimp re-reads one line per missing surface), a MATERIAL line holding
+///   OBJECT;
+/// - ZGL (compressed XGL) files and gzip-compressed Blender files: Assimp
+///   5.2 inflates them whole, to whatever size they expand;
 /// - ZIP archives (.zae, .3mf, .pk3, .ifczip, and files ending like a ZIP
 ///   archive under names that do not pin a non-ZIP format): Assimp inflates
 ///   the files in them unchecked;

@@ -63,10 +63,10 @@ static int ext_is(const io_head *h, const char *const *list) {
 /* Extensions only one Assimp 5.2 importer claims: a file named so is read by
  * that importer, never by signature. */
 static const char *const k_pinned[] = {
-    "obj", "stl",  "ply",   "off", "gltf", "glb", "fbx",  "dae",     "3ds", "ac", "ac3d", "acc",
-    "bvh", "ogex", "x3d",   "xgl", "zgl",  "amf", "lwo",  "lws",     "md2", "md3", "mdl", "ms3d",
-    "smd", "vta",  "blend", "irr", "3mf",  "q3o", "q3s",  "irrmesh", "ter", "hmp", "csm", "b3d",
-    "nff", "x",    "ase",   "ask", "cob",  "scn", "raw",  "ifc",     "mdc", "md5mesh", NULL};
+    "obj", "stl",  "ply",   "off", "gltf", "glb", "fbx", "dae",     "3ds", "ac",      "ac3d", "acc",
+    "bvh", "ogex", "x3d",   "xgl", "zgl",  "amf", "lwo", "lws",     "md2", "md3",     "mdl",  "ms3d",
+    "smd", "vta",  "blend", "irr", "3mf",  "q3o", "q3s", "irrmesh", "ter", "hmp",     "csm",  "b3d",
+    "nff", "x",    "ase",   "ask", "cob",  "scn", "raw", "ifc",     "mdc", "md5mesh", NULL};
 
 /* 1 if the importer whose extensions are `own` may read the file: by its
  * extension, or by signature (`sig`, already tested by the caller) when the
@@ -139,7 +139,7 @@ enum { AC_OK, AC_DEEP, AC_COUNT, AC_SPIN, AC_MATERIAL };
 typedef struct ac_state {
     const unsigned char *t, *end; /* text, its NUL */
     const char *what;             /* the count refused */
-    u64 count;
+    u64 count, left;              /* its value, the bytes after it */
 } ac_state;
 
 /* A count of items that each take at least a byte of what follows. */
@@ -147,6 +147,7 @@ static int ac_count_ok(ac_state *s, const unsigned char *p, u64 count, const cha
     if (count <= (u64)(s->end - p)) return 1;
     s->what = what;
     s->count = count;
+    s->left = (u64)(s->end - p);
     return 0;
 }
 
@@ -286,10 +287,11 @@ static px_status check_ac(const io_head *h, px_error *err) {
     switch (ac_walk(&s)) {
     case AC_DEEP: st = too_deep(h, "AC3D objects (kids)", NEST_MAX_DEPTH, err); break;
     case AC_COUNT:
-        st = pxi_error(err, PX_ERR_IO,
-                       "mesh file '%s': an AC3D '%s %llu' line declares more entries than the %llu bytes after "
-                       "it can hold (Assimp 5.2 reserves memory by it)",
-                       h->path, s.what, s.count, (u64)(s.end - s.t));
+        st = pxi_error(
+            err, PX_ERR_IO,
+            "mesh file '%s': an AC3D '%s %llu' line declares more entries than the %llu bytes after "
+            "it can hold (Assimp 5.2 reserves memory by it)",
+            h->path, s.what, s.count, s.left);
         break;
     case AC_SPIN:
         st = pxi_error(err, PX_ERR_IO,
@@ -578,10 +580,11 @@ static px_status check_xml(const io_head *h, px_error *err) {
     st = pxi_read_all(h, &doc, err);
     if (st != PX_OK) return st;
     if (xml_depth(doc, (size_t)h->size, XML_MAX_DEPTH) > XML_MAX_DEPTH)
-        st = pxi_error(err, PX_ERR_IO,
-                       "mesh file '%s': its XML is nested more than %d elements deep (Assimp 5.2's XML readers "
-                       "recurse once per element and would overflow the stack)",
-                       h->path, XML_MAX_DEPTH);
+        st = pxi_error(
+            err, PX_ERR_IO,
+            "mesh file '%s': its XML is nested more than %d elements deep (Assimp 5.2's XML readers "
+            "recurse once per element and would overflow the stack)",
+            h->path, XML_MAX_DEPTH);
     pxi_free(h->alloc, doc, (size_t)h->size + 1);
     return st;
 }
@@ -594,7 +597,8 @@ px_status pxi_check_nesting(const io_head *h, px_error *err) {
                              *const xml[] = {"x3d", "x3db", "xgl", "amf", "irr", "irrmesh", "xml", NULL};
     px_status st = PX_OK;
     /* AC3D: CheckMagicToken, "AC3D" at byte 0 (or byte-swapped). */
-    if (st == PX_OK && may_read(h, ac, starts_with(h, "AC3D") || starts_with(h, "D3CA"))) st = check_ac(h, err);
+    if (st == PX_OK && may_read(h, ac, starts_with(h, "AC3D") || starts_with(h, "D3CA")))
+        st = check_ac(h, err);
     if (st == PX_OK && may_read(h, bvh, pxi_signature_has(h, "hierarchy"))) st = check_bvh(h, err);
     if (st == PX_OK && may_read(h, fbx, pxi_signature_has(h, "fbx"))) st = check_fbx(h, err);
     if (st == PX_OK &&
@@ -606,14 +610,17 @@ px_status pxi_check_nesting(const io_head *h, px_error *err) {
      * a UTF-8 byte-order mark), or one in UTF-16. COLLADA files get the same
      * scan in graph.c. */
     size_t b = h->len >= 3 && h->data[0] == 0xEF && h->data[1] == 0xBB && h->data[2] == 0xBF ? 3 : 0;
-    while (b < h->len && (h->data[b] == ' ' || h->data[b] == '\t' || h->data[b] == '\n' || h->data[b] == '\r'))
+    while (b < h->len &&
+           (h->data[b] == ' ' || h->data[b] == '\t' || h->data[b] == '\n' || h->data[b] == '\r'))
         ++b;
-    int looks_xml = (b < h->len && h->data[b] == '<') ||
-                    (h->len >= 4 && ((h->data[0] == 0xFF && h->data[1] == 0xFE && h->data[2] == '<') ||
-                                     (h->data[0] == 0xFE && h->data[1] == 0xFF && h->data[3] == '<') ||
-                                     (h->data[0] == '<' && h->data[1] == 0) ||
-                                     (h->data[0] == 0 && h->data[1] == '<')));
-    if (st == PX_OK && strcmp(h->ext, "dae") == 0) st = check_xml_utf16(h, err);
-    else if (st == PX_OK && may_read(h, xml, looks_xml)) st = check_xml(h, err);
+    int looks_xml =
+        (b < h->len && h->data[b] == '<') ||
+        (h->len >= 4 && ((h->data[0] == 0xFF && h->data[1] == 0xFE && h->data[2] == '<') ||
+                         (h->data[0] == 0xFE && h->data[1] == 0xFF && h->data[3] == '<') ||
+                         (h->data[0] == '<' && h->data[1] == 0) || (h->data[0] == 0 && h->data[1] == '<')));
+    if (st == PX_OK && strcmp(h->ext, "dae") == 0)
+        st = check_xml_utf16(h, err);
+    else if (st == PX_OK && may_read(h, xml, looks_xml))
+        st = check_xml(h, err);
     return st;
 }

@@ -959,6 +959,265 @@ static void test_unreferenced_vertices(void) {
     px_free_points(xyz, n, NULL);
 }
 
+/* ------------------------------------------------------------------------
+ * Review io2: nesting Assimp 5.2's readers recurse on, COLLADA accessors,
+ * glTF sparse accessors, compressed files, BVH. */
+
+/* Writes head, `open` n times, `close` n times, then tail; returns the path
+ * (write_file's buffer). */
+static const char *write_nested(const char *name, const char *head, const char *open, const char *close,
+                                size_t n, const char *tail) {
+    const char *path = write_file(name, head);
+    FILE *f = fopen(path, "ab");
+    if (!f) {
+        perror(path);
+        exit(2);
+    }
+    for (size_t i = 0; i < n; ++i) fputs(open, f);
+    for (size_t i = 0; i < n; ++i) fputs(close, f);
+    fputs(tail, f);
+    fclose(f);
+    return path;
+}
+
+/* A binary FBX (7.4, 32-bit offsets) of `depth` records nested in one
+ * another: each a 14-byte header (end offset, no properties, name "N")
+ * closed by a 13-byte zero record. */
+static const char *write_fbx_binary(const char *name, size_t depth) {
+    size_t size = 27 + 27 * depth + 13 + 16;
+    unsigned char *b = calloc(size, 1);
+    if (!b) exit(2);
+    memcpy(b, "Kaydara FBX Binary  \0\x1a\0", 23);
+    put_u32(b + 23, 7400, 0);
+    const size_t leaf_end = 27 + 14 * depth;
+    for (size_t i = 0; i < depth; ++i) {
+        unsigned char *r = b + 27 + 14 * i;
+        put_u32(r, (uint32_t)(leaf_end + 13 * (depth - 1 - i)), 0);
+        r[12] = 1;
+        r[13] = 'N';
+    }
+    const char *path = write_bytes(name, b, size);
+    free(b);
+    return path;
+}
+
+/* The review's ac_nest.ac, bvh_nest.bvh, fbx_nest.fbx, ogex_nest.ogex,
+ * x3d_nest.x3d and xgl_nest.xgl nested 200000 levels and crashed Assimp
+ * (SIGSEGV: its readers recurse once per level). The same depths, written
+ * here, must be refused before Assimp reads them; the depths the checks
+ * allow must not be refused. */
+static void test_nesting(void) {
+    const size_t n = 200000;
+    const char *ac_head = "AC3Db\nMATERIAL \"m\" rgb 1 1 1  amb 0.2 0.2 0.2  emis 0 0 0  spec 0.5 0.5 0.5  "
+                          "shi 10  trans 0\nOBJECT world\nkids 1\n";
+    const char *ac_tail = "OBJECT poly\nnumvert 4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\nnumsurf 1\nSURF 0x10\nmat 0\n"
+                          "refs 3\n0 0 0\n1 0 0\n2 0 0\nkids 0\n";
+    expect_refused(write_nested("nest.ac", ac_head, "OBJECT group\nkids 1\n", "", n, ac_tail),
+                   "AC3D objects (kids) are nested more than 256");
+    expect_refused(write_nested("nest_ac.dat", ac_head, "OBJECT group\nkids 1\n", "", n, ac_tail),
+                   "nested more than 256");
+    /* "OBJECT" followed by a line break: Assimp skips the next line (the
+     * kids line), and still nests by the next one. */
+    expect_refused(
+        write_nested("nest_nl.ac", ac_head, "OBJECT\nkids 1\nOBJECT group\nkids 1\n", "", n, ac_tail),
+        "nested more than 256");
+    expect_refused(write_nested("nest.fbx", "; FBX 7.4.0 project file\n", "A: {\n", "}\n", n, ""),
+                   "FBX scopes are nested more than 256");
+    expect_refused(write_nested("nest_q.fbx", "; FBX 7.4.0 project file\n", "A: \"}\" { ; }\n", "}\n", n, ""),
+                   "FBX scopes are nested more than 256");
+    expect_refused(write_fbx_binary("nest_bin.fbx", n), "FBX scopes are nested more than 256");
+    expect_refused(write_nested("nest.ogex", "Metric {float {1}}\n", "Node { // }\n", "}\n", n, ""),
+                   "OpenGEX structures are nested more than 256");
+    expect_refused(
+        write_nested("nest_ogex.txt", "Metric {float {1}}\n", "Node (a = \"}\") {\n", "}\n", n, ""),
+        "OpenGEX structures are nested more than 256");
+    expect_refused(write_nested("nest.x3d", "<?xml version=\"1.0\"?>\n<X3D><Scene>", "<Transform>",
+                                "</Transform>", n, "</Scene></X3D>\n"),
+                   "XML is nested more than 512");
+    expect_refused(write_nested("nest.xgl", "<WORLD>", "<OBJECT>", "</OBJECT>", n, "</WORLD>\n"),
+                   "XML is nested more than 512");
+    expect_refused(
+        write_nested("nest_xgl.dat", "<WORLD>", "<OBJECT><!-- </OBJECT> -->", "</OBJECT>", n, "</WORLD>\n"),
+        "XML is nested more than 512");
+    static const unsigned char utf16[] = {0xFF, 0xFE, '<', 0, 'X', 0, '3', 0, 'D', 0, '/', 0, '>', 0};
+    expect_refused(write_bytes("utf16.x3d", utf16, sizeof utf16), "UTF-16");
+
+    /* At the limits: read by Assimp (the AC3D file loads its triangle). */
+    double *xyz = NULL;
+    size_t count = 0;
+    px_error err;
+    CHECK(px_load_points(write_nested("deep_ok.ac", ac_head, "OBJECT group\nkids 1\n", "", 254, ac_tail),
+                         NULL, &xyz, &count, &err) == PX_OK);
+    CHECK(count == 3);
+    px_free_points(xyz, count, NULL);
+    const char *x3d = write_nested("deep_ok.x3d", "<?xml version=\"1.0\"?>\n<X3D><Scene>", "<Transform>",
+                                   "</Transform>", 509, "</Scene></X3D>\n");
+    CHECK(px_load_points(x3d, NULL, &xyz, &count, &err) == PX_ERR_IO); /* no mesh in it */
+    CHECK(strstr(err.message, "nested") == NULL);
+    const char *fbx = write_nested("deep_ok.fbx", "; FBX 7.4.0 project file\n", "A: {\n", "}\n", 256, "");
+    CHECK(px_load_points(fbx, NULL, &xyz, &count, &err) == PX_ERR_IO); /* not an FBX scene */
+    CHECK(strstr(err.message, "nested") == NULL);
+    CHECK(px_load_points(write_fbx_binary("deep_ok_bin.fbx", 256), NULL, &xyz, &count, &err) == PX_ERR_IO);
+    CHECK(strstr(err.message, "nested") == NULL);
+
+    /* AC3D counts above the bytes that follow them (Assimp reserves by them),
+     * a numsurf count Assimp would spend re-reading one line for, and an
+     * OBJECT on a MATERIAL line (not followed). */
+    expect_refused(write_file("count.ac", "AC3Db\nOBJECT poly\nnumvert 100000000\n0 0 0\nkids 0\n"),
+                   "'numvert 100000000' line declares more entries");
+    expect_refused(write_file("kids.ac", "AC3Db\nOBJECT world\nkids 4000000000\nOBJECT poly\nkids 0\n"),
+                   "'kids 4000000000' line declares more entries");
+    static char spin[400000];
+    memset(spin, 'z', sizeof spin - 2);
+    spin[sizeof spin - 2] = '\n';
+    memcpy(spin, "AC3Db\nOBJECT poly\nnumsurf 200000\nbad\nkids 0\n", 44);
+    expect_refused(write_file("spin.ac", spin), "re-read one line");
+    expect_refused(write_file("mat.ac", "AC3Db\nMATERIAL \"m\" rgb 1 1 1 OBJECT poly\nkids 0\n"),
+                   "MATERIAL line");
+
+    /* Valid small files of these formats load. */
+    expect_tetrahedron(write_file("tet.ac",
+                                  "AC3Db\nMATERIAL \"m\" rgb 1 1 1  amb 0.2 0.2 0.2  emis 0 0 0  "
+                                  "spec 0.5 0.5 0.5  shi 10  trans 0\nOBJECT world\nkids 1\n"
+                                  "OBJECT poly\nname \"tet\"\nnumvert 4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                  "numsurf 4\nSURF 0x10\nmat 0\nrefs 3\n0 0 0\n2 0 0\n1 0 0\n"
+                                  "SURF 0x10\nmat 0\nrefs 3\n0 0 0\n1 0 0\n3 0 0\n"
+                                  "SURF 0x10\nmat 0\nrefs 3\n0 0 0\n3 0 0\n2 0 0\n"
+                                  "SURF 0x10\nmat 0\nrefs 3\n1 0 0\n2 0 0\n3 0 0\nkids 0\n"));
+    expect_tetrahedron(write_file(
+        "tet.x3d",
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<X3D profile=\"Interchange\" version=\"3.3\">"
+        "<Scene><Transform><Shape>\n<IndexedFaceSet coordIndex=\"0 2 1 -1 0 1 3 -1 0 3 2 -1 1 2 3 -1\">"
+        "<Coordinate point=\"0 0 0 1 0 0 0 1 0 0 0 1\"/></IndexedFaceSet>\n</Shape></Transform>"
+        "</Scene></X3D>\n"));
+    expect_tetrahedron(write_file(
+        "tet.ogex", "Metric (key = \"distance\") {float {1}}\nMetric (key = \"up\") {string {\"z\"}}\n"
+                    "GeometryNode $node1\n{\n\tName {string {\"tet\"}}\n\tObjectRef {ref {$geometry1}}\n"
+                    "}\nGeometryObject $geometry1 // the mesh\n{\n\tMesh (primitive = \"triangles\")\n"
+                    "\t{\n\t\tVertexArray (attrib = \"position\") {float[3] {{0, 0, 0}, {1, 0, 0}, "
+                    "{0, 1, 0}, {0, 0, 1}}}\n\t\tIndexArray {unsigned_int32[3] {{0, 2, 1}, {0, 1, 3}, "
+                    "{0, 3, 2}, {1, 2, 3}}}\n\t}\n}\n"));
+    expect_tetrahedron(
+        write_file("tet.fbx", "; FBX 7.4.0 project file\nFBXHeaderExtension:  {\n\tFBXHeaderVersion: 1003\n"
+                              "\tFBXVersion: 7400\n}\nGlobalSettings:  {\n\tVersion: 1000\n}\nObjects:  {\n"
+                              "\tGeometry: 1, \"Geometry::tet\", \"Mesh\" {\n\t\tVertices: *12 {\n"
+                              "\t\t\ta: 0,0,0,1,0,0,0,1,0,0,0,1\n\t\t}\n\t\tPolygonVertexIndex: *12 {\n"
+                              "\t\t\ta: 0,2,-2,0,1,-4,0,3,-3,1,2,-4\n\t\t}\n\t\tGeometryVersion: 124\n\t}\n"
+                              "\tModel: 2, \"Model::tet\", \"Mesh\" {\n\t\tVersion: 232\n\t}\n}\n"
+                              "Connections:  {\n\tC: \"OO\",1,2\n\tC: \"OO\",2,0\n}\n"));
+    expect_tetrahedron(write_file(
+        "tet.xgl",
+        "<WORLD><OBJECT><MESH ID=\"0\"><MAT ID=\"0\"><AMB>1, 1, 1</AMB><DIFF>1, 1, 1</DIFF></MAT>\n"
+        "<P ID=\"0\">0, 0, 0</P><P ID=\"1\">1, 0, 0</P><P ID=\"2\">0, 1, 0</P><P ID=\"3\">0, 0, 1</P>\n"
+        "<F><MATREF>0</MATREF><FV1><PREF>0</PREF></FV1><FV2><PREF>2</PREF></FV2>"
+        "<FV3><PREF>1</PREF></FV3></F>\n"
+        "<F><MATREF>0</MATREF><FV1><PREF>0</PREF></FV1><FV2><PREF>1</PREF></FV2>"
+        "<FV3><PREF>3</PREF></FV3></F>\n"
+        "<F><MATREF>0</MATREF><FV1><PREF>0</PREF></FV1><FV2><PREF>3</PREF></FV2>"
+        "<FV3><PREF>2</PREF></FV3></F>\n"
+        "<F><MATREF>0</MATREF><FV1><PREF>1</PREF></FV1><FV2><PREF>2</PREF></FV2>"
+        "<FV3><PREF>3</PREF></FV3></F>\n</MESH><MESHREF>0</MESHREF></OBJECT></WORLD>\n"));
+
+    /* BVH: a skeleton, no mesh (Assimp made up points around the bones). */
+    const char *bvh = "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tCHANNELS 3 Xposition Yposition Zposition\n"
+                      "\tJOINT knee\n\t{\n\t\tOFFSET 0 -1 0\n\t\tCHANNELS 0\n\t\tEnd Site\n\t\t{\n"
+                      "\t\t\tOFFSET 0 -1 0\n\t\t}\n\t}\n}\nMOTION\nFrames: 1\nFrame Time: 0.1\n0 0 0\n";
+    expect_refused(write_file("skeleton.bvh", bvh), "BVH files are not accepted");
+    expect_refused(write_file("skeleton_bvh.txt", bvh), "BVH files are not accepted");
+    expect_refused(write_nested("nest.bvh", "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 0\n",
+                                "JOINT j\n{\nOFFSET 0 0 0\nCHANNELS 0\n", "}\n", n,
+                                "}\nMOTION\nFrames: 1\nFrame Time: 0.1\n\n"),
+                   "BVH files are not accepted");
+
+    /* Compressed files Assimp inflates whole (the review's zgl_bomb.zgl and
+     * blend_bomb.blend took 1 GB before std::bad_alloc). */
+    static const unsigned char gz[] = {0x1F, 0x8B, 8, 0, 0, 0, 0, 0, 0, 3, 3, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    expect_refused(write_bytes("packed.blend", gz, sizeof gz), "compressed (gzip) Blender");
+    expect_refused(write_bytes("packed.zgl", gz + 10, sizeof gz - 10), "ZGL (compressed XGL)");
+}
+
+/* Replaces the first `from` in `text` (a buffer of `size`) by `to`. */
+static void replace_once(char *text, size_t size, const char *from, const char *to) {
+    char *p = strstr(text, from);
+    CHECK(p != NULL && strlen(text) - strlen(from) + strlen(to) < size);
+    if (!p) return;
+    memmove(p + strlen(to), p + strlen(from), strlen(p + strlen(from)) + 1);
+    memcpy(p, to, strlen(to));
+}
+
+/* COLLADA accessors reading past their arrays (the review's dae_nocount.dae
+ * and dae_acc_offset.dae crashed Assimp; dae_count_short.dae and
+ * dae_acc_stride.dae returned PX_OK with 7 and 2 points of a cube of 8,
+ * read from past the array). */
+static void test_dae_accessors(void) {
+    static char base[65536], text[65536];
+    snprintf(base, sizeof base, "%s",
+             read_back(write_dae("acc_tmp.dae", "", "<instance_geometry url=\"#tet\"/>")));
+    expect_tetrahedron(write_file("acc_ok.dae", base));
+    static const struct {
+        const char *name, *from, *to, *needle;
+    } cases[] = {
+        {"acc_nocount.dae", " count=\"12\"", "",
+         "reads 12 values (offset 0, count 4, stride 3), but the array declares 0"},
+        {"acc_short.dae", "count=\"12\"", "count=\"3\"", "but the array declares 3"},
+        {"acc_offset.dae", "count=\"4\" stride=\"3\"", "count=\"4\" offset=\"100000\" stride=\"3\"",
+         "reads 100012 values"},
+        {"acc_stride.dae", "stride=\"3\"", "stride=\"1000\"", "reads 3003 values"},
+        {"acc_count.dae", "count=\"4\" stride", "count=\"5\" stride", "reads 15 values"},
+        {"acc_negative.dae", "count=\"4\" stride", "count=\"-1\" stride", "not a plain number"},
+        {"acc_params.dae", "stride=\"3\"", "stride=\"1\"", NULL},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        snprintf(text, sizeof text, "%s", base);
+        replace_once(text, sizeof text, cases[i].from, cases[i].to);
+        const char *path = write_file(cases[i].name, text);
+        if (cases[i].needle) {
+            expect_refused(path, cases[i].needle);
+        } else {
+            /* stride 1 with three params reads values 0 .. 5 of 12: within
+             * the array (Assimp reads overlapping points; not refused). */
+            double *xyz = NULL;
+            size_t n = 0;
+            px_error err;
+            CHECK(px_load_points(path, NULL, &xyz, &n, &err) == PX_OK);
+            px_free_points(xyz, n, NULL);
+        }
+    }
+}
+
+/* glTF sparse accessors: one without "indices" crashed Assimp (SIGSEGV),
+ * the review's gltf_sparse.gltf (count 1.5e8, no buffer view) took 1.8 GB
+ * before std::bad_alloc. A relative buffer URI with ".." is legitimate. */
+static void test_gltf_sparse(void) {
+    static unsigned char bin[48];
+    for (int v = 0; v < 4; ++v)
+        for (int c = 0; c < 3; ++c) put_f32(bin + 12 * v + 4 * c, k_tet[v][c], 0);
+    write_bytes("sparse.bin", bin, sizeof bin);
+#define SPARSE_DOC                                                                                           \
+    "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}],\n"                    \
+    "\"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": "                           \
+    "{\"POSITION\": 0}, \"mode\": 0}]}],\n"                                                                  \
+    "\"buffers\": [{\"uri\": \"%s\", \"byteLength\": 48}],\n"                                                \
+    "\"bufferViews\": [{\"buffer\": 0, \"byteLength\": 48}],\n"                                              \
+    "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": %s, "                           \
+    "\"type\": \"VEC3\"%s}]}\n"
+    static char text[4096];
+    snprintf(text, sizeof text, SPARSE_DOC, "sparse.bin", "4",
+             ", \"sparse\": {\"count\": 1, \"values\": {\"bufferView\": 0}}");
+    expect_refused(write_file("sparse_noidx.gltf", text), "glTF sparse accessor");
+    snprintf(text, sizeof text, SPARSE_DOC, "sparse.bin", "150000000",
+             ", \"sparse\": {\"count\": 1, \"indices\": {\"bufferView\": 0, \"componentType\": 5125}, "
+             "\"values\": {\"bufferView\": 0}}");
+    replace_once(text, sizeof text, "\"bufferView\": 0, \"componentType\": 5126", "\"componentType\": 5126");
+    expect_refused(write_file("sparse_big.gltf", text), "glTF sparse accessor");
+    snprintf(text, sizeof text, SPARSE_DOC, "../sparse.bin", "4", "");
+    char sub[600];
+    snprintf(sub, sizeof sub, "%s/up", g_dir);
+    CHECK(mkdir(sub, 0700) == 0);
+    expect_tetrahedron(write_file("up/dotdot.gltf", text));
+#undef SPARSE_DOC
+}
+
 int main(void) {
     snprintf(g_dir, sizeof g_dir, "/tmp/proxima_test_io_%ld", (long)getpid());
     char cmd[300];
@@ -992,6 +1251,9 @@ int main(void) {
     test_node_graphs();
     test_dae_index_list();
     test_unreferenced_vertices();
+    test_nesting();
+    test_dae_accessors();
+    test_gltf_sparse();
 #if !PX_TEST_ASAN
     struct rusage usage;
     CHECK(getrusage(RUSAGE_SELF, &usage) == 0);

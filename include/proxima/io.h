@@ -49,7 +49,7 @@
 /// malformed file cannot make the import allocate memory the file cannot
 /// back, loop forever, or crash Assimp 5.2 (Debian bookworm's 5.2.5, whose
 /// readers the checks follow). Headers are read from the first 64 KiB; PLY
-/// and OFF bodies are walked through once; COLLADA, glTF, AC3D, BVH, FBX,
+/// and OFF bodies are walked through once; COLLADA, glTF, AC3D, FBX,
 /// OpenGEX and XML documents are read whole. Refused with PX_ERR_IO, the
 /// message naming the file and the problem:
 /// - anything but a regular file (directory, device, pipe), an empty file,
@@ -100,8 +100,8 @@
 ///   "indices" crashes it, and it allocates count * element size for one
 ///   without a buffer view);
 /// - nesting deeper than Assimp 5.2's recursive readers can take on the
-///   stack: more than 256 levels of AC3D objects (kids), BVH joints, FBX
-///   scopes (ASCII or binary) or OpenGEX structures, and XML (X3D, XGL, AMF,
+///   stack: more than 256 levels of AC3D objects (kids), FBX scopes (ASCII
+///   or binary) or OpenGEX structures, and XML (X3D, XGL, AMF,
 ///   Irrlicht, Ogre and any file read as XML) nested more than 512 elements
 ///   deep; XML in UTF-16 (COLLADA included), and AC3D or OpenGEX text with
 ///   a UTF-16 byte-order mark, which the checks do not decode;
@@ -111,6 +111,9 @@
 ///   OBJECT;
 /// - ZGL (compressed XGL) files and gzip-compressed Blender files: Assimp
 ///   5.2 inflates them whole, to whatever size they expand;
+/// - BVH files (.bvh, or starting with HIERARCHY): a skeleton and its
+///   motion, no mesh; Assimp 5.2 makes up a mesh around the bones, which
+///   would come back as the file's points;
 /// - ZIP archives (.zae, .3mf, .pk3, .ifczip, and files ending like a ZIP
 ///   archive under names that do not pin a non-ZIP format): Assimp inflates
 ///   the files in them unchecked;

@@ -1,5 +1,6 @@
 /* Nesting depth of the formats whose Assimp 5.2 readers recurse once per
- * level of the file's own structure, checked before Assimp reads them.
+ * level of the file's own structure, checked before Assimp reads them; and
+ * BVH files, refused.
  *
  * Assimp's AC3D, BVH, FBX, OpenGEX, X3D and XGL readers call themselves once
  * per nested object, joint, scope, structure or element, with nothing
@@ -9,8 +10,8 @@
  * ogex_nest.ogex, x3d_nest.x3d, xgl_nest.xgl). The overflow came after 5700
  * (XGL, about 1.5 KB of stack a level) to 58000 frames. The scans here
  * read the file the way each reader does, iteratively, and refuse a file
- * nested deeper than NEST_MAX_DEPTH (AC3D objects, BVH joints, FBX scopes,
- * OpenGEX structures) or XML_MAX_DEPTH (XML elements, as for COLLADA in
+ * nested deeper than NEST_MAX_DEPTH (AC3D objects, FBX scopes, OpenGEX
+ * structures) or XML_MAX_DEPTH (XML elements, as for COLLADA in
  * graph.c): far above real files (skeletons and scene graphs a few dozen
  * levels deep, FBX scopes about 6), and at most about 0.75 MiB of Assimp's
  * stack (XGL at 512 elements; the others use less per level).
@@ -24,9 +25,8 @@
  *   reserves by it), and so is a numsurf count the reader would spend
  *   re-reading one line for (it does not advance past a line that is neither
  *   SURF, mat nor refs).
- * - BVH (BVHLoader.cpp ReadNode): each JOINT (and ROOT) with its name and
- *   "{"; the reader's tokens are whitespace-separated, a brace a token of
- *   its own. End Site blocks count as a level too.
+ * - BVH (BVHLoader.cpp ReadNode, once per JOINT): refused as a format
+ *   (a skeleton without a mesh, see below), so never read.
  * - FBX (FBXParser.cpp Scope/Element, FBXBinaryTokenizer.cpp ReadScope):
  *   ASCII: braces outside ';' comments and double quotes, as the tokenizer
  *   reads them; binary: the records nested in records, walked through their
@@ -49,7 +49,7 @@
 
 #include "core/core.h"
 
-#define NEST_MAX_DEPTH 256 /* AC3D objects, BVH joints, FBX scopes, OpenGEX structures */
+#define NEST_MAX_DEPTH 256 /* AC3D objects, FBX scopes, OpenGEX structures */
 #define XML_MAX_DEPTH 512  /* XML elements (as graph.c for COLLADA) */
 
 typedef unsigned u32;
@@ -313,55 +313,19 @@ static px_status check_ac(const io_head *h, px_error *err) {
 
 /* ------------------------------------------------------------------- BVH */
 
-typedef struct bvh_lexer {
-    const unsigned char *p, *end;
-} bvh_lexer;
-
+/* BVH files hold a skeleton and its motion, no mesh: Assimp 5.2's reader
+ * (which recursed once per JOINT, overflowing the stack at 24000 levels)
+ * then builds a mesh of pyramids around the bones (SkeletonMeshBuilder), and
+ * those made-up points came back as the file's points with PX_OK. Refused:
+ * by extension, and by signature when the first token is HIERARCHY (the
+ * reader throws at anything else). */
 static int bvh_space(int c) { return c == ' ' || (c >= '\t' && c <= '\r'); } /* isspace, "C" locale */
 
-/* BVHLoader::GetNextToken: a brace is a token of its own when it starts one. */
-static size_t bvh_token(bvh_lexer *l, const unsigned char **tok) {
-    while (l->p < l->end && bvh_space(*l->p)) ++l->p;
-    *tok = l->p;
-    if (l->p < l->end && (*l->p == '{' || *l->p == '}')) return ++l->p, 1;
-    while (l->p < l->end && !bvh_space(*l->p)) ++l->p;
-    return (size_t)(l->p - *tok);
-}
-
-static int tok_is(const unsigned char *t, size_t n, const char *s) {
-    return n == strlen(s) && memcmp(t, s, n) == 0;
-}
-
-static px_status check_bvh(const io_head *h, px_error *err) {
-    unsigned char *doc;
-    px_status st = pxi_read_all(h, &doc, err);
-    if (st != PX_OK) return st;
-    bvh_lexer l = {doc, doc + h->size};
-    const unsigned char *t;
-    size_t n;
-    u64 depth = 0;
-    int started = 0;
-    /* ReadNode: a name, "{", then OFFSET, CHANNELS, JOINT (a node), End Site
-     * (a block) or "}". Tokens it would throw at end the scan. */
-    while ((n = bvh_token(&l, &t)) > 0) {
-        if (tok_is(t, n, "ROOT") || tok_is(t, n, "JOINT") || tok_is(t, n, "End")) {
-            int end_site = tok_is(t, n, "End");
-            n = bvh_token(&l, &t);
-            if (!n || (end_site ? !tok_is(t, n, "Site") : tok_is(t, n, "{"))) break;
-            n = bvh_token(&l, &t);
-            if (!tok_is(t, n, "{")) break;
-            started = 1;
-            if (++depth > NEST_MAX_DEPTH) {
-                st = too_deep(h, "BVH joints", NEST_MAX_DEPTH, err);
-                break;
-            }
-        } else if (tok_is(t, n, "}")) {
-            if (depth) --depth;
-            if (!depth && started) break; /* the hierarchy is read; MOTION follows */
-        }
-    }
-    pxi_free(h->alloc, doc, (size_t)h->size + 1);
-    return st;
+static int bvh_first_token(const io_head *h) {
+    size_t i = 0;
+    while (i < h->len && bvh_space(h->data[i])) ++i;
+    return h->len - i >= 9 && memcmp(h->data + i, "HIERARCHY", 9) == 0 &&
+           (h->len - i == 9 || bvh_space(h->data[i + 9]));
 }
 
 /* ------------------------------------------------------------------- FBX */
@@ -599,7 +563,11 @@ px_status pxi_check_nesting(const io_head *h, px_error *err) {
     /* AC3D: CheckMagicToken, "AC3D" at byte 0 (or byte-swapped). */
     if (st == PX_OK && may_read(h, ac, starts_with(h, "AC3D") || starts_with(h, "D3CA")))
         st = check_ac(h, err);
-    if (st == PX_OK && may_read(h, bvh, pxi_signature_has(h, "hierarchy"))) st = check_bvh(h, err);
+    if (st == PX_OK && may_read(h, bvh, pxi_signature_has(h, "hierarchy") && bvh_first_token(h)))
+        st = pxi_error(err, PX_ERR_IO,
+                       "mesh file '%s': BVH files are not accepted: they hold a skeleton and its motion, no "
+                       "mesh (Assimp 5.2 would return a mesh it makes up around the bones)",
+                       h->path);
     if (st == PX_OK && may_read(h, fbx, pxi_signature_has(h, "fbx"))) st = check_fbx(h, err);
     if (st == PX_OK &&
         may_read(h, ogex,

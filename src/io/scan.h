@@ -89,7 +89,7 @@ px_status pxi_check_ply(const io_head *h, px_error *err);
 px_status pxi_check_dae(const io_head *h, px_error *err);
 px_status pxi_check_gltf(const io_head *h, px_error *err);
 
-/* Nesting depth of AC3D, BVH, FBX, OpenGEX and XML files (nest.c). */
+/* Nesting depth of AC3D, FBX, OpenGEX and XML files, and BVH files refused (nest.c). */
 px_status pxi_check_nesting(const io_head *h, px_error *err);
 
 /* Assimp's signature test (BaseImporter::SearchFileHeaderForToken with its

@@ -10,7 +10,8 @@
  * counts are compared with the size of the file, each element at the
  * smallest size its format allows, and the bodies of PLY and OFF files are
  * walked the way Assimp walks them (ply.c; off_walk below), and the node
- * graphs of COLLADA and glTF files are scanned (graph.c): a file refused
+ * graphs of COLLADA and glTF files are scanned (graph.c), and the nesting
+ * of AC3D, FBX, OpenGEX and XML files (nest.c): a file refused
  * here cannot be a valid file of its format, would make Assimp 5.2 crash,
  * hang or read outside its buffers, or exceeds a documented limit (io.h).
  * Passing is no proof of validity: Assimp still parses the file.
@@ -578,7 +579,7 @@ static px_status check_formats(const io_head *h, px_error *err) {
         ++b;
     if (st == PX_OK && (gltf || starts_with_ci(h, "gltf") || (b < h->len && h->data[b] == '{')))
         st = pxi_check_gltf(h, err);
-    /* AC3D, BVH, FBX, OpenGEX and XML nesting (nest.c). */
+    /* AC3D, FBX, OpenGEX and XML nesting; BVH refused (nest.c). */
     if (st == PX_OK) st = pxi_check_nesting(h, err);
     return st;
 }

@@ -15,8 +15,9 @@ typedef struct pxi_file_id {
  * a regular, non-empty file of at most PX_IO_MAX_FILE_BYTES whose header
  * counts (OFF, PLY, binary STL) fit in its size and in PX_IO_MAX_ELEMENTS,
  * whose PLY or OFF body Assimp can read without the failures io.h lists, and
- * whose COLLADA or glTF node graph is acyclic and small enough; see io.h for
- * the rules and precheck.c, ply.c and graph.c for why. Opens the file once
+ * whose COLLADA or glTF node graph is acyclic and small enough, and whose
+ * AC3D, FBX, OpenGEX or XML nesting Assimp's recursive readers can take;
+ * see io.h for the rules and precheck.c, ply.c, graph.c and nest.c for why. Opens the file once
  * (without blocking: O_NONBLOCK, after stat() found a regular file) and
  * fills `id` with what identifies it. Streams through the file for PLY and
  * OFF (64 KiB and, for PLY, a 1 MiB cache at a time) and reads COLLADA and

@@ -172,7 +172,7 @@ static int ac_surfaces(ac_state *s, const unsigned char **p, u64 t) {
                 ac_skip_spaces(p);
             } else if (ac_token(p, "refs")) {
                 if (q3d && entries) {
-                    *p -= 6;
+                    *p = *p - s->t >= 6 ? *p - 6 : s->t; /* (an earlier refs line keeps it inside) */
                     break;
                 }
                 ac_skip_spaces(p);

@@ -61,7 +61,6 @@
 #endif
 
 #define HEAD_BYTES PXI_IO_HEAD_BYTES /* bytes read to check a header */
-#define SIGNATURE_BYTES 200          /* what Assimp's SearchFileHeaderForToken reads */
 
 #define sat_add pxi_sat_add
 #define sat_mul pxi_sat_mul
@@ -75,18 +74,6 @@ static int starts_with_ci(const io_head *h, const char *s) {
     for (size_t i = 0; i < n; ++i)
         if (lower(h->data[i]) != lower((unsigned char)s[i])) return 0;
     return 1;
-}
-
-/* Assimp's signature test (SearchFileHeaderForToken with default arguments):
- * 1 if lowercase `token` occurs in the first 200 bytes, lowercased, once the
- * NUL bytes are removed. */
-int pxi_signature_has(const io_head *h, const char *token) {
-    char buf[SIGNATURE_BYTES + 1];
-    size_t n = 0;
-    for (size_t i = 0; i < h->len && i < SIGNATURE_BYTES; ++i)
-        if (h->data[i]) buf[n++] = (char)lower(h->data[i]);
-    buf[n] = '\0';
-    return strstr(buf, token) != NULL;
 }
 
 /* 1 if the file starts with a UTF-8 byte-order mark (EF BB BF). */

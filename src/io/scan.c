@@ -83,3 +83,15 @@ px_status pxi_read_all(const io_head *h, unsigned char **out, px_error *err) {
     *out = buf;
     return PX_OK;
 }
+
+/* Assimp's signature test (SearchFileHeaderForToken with default arguments):
+ * 1 if lowercase `token` occurs in the first 200 bytes, lowercased, once the
+ * NUL bytes are removed. */
+int pxi_signature_has(const io_head *h, const char *token) {
+    char buf[200 + 1];
+    size_t n = 0;
+    for (size_t i = 0; i < h->len && i < 200; ++i)
+        if (h->data[i]) buf[n++] = (char)pxi_lower(h->data[i]);
+    buf[n] = '\0';
+    return strstr(buf, token) != NULL;
+}

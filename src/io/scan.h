@@ -94,7 +94,7 @@ px_status pxi_check_nesting(const io_head *h, px_error *err);
 
 /* Assimp's signature test (BaseImporter::SearchFileHeaderForToken with its
  * default arguments): 1 if lowercase `token` occurs in the first 200 bytes,
- * lowercased, once the NUL bytes are removed (precheck.c). */
+ * lowercased, once the NUL bytes are removed (scan.c). */
 int pxi_signature_has(const io_head *h, const char *token);
 
 #endif

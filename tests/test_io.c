@@ -1118,6 +1118,18 @@ static void test_nesting(void) {
         "<F><MATREF>0</MATREF><FV1><PREF>1</PREF></FV1><FV2><PREF>2</PREF></FV2>"
         "<FV3><PREF>3</PREF></FV3></F>\n</MESH><MESHREF>0</MESHREF></OBJECT></WORLD>\n"));
 
+    /* The same XGL without blanks after the commas: Assimp read "0,1,0" as
+     * (0.1, 0, 0) and "0,0,1" as (0, 1, 0), with PX_OK. */
+    expect_refused(write_file("compact.xgl",
+                              "<WORLD><OBJECT><MESH ID=\"0\"><MAT ID=\"0\"><AMB>1.0,1.0,1.0</AMB>"
+                              "</MAT>\n<P ID=\"0\">0,0,0</P><P ID=\"1\">1,0,0</P></MESH></OBJECT>"
+                              "</WORLD>\n"),
+                   "decimal comma");
+    expect_refused(write_file("compact_xgl.txt",
+                              "<WORLD><OBJECT><MESH><P ID=\"0\">-1,2.5,3</P></MESH></OBJECT>"
+                              "</WORLD>\n"),
+                   "decimal comma");
+
     /* BVH: a skeleton, no mesh (Assimp made up points around the bones). */
     const char *bvh = "HIERARCHY\nROOT hips\n{\n\tOFFSET 0 0 0\n\tCHANNELS 3 Xposition Yposition Zposition\n"
                       "\tJOINT knee\n\t{\n\t\tOFFSET 0 -1 0\n\t\tCHANNELS 0\n\t\tEnd Site\n\t\t{\n"

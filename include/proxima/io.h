@@ -109,6 +109,10 @@
 ///   a numsurf count exceeding the surfaces that follow by more than 65536
 ///   (Assimp re-reads one line per missing surface), a MATERIAL line holding
 ///   OBJECT;
+/// - XGL: a value list with an integer followed by a comma and a digit
+///   ("0,0,1"; "0, 0, 1" and "0.0,0.0,1.0" are fine), which Assimp 5.2 reads
+///   with the comma as a decimal point, returning other points than the
+///   file's;
 /// - ZGL (compressed XGL) files and gzip-compressed Blender files: Assimp
 ///   5.2 inflates them whole, to whatever size they expand;
 /// - BVH files (.bvh, or starting with HIERARCHY): a skeleton and its

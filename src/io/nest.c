@@ -476,14 +476,37 @@ static const unsigned char *xml_find(const unsigned char *p, const unsigned char
     return end;
 }
 
+static int is_digit(int c) { return c >= '0' && c <= '9'; }
+
+/* 1 if the text [a, b) is numbers only and one of them is an integer
+ * followed by a comma and a digit ("0,0,1"): Assimp 5.2's fast_atof takes
+ * such a comma for a decimal point (0,0 -> 0.0), and its XGL reader (ReadVec3,
+ * ReadVec2: values separated by commas) then returns other points than the
+ * file's, with no error ((0,0,1) became (0,1,0), (0,1,0) became (0.1,0,0)).
+ * "0, 0, 1" and "0.0,0.0,1.0" are read right. */
+static int xgl_misread(const unsigned char *a, const unsigned char *b) {
+    for (const unsigned char *q = a; q < b; ++q)
+        if (!is_digit(*q) && !strchr("+-.eE, \t\r\n", *q)) return 0;
+    for (const unsigned char *q = a + 1; q + 1 < b; ++q) {
+        if (*q != ',' || !is_digit(q[-1]) || !is_digit(q[1])) continue;
+        const unsigned char *r = q;
+        while (r > a && is_digit(r[-1])) --r;
+        int c = r > a ? r[-1] : ' ';
+        if ((c == '+' || c == '-') && r - 1 > a) c = r[-2];
+        if (c != '.' && c != 'e' && c != 'E') return 1; /* an integer part, then ",digit" */
+    }
+    return 0;
+}
+
 /* Element nesting depth of an XML document (pugixml's reading of it), up to
- * `limit` + 1. */
-static u64 xml_depth(const unsigned char *d, size_t size, u64 limit) {
+ * `limit` + 1; with `xgl`, sets *misread when a text xgl_misread finds. */
+static u64 xml_depth(const unsigned char *d, size_t size, u64 limit, int xgl, int *misread) {
     const unsigned char *p = d, *end = d + size;
     u64 depth = 0;
     while (p < end) {
         const unsigned char *lt = memchr(p, '<', (size_t)(end - p));
         if (!lt) break;
+        if (xgl && !*misread) *misread = xgl_misread(p, lt);
         p = lt;
         size_t left = (size_t)(end - p);
         if (left >= 4 && memcmp(p, "<!--", 4) == 0) {
@@ -537,18 +560,25 @@ static px_status check_xml_utf16(const io_head *h, px_error *err) {
     return PX_OK;
 }
 
-static px_status check_xml(const io_head *h, px_error *err) {
+static px_status check_xml(const io_head *h, int xgl, px_error *err) {
     px_status st = check_xml_utf16(h, err);
     if (st != PX_OK) return st;
     unsigned char *doc;
     st = pxi_read_all(h, &doc, err);
     if (st != PX_OK) return st;
-    if (xml_depth(doc, (size_t)h->size, XML_MAX_DEPTH) > XML_MAX_DEPTH)
+    int misread = 0;
+    if (xml_depth(doc, (size_t)h->size, XML_MAX_DEPTH, xgl, &misread) > XML_MAX_DEPTH)
         st = pxi_error(
             err, PX_ERR_IO,
             "mesh file '%s': its XML is nested more than %d elements deep (Assimp 5.2's XML readers "
             "recurse once per element and would overflow the stack)",
             h->path, XML_MAX_DEPTH);
+    else if (misread)
+        st = pxi_error(err, PX_ERR_IO,
+                       "mesh file '%s': an XGL value list writes an integer and a comma before a digit (as "
+                       "\"0,0,1\"), which Assimp 5.2 reads as a decimal comma, returning other points: write "
+                       "\"0, 0, 1\" or \"0.0,0.0,1.0\"",
+                       h->path);
     pxi_free(h->alloc, doc, (size_t)h->size + 1);
     return st;
 }
@@ -558,7 +588,8 @@ static px_status check_xml(const io_head *h, px_error *err) {
 px_status pxi_check_nesting(const io_head *h, px_error *err) {
     static const char *const ac[] = {"ac", "acc", "ac3d", NULL}, *const bvh[] = {"bvh", NULL},
                              *const fbx[] = {"fbx", NULL}, *const ogex[] = {"ogex", NULL},
-                             *const xml[] = {"x3d", "x3db", "xgl", "amf", "irr", "irrmesh", "xml", NULL};
+                             *const xml[] = {"x3d", "x3db", "xgl", "amf", "irr", "irrmesh", "xml", NULL},
+                             *const xgl[] = {"xgl", NULL};
     px_status st = PX_OK;
     /* AC3D: CheckMagicToken, "AC3D" at byte 0 (or byte-swapped). */
     if (st == PX_OK && may_read(h, ac, starts_with(h, "AC3D") || starts_with(h, "D3CA")))
@@ -589,6 +620,6 @@ px_status pxi_check_nesting(const io_head *h, px_error *err) {
     if (st == PX_OK && strcmp(h->ext, "dae") == 0)
         st = check_xml_utf16(h, err);
     else if (st == PX_OK && may_read(h, xml, looks_xml))
-        st = check_xml(h, err);
+        st = check_xml(h, may_read(h, xgl, pxi_signature_has(h, "<world>")), err);
     return st;
 }

@@ -12,9 +12,10 @@
  * read the file the way each reader does, iteratively, and refuse a file
  * nested deeper than NEST_MAX_DEPTH (AC3D objects, FBX scopes, OpenGEX
  * structures) or XML_MAX_DEPTH (XML elements, as for COLLADA in
- * graph.c): far above real files (skeletons and scene graphs a few dozen
- * levels deep, FBX scopes about 6), and at most about 0.75 MiB of Assimp's
- * stack (XGL at 512 elements; the others use less per level).
+ * graph.c): far above real files (scene graphs a few dozen levels deep,
+ * FBX scopes about 6), and far below the stack: the crash depths put
+ * Assimp's use at 0.15 to 1.5 KB a level, and files at these limits (each
+ * format, ASCII and binary FBX) imported with a 1 MiB stack (ulimit -s).
  *
  * What each reader recurses on, and what is scanned:
  * - AC3D (ACLoader.cpp LoadObjectSection): an OBJECT's "kids n" line loads
@@ -37,7 +38,8 @@
  * - XML (X3D, XGL, and the other XML readers: AMF, Irrlicht, Ogre): element
  *   nesting, as pugixml parses it (comments, CDATA, processing instructions
  *   and DOCTYPE skipped). XML in UTF-16, which pugixml converts and this scan
- *   would not, is refused.
+ *   would not, is refused. In XGL files, numbers written "0,0,1" too (see
+ *   xgl_misread).
  *
  * Which files are scanned: those whose extension names the format, and
  * those whose first bytes match the signature Assimp would detect them by,

@@ -1197,6 +1197,20 @@ static void test_dae_accessors(void) {
     }
 }
 
+/* COLLADA controllers: a skin whose <v> names joint 1e8 crashed Assimp
+ * (SIGSEGV), weight 1e8 aborted it (ai_assert), and a <vcount> of 1e8 took
+ * 1.5 GB (instantiated or not). */
+static void test_dae_controllers(void) {
+    static char text[65536];
+    snprintf(text, sizeof text, "%s",
+             read_back(write_dae("ctrl_tmp.dae", "", "<instance_geometry url=\"#tet\"/>")));
+    replace_once(text, sizeof text, "<library_nodes>",
+                 "<library_controllers><controller id=\"skin\"><skin source=\"#tet\">"
+                 "<vertex_weights count=\"4\"><vcount>1 1 1 100000000</vcount><v>0 0 0 0 0 0 0 0</v>"
+                 "</vertex_weights></skin></controller></library_controllers>\n<library_nodes>");
+    expect_refused(write_file("ctrl.dae", text), "COLLADA controllers (skins, morphs) are not accepted");
+}
+
 /* glTF sparse accessors: one without "indices" crashed Assimp (SIGSEGV),
  * the review's gltf_sparse.gltf (count 1.5e8, no buffer view) took 1.8 GB
  * before std::bad_alloc. A relative buffer URI with ".." is legitimate. */
@@ -1265,6 +1279,7 @@ int main(void) {
     test_unreferenced_vertices();
     test_nesting();
     test_dae_accessors();
+    test_dae_controllers();
     test_gltf_sparse();
 #if !PX_TEST_ASAN
     struct rusage usage;

@@ -95,7 +95,9 @@
 ///   values beyond the count attribute of the <float_array>, <Name_array> or
 ///   <IDREF_array> (none without it: Assimp reads that many values and then
 ///   indexes past them), and accessor or array counts, offsets and strides
-///   that are not plain numbers below 2^31;
+///   that are not plain numbers below 2^31; and any <controller> (skin or
+///   morph: Assimp 5.2 allocates by the sum of <vcount> and indexes bones,
+///   weights and vertices by <v> unchecked);
 /// - glTF sparse accessors (Assimp 5.2 reads them unchecked: a missing
 ///   "indices" crashes it, and it allocates count * element size for one
 ///   without a buffer view);

@@ -250,6 +250,7 @@ typedef struct dae_scan {
     u32 nacc, acccap;
     u32 acc_depth;  /* element depth of the open <accessor>, or ~0u */
     int bad_number; /* a count, offset or stride that is not a plain number */
+    int controller; /* a <controller> (skin or morph) */
 } dae_scan;
 
 static u64 hash_str(const unsigned char *s, u32 len) {
@@ -477,6 +478,12 @@ static int dae_tags(dae_scan *s, int *too_deep) {
         i = j;
         if (name_len == 1 && d[name0] == 'p' && !self_closing && !p_content_ok(s, i)) return s->bad_p = 1, 0;
 #define NAME_IS(s_) (name_len == sizeof(s_) - 1 && memcmp(d + name0, s_, name_len) == 0)
+        /* Controllers are refused: ColladaParser::ReadControllerWeights
+         * resizes its weights to the sum of <vcount> (a 2 KB file took
+         * 1.5 GB, instantiated or not), and ColladaLoader indexes bones,
+         * weights and vertices by the <v> values and the joint count
+         * unchecked (SIGSEGV; an ai_assert abort). */
+        if (NAME_IS("controller")) return s->controller = 1, 0;
         if (NAME_IS("float_array") || NAME_IS("Name_array") || NAME_IS("IDREF_array")) {
             if (has_id) {
                 if (!plain_value(d + id.off, id.len)) return s->bad_attr = 1, 0;
@@ -653,6 +660,11 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
         else if (too_deep)
             st = pxi_error(err, PX_ERR_IO, "mesh file '%s': its XML is nested more than %d elements deep",
                            h->path, XML_MAX_DEPTH);
+        else if (s.controller)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': COLLADA controllers (skins, morphs) are not accepted (Assimp 5.2 "
+                           "reads their vertex weights unchecked)",
+                           h->path);
         else if (s.bad_number)
             st = pxi_error(
                 err, PX_ERR_IO,

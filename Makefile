@@ -29,6 +29,45 @@ deps:
 	  export DEBIAN_FRONTEND=noninteractive; \
 	  apt-get update -qq && apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
+	@$(MAKE) --no-print-directory meshes
+
+# Real meshes for the FCL comparison (test_fcl_model, bench_models): bunny00,
+# elephant and armadillo from the CGAL sample data (Debian libcgal-demo,
+# docs: /work/shared/models/cgal_demo_meshes.md). When the package's
+# data.tar.gz is not installed, the .deb is downloaded (not installed: it
+# pulls Qt) and only the three OFF files are extracted into $(MESH_DATA),
+# the path tests/CMakeLists.txt gives the programs (PROXIMA_MESH_DATA).
+# Without network or root the step says so and the mesh tests skip.
+MESH_DATA ?= $(CURDIR)/build/meshdata
+CGAL_DATA_TGZ ?= /usr/share/doc/libcgal-dev/data.tar.gz
+MESH_FILES := data/meshes/bunny00.off data/meshes/elephant.off data/meshes/armadillo.off
+
+.PHONY: meshes
+meshes:
+	@set -e; dir="$(MESH_DATA)"; have=1; \
+	for f in $(MESH_FILES); do [ -s "$$dir/$$(basename $$f)" ] || have=0; done; \
+	if [ $$have = 1 ]; then exit 0; fi; \
+	mkdir -p "$$dir"; tmp="$$dir/extract"; rm -rf "$$tmp"; mkdir -p "$$tmp"; \
+	if [ -s "$(CGAL_DATA_TGZ)" ]; then \
+	  tar -xzf "$(CGAL_DATA_TGZ)" -C "$$tmp" $(MESH_FILES); \
+	else \
+	  echo "meshes: $(CGAL_DATA_TGZ) absent; downloading libcgal-demo (not installing it)"; \
+	  deb=""; \
+	  if ( cd "$$tmp" && apt-get download -q libcgal-demo ) > "$$tmp/apt.log" 2>&1; then :; \
+	  elif [ "$$(id -u)" = 0 ]; then \
+	    apt-get update -qq > /dev/null 2>&1 || true; \
+	    ( cd "$$tmp" && apt-get download -q libcgal-demo ) > "$$tmp/apt.log" 2>&1 || true; \
+	  fi; \
+	  deb=$$(ls "$$tmp"/libcgal-demo_*.deb 2>/dev/null | head -n 1); \
+	  if [ -z "$$deb" ]; then \
+	    echo "meshes: warning: could not download libcgal-demo (see $$tmp/apt.log);" \
+	         "the real-mesh tests will skip" >&2; exit 0; \
+	  fi; \
+	  dpkg-deb --fsys-tarfile "$$deb" | tar -xO ./usr/share/doc/libcgal-dev/data.tar.gz \
+	    | tar -xz -C "$$tmp" $(MESH_FILES); \
+	fi; \
+	for f in $(MESH_FILES); do mv "$$tmp/$$f" "$$dir/"; done; rm -rf "$$tmp"; \
+	echo "meshes: $$(cd "$$dir" && ls *.off | tr '\n' ' ')in $$dir"
 
 configure:
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPROXIMA_WERROR=ON
@@ -92,13 +131,25 @@ test: deps
 	@echo "make test: all suites passed (release, install, ASan+UBSan)"
 
 # The full benchmark (about 40 minutes on the 2-core machine; not part of
-# CI): writes docs/bench/convex.csv, convex_tables.md, hybrid.csv, hybrid.md
-# and regenerates the plots.
-bench: build
+# CI): writes docs/bench/convex.csv, convex_tables.md, hybrid.csv, hybrid.md,
+# models.csv, models.md and regenerates the plots. `make bench-models` runs
+# only the model benchmark (real meshes against FCL's BVHModel<OBBRSS>).
+bench: deps
+	$(MAKE) build
 	./$(BUILD)/bench/bench_convex --out docs/bench
 	./$(BUILD)/bench/bench_hybrid --out docs/bench
 	gnuplot docs/bench/plot_convex.gp
 	gnuplot docs/bench/plot_hybrid.gp
+	$(MAKE) bench-models-run
+
+.PHONY: bench-models bench-models-run
+bench-models: deps
+	$(MAKE) build
+	$(MAKE) bench-models-run
+
+bench-models-run:
+	./$(BUILD)/bench/bench_models --meshes $(MESH_DATA) --models models --out docs/bench
+	gnuplot docs/bench/plot_models.gp
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

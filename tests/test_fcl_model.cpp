@@ -182,17 +182,18 @@ void check_pose(const char *what, const Body &a, const Body &b, const px_pose &p
     const double err = std::fabs(r.distance - df);
     const double rel = err / std::max(df, 1e-300);
     if (err > 0) st->max_rel = std::max(st->max_rel, err <= 1e-300 ? 0.0 : rel);
-    CHECK(err <= 1e-9 * df || err <= 1e-15, "%s pose %d: proxima %.17g, FCL %.17g (rel %.3g)", what, st->poses,
-          r.distance, df, rel);
+    CHECK(err <= 1e-9 * df || err <= 1e-15, "%s pose %d: proxima %.17g, FCL %.17g (rel %.3g)", what,
+          st->poses, r.distance, df, rel);
     CHECK(r.upper_bound == r.distance, "%s pose %d: triangle leaves, upper bound %.17g", what, st->poses,
           r.upper_bound);
     // The witnesses: on the reported triangles, as far apart as the distance.
-    const double off_a = witness_off(a, pa, r.leaf_a, r.point_a), off_b = witness_off(b, pb, r.leaf_b, r.point_b);
+    const double off_a = witness_off(a, pa, r.leaf_a, r.point_a),
+                 off_b = witness_off(b, pb, r.leaf_b, r.point_b);
     CHECK(off_a <= 1e-12 && off_b <= 1e-12, "%s pose %d: witnesses off their triangles by %.3g, %.3g", what,
           st->poses, off_a, off_b);
     const double gap = dist3(r.point_a, r.point_b);
-    CHECK(std::fabs(gap - r.distance) <= 1e-12 + 1e-9 * r.distance, "%s pose %d: witnesses %.17g apart, distance %.17g",
-          what, st->poses, gap, r.distance);
+    CHECK(std::fabs(gap - r.distance) <= 1e-12 + 1e-9 * r.distance,
+          "%s pose %d: witnesses %.17g apart, distance %.17g", what, st->poses, gap, r.distance);
     st->node_pairs += r.node_pairs;
     st->leaf_pairs += r.leaf_pairs;
 
@@ -202,7 +203,8 @@ void check_pose(const char *what, const Body &a, const Body &b, const px_pose &p
     const bool fc = fcl_collide(a, ta, b, tb);
     if (df == 0.0 && r.distance == 0.0) {
         st->crossing++;
-        CHECK(c.hit == 1 && fc, "%s pose %d: surfaces cross; proxima hit %d, FCL %d", what, st->poses, c.hit, (int)fc);
+        CHECK(c.hit == 1 && fc, "%s pose %d: surfaces cross; proxima hit %d, FCL %d", what, st->poses, c.hit,
+              (int)fc);
     } else if (df > 1e-9) {
         st->apart++;
         CHECK(!fc, "%s pose %d: FCL collides at distance %.17g", what, st->poses, df);
@@ -210,8 +212,9 @@ void check_pose(const char *what, const Body &a, const Body &b, const px_pose &p
             // Only a containment may make disjoint surfaces collide.
             st->contained++;
             const bool inside = some_vertex_inside(b, pb, a, pa) || some_vertex_inside(a, pa, b, pb);
-            CHECK(c.contained == 1 && inside, "%s pose %d: proxima hit at distance %.17g (contained %d, ray test %d)",
-                  what, st->poses, df, c.contained, (int)inside);
+            CHECK(c.contained == 1 && inside,
+                  "%s pose %d: proxima hit at distance %.17g (contained %d, ray test %d)", what, st->poses,
+                  df, c.contained, (int)inside);
         } else {
             // Not hit: the brute-force test must find no containment either.
             const bool inside = some_vertex_inside(b, pb, a, pa) || some_vertex_inside(a, pa, b, pb);
@@ -224,7 +227,8 @@ void check_pose(const char *what, const Body &a, const Body &b, const px_pose &p
 }
 
 void report(const char *what, const Stats &st) {
-    printf("%s: %d poses (%d crossing, %d apart of which %d contained, %d within 1e-9), max rel err vs FCL %.2e, "
+    printf("%s: %d poses (%d crossing, %d apart of which %d contained, %d within 1e-9), max rel err vs FCL "
+           "%.2e, "
            "%.1f node pairs and %.1f leaf pairs per distance query\n",
            what, st.poses, st.crossing, st.apart, st.contained, st.touching, st.max_rel,
            (double)st.node_pairs / std::max(1, st.poses), (double)st.leaf_pairs / std::max(1, st.poses));
@@ -234,6 +238,7 @@ void report(const char *what, const Stats &st) {
 // uniform in the ball of radius 0.9 (r_a + r_b), so that poses cross,
 // touch, miss and (for a small B) nest.
 void random_poses(const char *what, const Body &a, const Body &b, int n, uint64_t seed) {
+    const double t0 = tu_now();
     Rng rng{seed};
     Stats st;
     px_model_cache dc{}, cc{};
@@ -253,12 +258,14 @@ void random_poses(const char *what, const Body &a, const Body &b, int n, uint64_
     px_model_cache_release(&dc);
     px_model_cache_release(&cc);
     report(what, st);
+    printf("%s: %.2f s\n", what, tu_now() - t0);
     CHECK(st.crossing > 0 && st.apart > 0, "%s: the random poses should both cross and miss", what);
 }
 
 // B approaches A along a line, from 0.30 before first contact to 0.03 past
 // it, turning a little each pose; warm caches throughout.
 void approach(const char *what, const Body &a, const Body &b, int n, uint64_t seed) {
+    const double t0 = tu_now();
     Rng rng{seed};
     rm::Approach ap;
     rng.unit(ap.dir);
@@ -280,6 +287,7 @@ void approach(const char *what, const Body &a, const Body &b, int n, uint64_t se
     px_model_cache_release(&dc);
     px_model_cache_release(&cc);
     report(what, st);
+    printf("%s: %.2f s\n", what, tu_now() - t0);
     CHECK(st.crossing > 0 && st.apart > 0, "%s: the approach should end crossing", what);
 }
 
@@ -304,19 +312,23 @@ void containment(const Body &elephant, const Mesh &bunny_src) {
                 const double id[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
                 const px_pose pb = rm::to_px(id, c), pa = px_pose_identity();
                 px_model_distance_result r;
-                if (px_model_distance(elephant.tri.get(), &pa, small.tri.get(), &pb, nullptr, &r) != PX_OK) continue;
+                if (px_model_distance(elephant.tri.get(), &pa, small.tri.get(), &pb, nullptr, &r) != PX_OK)
+                    continue;
                 if (r.distance < 0.01) continue;
                 done = true;
-                const double df = fcl_distance(elephant, rm::to_fcl(pa.r, &pa.t.x), small, rm::to_fcl(pb.r, &pb.t.x));
-                CHECK(std::fabs(df - r.distance) <= 1e-9 * df, "containment: distance %.17g, FCL %.17g", r.distance,
-                      df);
+                const double df =
+                    fcl_distance(elephant, rm::to_fcl(pa.r, &pa.t.x), small, rm::to_fcl(pb.r, &pb.t.x));
+                CHECK(std::fabs(df - r.distance) <= 1e-9 * df, "containment: distance %.17g, FCL %.17g",
+                      r.distance, df);
                 px_model_collide_result cr;
                 CHECK(px_model_collide(elephant.tri.get(), &pa, small.tri.get(), &pb, nullptr, &cr) == PX_OK,
                       "containment: collide failed");
-                const bool fc = fcl_collide(elephant, rm::to_fcl(pa.r, &pa.t.x), small, rm::to_fcl(pb.r, &pb.t.x));
+                const bool fc =
+                    fcl_collide(elephant, rm::to_fcl(pa.r, &pa.t.x), small, rm::to_fcl(pb.r, &pb.t.x));
                 CHECK(cr.hit == 1 && cr.contained == 1, "containment: proxima hit %d contained %d", cr.hit,
                       cr.contained);
-                printf("containment: bunny (diagonal 0.04) inside the elephant at (%.3f, %.3f, %.3f), distance %.4f: "
+                printf("containment: bunny (diagonal 0.04) inside the elephant at (%.3f, %.3f, %.3f), "
+                       "distance %.4f: "
                        "proxima hit %d contained %d, FCL collide %d%s\n",
                        c[0], c[1], c[2], r.distance, cr.hit, cr.contained, (int)fc,
                        fc ? "" : " (FCL misses containment, fcl #418)");
@@ -327,6 +339,7 @@ void containment(const Body &elephant, const Mesh &bunny_src) {
 // Part hulls bracket the triangles' distance: parts.distance <= exact <=
 // parts.upper_bound (exact from the triangle models, FCL-checked above).
 void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t seed) {
+    const double t0 = tu_now();
     Rng rng{seed};
     px_model_info ia, ib;
     px_model_get_info(a.parts.get(), &ia);
@@ -347,21 +360,23 @@ void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t see
         px_model_distance_result rp, rt;
         px_status s1 = px_model_distance(a.parts.get(), &pa, b.parts.get(), &pb, &pc, &rp);
         px_status s2 = px_model_distance(a.tri.get(), &pa, b.tri.get(), &pb, &tc, &rt);
-        CHECK(s1 == PX_OK && s2 == PX_OK, "%s pose %d: %s / %s", what, i, px_status_string(s1), px_status_string(s2));
+        CHECK(s1 == PX_OK && s2 == PX_OK, "%s pose %d: %s / %s", what, i, px_status_string(s1),
+              px_status_string(s2));
         if (s1 != PX_OK || s2 != PX_OK) continue;
         const double slack = 1e-12 + 1e-9 * rt.distance;
         const bool ok = rp.distance <= rt.distance + slack && rt.distance <= rp.upper_bound + slack;
-        CHECK(ok, "%s pose %d: triangles %.17g outside the parts' bracket [%.17g, %.17g]", what, i, rt.distance,
-              rp.distance, rp.upper_bound);
+        CHECK(ok, "%s pose %d: triangles %.17g outside the parts' bracket [%.17g, %.17g]", what, i,
+              rt.distance, rp.distance, rp.upper_bound);
         ok_count += ok;
         tight += rp.upper_bound - rp.distance <= 0.05;
         max_width = std::max(max_width, rp.upper_bound - rp.distance);
     }
     px_model_cache_release(&pc);
     px_model_cache_release(&tc);
-    printf("%s: %d parts (max h %.4f) vs %d parts (max h %.4f): %d/%d poses bracketed, widest bracket %.4f, %d "
-           "within 0.05\n",
-           what, ia.leaves, ia.max_h, ib.leaves, ib.max_h, ok_count, n, max_width, tight);
+    printf(
+        "%s: %d parts (max h %.4f) vs %d parts (max h %.4f): %d/%d poses bracketed, widest bracket %.4f, %d "
+        "within 0.05 (%.2f s)\n",
+        what, ia.leaves, ia.max_h, ib.leaves, ib.max_h, ok_count, n, max_width, tight, tu_now() - t0);
 }
 
 bool load(const std::string &path, Mesh *m, double diag, bool components) {
@@ -381,14 +396,16 @@ int main() {
     const bool asan = tu_sanitized();
     const int n_random = tu_scaled(asan ? 12 : 100), n_approach = tu_scaled(asan ? 20 : 100);
     const int n_bracket = tu_scaled(asan ? 20 : 200);
-    const std::string puma = std::string(PX_SOURCE_DIR) + "/models/puma560/nimasarli_puma560_description/meshes/";
+    const std::string puma =
+        std::string(PX_SOURCE_DIR) + "/models/puma560/nimasarli_puma560_description/meshes/";
     const std::string teapot = std::string(PX_SOURCE_DIR) + "/models/teapot/";
 
     // Two Puma links (closed meshes; parts are their connected components).
     {
         Body l2, l4;
-        if (load(puma + "puma_link2.stl", &l2.mesh, 1.0, true) && load(puma + "puma_link4.stl", &l4.mesh, 1.0, true) &&
-            make_body(&l2, true) && make_body(&l4, true)) {
+        if (load(puma + "puma_link2.stl", &l2.mesh, 1.0, true) &&
+            load(puma + "puma_link4.stl", &l4.mesh, 1.0, true) && make_body(&l2, true) &&
+            make_body(&l4, true)) {
             random_poses("puma link2 vs link4, random", l2, l4, n_random, 1);
             approach("puma link2 vs link4, approach", l2, l4, n_approach, 2);
             bracket("puma link2 vs link4, part hulls", l2, l4, n_bracket, 3);
@@ -420,8 +437,8 @@ int main() {
             rm::normalize(&bu.mesh, 0.5);
             const double t0 = tu_now();
             if (make_body(&el, false) && make_body(&bu, false)) {
-                printf("elephant (%zu triangles) and bunny00 (%zu triangles): models built in %.2f s\n", el.mesh.nt(),
-                       bu.mesh.nt(), tu_now() - t0);
+                printf("elephant (%zu triangles) and bunny00 (%zu triangles): models built in %.2f s\n",
+                       el.mesh.nt(), bu.mesh.nt(), tu_now() - t0);
                 random_poses("elephant vs bunny00, random", el, bu, n_random, 6);
                 approach("elephant vs bunny00, approach", el, bu, n_approach, 7);
                 containment(el, bn);

@@ -98,7 +98,8 @@ inline bool read_off_text(const std::string &text, Mesh *m, std::string *err) {
     for (long long i = 0; i < nv; ++i) {
         const auto &t = L[(size_t)(2 + i)];
         double v[3];
-        if (t.size() != 3 || !parse_double(t[0], &v[0]) || !parse_double(t[1], &v[1]) || !parse_double(t[2], &v[2]))
+        if (t.size() != 3 || !parse_double(t[0], &v[0]) || !parse_double(t[1], &v[1]) ||
+            !parse_double(t[2], &v[2]))
             return *err = "OFF: bad vertex line " + std::to_string(i), false;
         m->xyz.insert(m->xyz.end(), v, v + 3);
     }
@@ -256,7 +257,8 @@ inline bool load_cgal_mesh(const std::string &file, Mesh *m, std::string *err, s
     FILE *t = std::fopen(cgal_data_tgz(), "rb");
     if (t) {
         std::fclose(t);
-        std::string cmd = std::string("tar -xzOf ") + cgal_data_tgz() + " data/meshes/" + file + " 2>/dev/null";
+        std::string cmd =
+            std::string("tar -xzOf ") + cgal_data_tgz() + " data/meshes/" + file + " 2>/dev/null";
         FILE *p = popen(cmd.c_str(), "r");
         if (p) {
             char buf[1 << 16];
@@ -278,7 +280,8 @@ inline bool load_cgal_mesh(const std::string &file, Mesh *m, std::string *err, s
 inline void bbox(const Mesh &m, double lo[3], double hi[3]) {
     for (int k = 0; k < 3; ++k) lo[k] = HUGE_VAL, hi[k] = -HUGE_VAL;
     for (size_t i = 0; i < m.nv(); ++i)
-        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], m.xyz[3 * i + k]), hi[k] = std::max(hi[k], m.xyz[3 * i + k]);
+        for (int k = 0; k < 3; ++k)
+            lo[k] = std::min(lo[k], m.xyz[3 * i + k]), hi[k] = std::max(hi[k], m.xyz[3 * i + k]);
 }
 
 // Centres the bounding box at the origin and scales its diagonal to `diag`.
@@ -380,9 +383,11 @@ using FclModel = fcl::BVHModel<fcl::OBBRSSd>;
 // mean split), the mesh's own vertex array and winding.
 inline std::shared_ptr<FclModel> make_fcl(const Mesh &m) {
     std::vector<fcl::Vector3d> pts(m.nv());
-    for (size_t i = 0; i < m.nv(); ++i) pts[i] = fcl::Vector3d(m.xyz[3 * i], m.xyz[3 * i + 1], m.xyz[3 * i + 2]);
+    for (size_t i = 0; i < m.nv(); ++i)
+        pts[i] = fcl::Vector3d(m.xyz[3 * i], m.xyz[3 * i + 1], m.xyz[3 * i + 2]);
     std::vector<fcl::Triangle> tris(m.nt());
-    for (size_t t = 0; t < m.nt(); ++t) tris[t] = fcl::Triangle(m.tri[3 * t], m.tri[3 * t + 1], m.tri[3 * t + 2]);
+    for (size_t t = 0; t < m.nt(); ++t)
+        tris[t] = fcl::Triangle(m.tri[3 * t], m.tri[3 * t + 1], m.tri[3 * t + 2]);
     auto b = std::make_shared<FclModel>();
     b->beginModel((int)m.nt(), (int)m.nv());
     b->addSubModel(pts, tris);
@@ -398,8 +403,9 @@ inline std::shared_ptr<FclModel> make_fcl(const Mesh &m) {
 // overhead and the object itself are not counted (nor for proxima's
 // px_model_get_info, which counts what it allocates).
 inline size_t fcl_memory_bytes(const FclModel &b) {
-    return (size_t)b.getNumBVs() * sizeof(fcl::BVNode<fcl::OBBRSSd>) + (size_t)b.num_tris * sizeof(fcl::Triangle) +
-           (size_t)b.num_vertices * sizeof(fcl::Vector3d) + (size_t)b.num_tris * sizeof(unsigned int) + sizeof(FclModel);
+    return (size_t)b.getNumBVs() * sizeof(fcl::BVNode<fcl::OBBRSSd>) +
+           (size_t)b.num_tris * sizeof(fcl::Triangle) + (size_t)b.num_vertices * sizeof(fcl::Vector3d) +
+           (size_t)b.num_tris * sizeof(unsigned int) + sizeof(FclModel);
 }
 
 // A px_pose and an fcl::Transform3d from a row-major rotation and a
@@ -424,15 +430,17 @@ inline fcl::Transform3d to_fcl(const double r[9], const double t[3]) {
 inline void axis_angle(const double u[3], double a, double r[9]) {
     const double c = std::cos(a), s = std::sin(a), C = 1 - c;
     const double x = u[0], y = u[1], z = u[2];
-    const double m[9] = {c + x * x * C,     x * y * C - z * s, x * z * C + y * s, y * x * C + z * s, c + y * y * C,
-                         y * z * C - x * s, z * x * C - y * s, z * y * C + x * s, c + z * z * C};
+    const double m[9] = {c + x * x * C,     x * y * C - z * s, x * z * C + y * s,
+                         y * x * C + z * s, c + y * y * C,     y * z * C - x * s,
+                         z * x * C - y * s, z * y * C + x * s, c + z * z * C};
     std::memcpy(r, m, sizeof m);
 }
 
 inline void mat_mul(const double a[9], const double b[9], double out[9]) {
     double r[9];
     for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) r[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
+        for (int j = 0; j < 3; ++j)
+            r[3 * i + j] = a[3 * i] * b[j] + a[3 * i + 1] * b[3 + j] + a[3 * i + 2] * b[6 + j];
     std::memcpy(out, r, sizeof r);
 }
 
@@ -501,15 +509,19 @@ inline bool point_inside(const Mesh &m, const double p[3]) {
     for (const auto &d : dirs) {
         int cross = 0;
         for (size_t t = 0; t < m.nt(); ++t) {
-            const double *a = &m.xyz[3 * m.tri[3 * t]], *b = &m.xyz[3 * m.tri[3 * t + 1]], *c = &m.xyz[3 * m.tri[3 * t + 2]];
-            double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-            double h[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]};
+            const double *a = &m.xyz[3 * m.tri[3 * t]], *b = &m.xyz[3 * m.tri[3 * t + 1]],
+                         *c = &m.xyz[3 * m.tri[3 * t + 2]];
+            double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                   e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+            double h[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2],
+                           d[0] * e2[1] - d[1] * e2[0]};
             double det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
             if (det == 0) continue;
             double s[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
             double u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) / det;
             if (u < 0 || u > 1) continue;
-            double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+            double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
+                           s[0] * e1[1] - s[1] * e1[0]};
             double v = (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]) / det;
             if (v < 0 || u + v > 1) continue;
             double tt = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;

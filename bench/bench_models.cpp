@@ -2,7 +2,7 @@
 // (issue 9 section 6). One run, same process, same poses:
 //
 //   pairs   bunny00 vs elephant, armadillo vs bunny00 (CGAL sample meshes),
-//           Puma 560 link2 vs link4; every mesh scaled to a bounding-box
+//           Puma 560 link2 vs link4 (read by px_mesh_load); every mesh scaled to a bounding-box
 //           diagonal of 1 and centred
 //   motion  B approaches A (A at the identity) along a straight line from
 //           0.30 before first contact to 0.03 past it in 200 poses, turning
@@ -466,10 +466,8 @@ int main(int argc, char **argv) {
         Body l2, l4;
         const std::string dir = models + "/puma560/nimasarli_puma560_description/meshes/";
         std::string err;
-        if (rm::read_mesh_file(dir + "puma_link2.stl", &l2.mesh, &err) &&
-            rm::read_mesh_file(dir + "puma_link4.stl", &l4.mesh, &err)) {
-            rm::split_components(&l2.mesh);
-            rm::split_components(&l4.mesh);
+        if (rm::load_with_px(dir + "puma_link2.stl", &l2.mesh, &err) &&
+            rm::load_with_px(dir + "puma_link4.stl", &l4.mesh, &err)) {
             rm::normalize(&l2.mesh, 1.0);
             rm::normalize(&l4.mesh, 1.0);
             fprintf(stderr, "puma link2 vs link4\n");

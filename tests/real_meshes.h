@@ -26,6 +26,7 @@
 #include <fcl/geometry/bvh/BVH_model.h>
 #include <fcl/math/bv/OBBRSS.h>
 
+#include "proxima/io.h"
 #include "proxima/proxima.h"
 
 namespace rm {
@@ -237,6 +238,35 @@ inline bool read_mesh_file(const std::string &path, Mesh *m, std::string *err) {
     if (ends_with(path, ".stl")) return read_stl_text(text, m, err);
     if (ends_with(path, ".obj")) return read_obj_text(text, m, err);
     return *err = "unknown extension: " + path, false;
+}
+
+// A mesh file through the library's loader (px_mesh_load, proxima-io): its
+// vertices, triangles and parts copied into a Mesh, so that FCL gets the
+// very triangles the models are built from.
+inline bool load_with_px(const std::string &path, Mesh *m, std::string *err) {
+    px_error e{};
+    px_mesh *mesh = px_mesh_load(path.c_str(), nullptr, &e);
+    if (!mesh) return *err = std::string("px_mesh_load: ") + e.message, false;
+    const uint32_t nv = px_mesh_vertex_count(mesh), nt = px_mesh_triangle_count(mesh);
+    m->name = path.substr(path.find_last_of('/') + 1);
+    m->xyz.assign(px_mesh_vertices(mesh), px_mesh_vertices(mesh) + 3 * (size_t)nv);
+    m->tri.assign(px_mesh_triangles(mesh), px_mesh_triangles(mesh) + 3 * (size_t)nt);
+    m->part_tri = {0};
+    m->part_vtx = {0};
+    bool ok = true;
+    for (uint32_t p = 0; p < px_mesh_part_count(mesh); ++p) {
+        px_mesh_part mp;
+        px_mesh_get_part(mesh, p, &mp);
+        // Parts as consecutive ranges (what Mesh holds); the loader writes
+        // them in order.
+        ok = ok && mp.first_triangle == m->part_tri.back() && mp.first_vertex == m->part_vtx.back();
+        m->part_tri.push_back(mp.first_triangle + mp.triangle_count);
+        m->part_vtx.push_back(mp.first_vertex + mp.vertex_count);
+    }
+    ok = ok && m->part_tri.back() == nt && m->part_vtx.back() == nv;
+    px_mesh_destroy(mesh);
+    if (!ok) return *err = path + ": parts are not consecutive ranges", false;
+    return true;
 }
 
 #ifndef PROXIMA_MESH_DATA

@@ -12,9 +12,9 @@
 //   1e-9 or the surfaces cross; where FCL misses a containment (fcl #418)
 //   proxima reports it, checked against a brute-force ray parity test, and a
 //   small bunny inside the elephant is checked on purpose.
-// - Part hulls (PX_PIECES_PARTS, parts = connected components or OBJ
-//   groups) bracket the triangle distance: distance <= exact <= upper_bound,
-//   on the Puma links and the two teapots.
+// - Part hulls (PX_PIECES_PARTS: the loader's parts for the Puma links,
+//   OBJ groups or connected components for the teapots) bracket the triangle distance: distance <= exact <=
+//   upper_bound, on the Puma links and the two teapots.
 // Every mesh is scaled to a bounding-box diagonal of 1 (the bunny against
 // the elephant to 0.5). The CGAL meshes come from PROXIMA_MESH_DATA (filled
 // by `make deps`); when they are truly unavailable those cases print SKIP.
@@ -379,9 +379,11 @@ void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t see
         what, ia.leaves, ia.max_h, ib.leaves, ib.max_h, ok_count, n, max_width, tight, tu_now() - t0);
 }
 
-bool load(const std::string &path, Mesh *m, double diag, bool components) {
+// components: parts become the connected components (own readers); with
+// px_loader the file goes through px_mesh_load and keeps its parts.
+bool load(const std::string &path, Mesh *m, double diag, bool components, bool px_loader = false) {
     std::string err;
-    bool ok = rm::read_mesh_file(path, m, &err);
+    bool ok = px_loader ? rm::load_with_px(path, m, &err) : rm::read_mesh_file(path, m, &err);
     CHECK(ok, "%s", err.c_str());
     if (!ok) return false;
     if (components) rm::split_components(m);
@@ -394,20 +396,20 @@ bool load(const std::string &path, Mesh *m, double diag, bool components) {
 int main() {
     tu_init("test_fcl_model");
     const bool asan = tu_sanitized();
-    // Counts for about 25 s of CPU in Release on the 2-core machine (the
-    // Puma links' triangle queries are slow: docs/bench/models.md); a fifth
-    // of them under the sanitizers.
-    const int n_random = tu_scaled(asan ? 12 : 60), n_approach = tu_scaled(asan ? 12 : 60);
-    const int n_bracket = tu_scaled(asan ? 20 : 100);
+    // Counts for about 25 s of CPU in Release on the 2-core machine (most of
+    // it FCL, the brute-force inside tests and the bunny's build); fewer
+    // under the sanitizers.
+    const int n_random = tu_scaled(asan ? 12 : 100), n_approach = tu_scaled(asan ? 12 : 100);
+    const int n_bracket = tu_scaled(asan ? 20 : 200);
     const std::string puma =
         std::string(PX_SOURCE_DIR) + "/models/puma560/nimasarli_puma560_description/meshes/";
     const std::string teapot = std::string(PX_SOURCE_DIR) + "/models/teapot/";
 
-    // Two Puma links (closed meshes; parts are their connected components).
+    // Two Puma links (closed meshes), read by px_mesh_load.
     {
         Body l2, l4;
-        if (load(puma + "puma_link2.stl", &l2.mesh, 1.0, true) &&
-            load(puma + "puma_link4.stl", &l4.mesh, 1.0, true) && make_body(&l2, true) &&
+        if (load(puma + "puma_link2.stl", &l2.mesh, 1.0, false, true) &&
+            load(puma + "puma_link4.stl", &l4.mesh, 1.0, false, true) && make_body(&l2, true) &&
             make_body(&l4, true)) {
             random_poses("puma link2 vs link4, random", l2, l4, n_random, 1);
             approach("puma link2 vs link4, approach", l2, l4, n_approach, 2);

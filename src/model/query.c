@@ -147,6 +147,7 @@ typedef struct qctx {
     px_vec3 pt_a, pt_b; /* world */
     px_vec3 hint;       /* unit direction between the best witnesses, A's frame */
     int has_hint;
+    double band; /* contact band of the roots (collide, within) */
     px_feature fa, fb;
     uint32_t node_pairs, leaf_pairs;
     px_diagnostics diag;
@@ -325,7 +326,7 @@ static void leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
         for (int k = 0; k < 3; ++k) t[k] = pxi_xform(&q->t_ab, t[k]);
         /* A cheap bound first: the two triangles projected on the
          * direction between the best witnesses and on each one's normal. */
-        double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : 0.0;
+        double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : node_band(q, na, nb);
         if (tri_gap(s, t, q->has_hint ? &q->hint : NULL) > limit) return;
         d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
         pa = pxi_xform(q->pa, pa);
@@ -385,9 +386,11 @@ static int done(const qctx *q) {
  * boolean queries pairs whose bound is at most the tolerance (plus the
  * contact band for collisions, so that touching pairs are not pruned). */
 static int keep(const qctx *q, double lb, uint32_t ia, uint32_t ib) {
+    (void)ia;
+    (void)ib;
     if (q->kind == Q_DISTANCE) return lb < q->ub;
-    double band = node_band(q, &q->a->nodes[ia], &q->b->nodes[ib]);
-    return lb <= current_limit(q) + band;
+    /* q->band: at least every node pair's band, computed once. */
+    return lb <= current_limit(q) + q->band;
 }
 
 static void descend(qctx *q) {
@@ -561,6 +564,9 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     q->cache = cache;
     q->mc = cache_open(cache, a, b, a, idb ? idb : b);
     q->kind = kind;
+    /* Twice the roots' band: every node pair's band is below it (the centres
+     * lie in their ancestors' spheres). */
+    q->band = 2.0 * node_band(q, &a->nodes[0], &b->nodes[0]);
     q->ub = INFINITY;
     q->leaf_a = q->leaf_b = PXI_NONE;
     q->status = PX_OK;

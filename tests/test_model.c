@@ -759,6 +759,273 @@ static void test_pxm(void) {
     free_pieces(&pa);
 }
 
+/* ---- The review's cases (tests/data in the issue-9 notes) ------------------ */
+
+/* One-part mesh from arrays. */
+static px_model *tri_model_of(const double *v, uint32_t nv, const uint32_t *t, uint32_t nt, uint32_t kind,
+                              px_error *e) {
+    px_mesh_desc d;
+    memset(&d, 0, sizeof d);
+    d.xyz = v;
+    d.vertex_count = nv;
+    d.triangles = t;
+    d.triangle_count = nt;
+    px_mesh *m = px_mesh_create(&d, NULL, e);
+    if (!m) return NULL;
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = kind;
+    px_model *md = px_model_create_from_mesh(m, &o, e);
+    px_mesh_destroy(m);
+    return md;
+}
+
+static void test_review(void) {
+    px_error e;
+    px_pose id = px_pose_identity();
+    /* R1: sliver triangles (two corners a few ulps apart) must not be
+     * pruned: their own closest pair is the answer. */
+    {
+        double ra[9] = {-0x1.1a91048e497cap-1, -0x1.9acefdba761dap-1, -0x1.d162d83573fb7p-3,
+                        0x1.a29ae6038054p-1,   -0x1.26065620b61e4p-1, 0x1.585e259fd887p-5,
+                        -0x1.50552bc314fe3p-3, -0x1.4cfb253479268p-3, 0x1.f2240ace81e02p-1},
+               ta[3] = {0, 0, 0};
+        double rb[9] = {-0x1.0058c6f062464p-1, 0x1.00304902b7d08p-5,  -0x1.baea500144298p-1,
+                        0x1.acb46995e5082p-1,  0x1.158803b1aaee4p-2,  -0x1.e63613e51205fp-2,
+                        0x1.c1c1bee4cbf6ep-3,  -0x1.ec939cac7a864p-1, -0x1.4b88ead472f9p-3},
+               tb[3] = {0x1.747f7ee7bd4b4p-4, 0x1.6f16915c554f9p-2, 0x1.a0c40e43c3b1cp-3};
+        px_pose pa, pb;
+        px_pose_from_rt(ra, ta, &pa);
+        px_pose_from_rt(rb, tb, &pb);
+        double A[18] = {0x1.88322d0710646p-1, 0x1.979b80432f38p-5,   -0x1.b50ccb636a198p-4,
+                        0x1.2119e5390f00ap-1, -0x1.5c48e1adebc4cp-3, -0x1.547d59cf75c5p-8,
+                        0x1.2119e5390f008p-1, -0x1.5c48e1adebc55p-3, -0x1.547d59cf75bdp-8,
+                        0x1.413582ea826bp-2,  -0x1.30edfa7a61dcp-2,  0x1.9905e71f320bcp-1,
+                        0x1.2be2a29a57c54p-3, -0x1.b950cedb72a1cp-3, 0x1.99026b713204cp-1,
+                        0x1.a71bf1d81b04ap-3, -0x1.b3e7718767ceep-2, 0x1.e43030242ec6bp-1};
+        double B[36] = {
+            -0x1.c8035baf9006cp-1, 0x1.7b3c203af6784p-2,  -0x1.0fdf18021fcp-10,  -0x1.0bd747a84ae1cp+0,
+            0x1.9a60d604018e8p-2,  0x1.99760ebb32ec1p-3,  -0x1.e57d95322bd26p-1, 0x1.86c2075788fb2p-2,
+            0x1.2c5334e493fb5p-4,  0x1.a48d2f8b491a4p-2,  -0x1.c8418b1f90831p-1, -0x1.5442b39aa8856p-2,
+            0x1.04ed63793d0dep-2,  -0x1.adbf9e2d5b7f3p-1, -0x1.4dd172b902094p-4, 0x1.932f58de5991bp-3,
+            -0x1.62f7869cc5ef1p-1, -0x1.b7abc01108f11p-2, 0x1.4ea154ba9d42cp-2,  0x1.205bdf3a40b7cp-2,
+            0x1.9e078b8f3c0f2p-1,  0x1.6263c7c45e615p-3,  0x1.8f21894feb1p-7,    0x1.b9c9404ca6c5cp-1,
+            0x1.ffd3389ccc736p-3,  0x1.2cd4eb84c0104p-3,  0x1.abe865edf16a7p-1,  0x1.cb5ff41396cp-3,
+            0x1.0e5e0dba1cbcp-2,   0x1.77625ff2eec48p-3,  0x1.b195b023632bcp-5,  0x1.56398aad12d96p-2,
+            0x1.8aee33297c41p-6,   0x1.1be2b00e37c58p-3,  0x1.324bcc3397cabp-2,  0x1.a8c026581e4cap-4};
+        uint32_t t[12];
+        for (uint32_t k = 0; k < 12; ++k) t[k] = k;
+        px_model *a = tri_model_of(A, 6, t, 2, PX_PIECES_TRIANGLES, &e),
+                 *b = tri_model_of(B, 12, t, 4, PX_PIECES_TRIANGLES, &e);
+        tri_mesh ma = {A, 6, t, 2}, mb = {B, 12, t, 4};
+        or_tris oa, ob;
+        or_tris_init(&oa, &ma, &pa);
+        or_tris_init(&ob, &mb, &pb);
+        double bf = brute_tris(&oa, &ob);
+        px_model_distance_result r;
+        CHECK(a && b && px_model_distance(a, &pa, b, &pb, NULL, &r) == PX_OK &&
+                  fabs(r.distance - bf) <= 1e-12,
+              "R1 slivers: %.17g, brute %.17g", r.distance, bf);
+        or_tris_free(&oa);
+        or_tris_free(&ob);
+        px_model_destroy(a);
+        px_model_destroy(b);
+    }
+    /* R2: a triangle outside every part is a surface of no part; the box it
+     * sits in still contains a small box. */
+    {
+        double v[24];
+        pg_box(10, 10, 10, v);
+        double stray[9] = {9, 9, -3, 9, -3, 9, -3, 9, 9};
+        px_convex *hull = px_convex_create(v, 8, NULL, NULL);
+        uint32_t tri[3 * 13], nt = 0;
+        for (uint32_t f = 0; f < px_convex_face_count(hull); ++f) {
+            uint32_t cnt, v0, v1, v2;
+            px_convex_face(hull, f, NULL, NULL, &cnt);
+            px_convex_face_vertex(hull, f, 0, &v0);
+            for (uint32_t k = 1; k + 1 < cnt; ++k) {
+                px_convex_face_vertex(hull, f, k, &v1);
+                px_convex_face_vertex(hull, f, k + 1, &v2);
+                tri[3 * nt] = v0, tri[3 * nt + 1] = v1, tri[3 * nt + 2] = v2, ++nt;
+            }
+        }
+        double hv[33];
+        for (uint32_t i = 0; i < 8; ++i) {
+            px_vec3 p;
+            px_convex_vertex(hull, i, &p);
+            hv[3 * i] = p.x, hv[3 * i + 1] = p.y, hv[3 * i + 2] = p.z;
+        }
+        memcpy(hv + 24, stray, sizeof stray);
+        tri[3 * nt] = 8, tri[3 * nt + 1] = 9, tri[3 * nt + 2] = 10;
+        px_mesh_part_desc part = {"box", -1, 0, 8, 0, nt, 0};
+        px_mesh_desc d;
+        memset(&d, 0, sizeof d);
+        d.xyz = hv;
+        d.vertex_count = 11;
+        d.triangles = tri;
+        d.triangle_count = nt + 1;
+        d.parts = &part;
+        d.part_count = 1;
+        px_mesh *mesh = px_mesh_create(&d, NULL, &e);
+        px_model_options o;
+        memset(&o, 0, sizeof o);
+        o.pieces = PX_PIECES_TRIANGLES;
+        px_model *m = mesh ? px_model_create_from_mesh(mesh, &o, &e) : NULL;
+        px_model_leaf leaf;
+        CHECK(m && px_model_get_leaf(m, nt, &leaf) == PX_OK && leaf.part == UINT32_MAX,
+              "R2: stray leaf of no part");
+        double small_box[24];
+        pg_box(1, 1, 1, small_box);
+        px_convex *small = px_convex_create(small_box, 8, NULL, NULL);
+        px_model_collide_result c;
+        CHECK(m && px_model_collide_convex(m, &id, small, &id, NULL, &c) == PX_OK && c.hit && c.contained,
+              "R2: a box inside the closed part collides");
+        o.pieces = PX_PIECES_PARTS;
+        CHECK(px_model_create_from_mesh(mesh, &o, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT &&
+                  strstr(e.message, "no part"),
+              "R2: PARTS refuses triangles of no part: %s", e.message);
+        px_convex_destroy(small);
+        px_convex_destroy(hull);
+        px_model_destroy(m);
+        px_mesh_destroy(mesh);
+    }
+    /* R4: a sliver too thin for a plane, against a convex piece. */
+    {
+        double v[9] = {0, 0, 0, 1, 0, 0, 1, 1e-15, 0};
+        uint32_t t[3] = {0, 1, 2};
+        px_model *m = tri_model_of(v, 3, t, 1, PX_PIECES_TRIANGLES, &e);
+        double box[24];
+        pg_box(0.5, 0.5, 0.5, box);
+        px_convex *c = px_convex_create(box, 8, NULL, NULL);
+        px_pose off = id;
+        off.t = (px_vec3){0.5, 1.0, 0.0};
+        px_model_distance_result r;
+        CHECK(m && px_model_distance_convex(m, &id, c, &off, NULL, &r) == PX_OK &&
+                  fabs(r.distance - 0.5) < 1e-12,
+              "R4: sliver vs box: %.17g", r.distance);
+        px_convex_destroy(c);
+        px_model_destroy(m);
+    }
+    /* R5: a point inside a closed polyhedron with a vertex on each of the
+     * eight fixed ray directions: the winding number decides. */
+    {
+        static const double dirs[8][3] = {{0.5773502691896258, 0.5773502691896257, 0.5773502691896259},
+                                          {-0.3162277660168379, 0.8944271909999159, 0.3162277660168380},
+                                          {0.8017837257372732, -0.2672612419124244, 0.5345224838248488},
+                                          {-0.6666666666666666, -0.3333333333333333, 0.6666666666666667},
+                                          {0.2182178902359924, 0.4364357804719848, -0.8728715609439696},
+                                          {-0.5345224838248488, 0.8017837257372732, -0.2672612419124244},
+                                          {0.9128709291752769, 0.3651483716701107, -0.1825741858350554},
+                                          {-0.1690308509457033, -0.5070925528371099, -0.8451542547285166}};
+        double pts[42];
+        for (int k = 0; k < 8; ++k)
+            for (int j = 0; j < 3; ++j) pts[3 * k + j] = 10 * dirs[k][j];
+        for (int k = 0; k < 6; ++k)
+            for (int j = 0; j < 3; ++j) pts[24 + 3 * k + j] = (j == k / 2) ? (k % 2 ? -10 : 10) : 0;
+        px_convex *h = px_convex_create(pts, 14, NULL, NULL);
+        double hv[42];
+        uint32_t tri[3 * 64], nt = 0, nv = px_convex_vertex_count(h);
+        for (uint32_t i = 0; i < nv; ++i) {
+            px_vec3 p;
+            px_convex_vertex(h, i, &p);
+            hv[3 * i] = p.x, hv[3 * i + 1] = p.y, hv[3 * i + 2] = p.z;
+        }
+        for (uint32_t f = 0; f < px_convex_face_count(h); ++f) {
+            uint32_t cnt, v0, v1, v2;
+            px_convex_face(h, f, NULL, NULL, &cnt);
+            px_convex_face_vertex(h, f, 0, &v0);
+            for (uint32_t k = 1; k + 1 < cnt; ++k) {
+                px_convex_face_vertex(h, f, k, &v1);
+                px_convex_face_vertex(h, f, k + 1, &v2);
+                tri[3 * nt] = v0, tri[3 * nt + 1] = v1, tri[3 * nt + 2] = v2, ++nt;
+            }
+        }
+        px_model *big = tri_model_of(hv, nv, tri, nt, PX_PIECES_TRIANGLES, &e);
+        double sv[9] = {0, 0, 0, 0.1, 0, 0, 0, 0.1, 0};
+        uint32_t st[3] = {0, 1, 2};
+        px_model *small = tri_model_of(sv, 3, st, 1, PX_PIECES_TRIANGLES, &e);
+        px_model_collide_result c;
+        CHECK(big && small && px_model_collide(big, &id, small, &id, NULL, &c) == PX_OK && c.hit &&
+                  c.contained,
+              "R5: every ray grazes, the point is inside");
+        CHECK(px_model_within(big, &id, small, &id, 0.5, NULL, &c) == PX_OK && c.hit, "R5: within");
+        px_model_destroy(big);
+        px_model_destroy(small);
+        px_convex_destroy(h);
+    }
+    /* R6: triangle models outside the range refuse with PX_ERR_RANGE. */
+    {
+        double scales[4] = {1e160, 1e300, 1e-160, 1e-300};
+        for (int i = 0; i < 4; ++i) {
+            double s = scales[i], v[9] = {0, 0, 0, s, 0, 0, 0, s, 0};
+            uint32_t t[3] = {0, 1, 2};
+            px_model *m = tri_model_of(v, 3, t, 1, PX_PIECES_TRIANGLES, &e);
+            CHECK(m == NULL && e.code == PX_ERR_RANGE, "R6: scale %g: %s", s, m ? "built" : e.message);
+            px_model_destroy(m);
+        }
+        double v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        uint32_t t[3] = {0, 1, 2};
+        px_model *m = tri_model_of(v, 3, t, 1, PX_PIECES_TRIANGLES, &e);
+        px_pose far = id;
+        far.t.x = 1e100;
+        px_model_distance_result r;
+        CHECK(m && px_model_distance(m, &id, m, &far, NULL, &r) == PX_ERR_RANGE, "R6: models 1e100 apart");
+        px_model_destroy(m);
+    }
+}
+
+/* R3: .pxm files whose solid flags or counts lie, rewritten with a valid
+ * checksum, are refused; so is a tree deeper than the builder makes. */
+static uint64_t fnv(uint64_t h, const unsigned char *p, size_t n) {
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+    return h;
+}
+
+static void reseal(unsigned char *b, size_t size) {
+    uint64_t h = fnv(fnv(0xcbf29ce484222325ull, b, 56), b + 88, size - 88);
+    for (int k = 0; k < 8; ++k) b[56 + k] = (unsigned char)(h >> (8 * k));
+}
+
+static void test_pxm_lies(void) {
+    tri_mesh t;
+    sphere(&t, 1.0, 5, 6, (px_vec3){0, 0, 0});
+    px_mesh *mesh = make_mesh(&t, 1);
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_TRIANGLES;
+    px_model *m = px_model_create_from_mesh(mesh, &o, NULL);
+    const char *path = "test_model_lies.pxm";
+    px_error e;
+    CHECK(m && px_model_save(m, path, &e) == PX_OK, "save");
+    size_t size = 0;
+    unsigned char *b = read_all(path, &size);
+    remove(path);
+    if (!b) return;
+    uint32_t nl = t.nt, nv = t.nv;
+    size_t solid_at = 88 + (size_t)(2 * nl - 1) * 16 + (size_t)nl * 24 + (size_t)nv * 24 + (size_t)nl * 12;
+    /* Solid flags cleared. */
+    memset(b + solid_at, 0, nl);
+    reseal(b, size);
+    CHECK(px_model_load_memory(b, size, NULL, &e) == NULL && e.code == PX_ERR_IO &&
+              strstr(e.message, "closed"),
+          "R3: flags cleared: %s", e.message);
+    memset(b + solid_at, 1, nl);
+    /* The header's solid part count set to 0. */
+    b[32] = b[33] = b[34] = b[35] = 0;
+    reseal(b, size);
+    CHECK(px_model_load_memory(b, size, NULL, &e) == NULL && e.code == PX_ERR_IO, "R3: solid count: %s",
+          e.message);
+    b[32] = 1;
+    reseal(b, size);
+    px_model *ok = px_model_load_memory(b, size, NULL, &e);
+    CHECK(ok != NULL, "R3: the untouched file still loads: %s", e.message);
+    px_model_destroy(ok);
+    free(b);
+    px_model_destroy(m);
+    px_mesh_destroy(mesh);
+    mesh_free(&t);
+}
+
 int main(void) {
     tu_init("test_model");
     test_arguments();
@@ -768,5 +1035,7 @@ int main(void) {
     test_bracket();
     test_pxm();
     test_mixed();
+    test_review();
+    test_pxm_lies();
     return tu_finish();
 }

@@ -122,9 +122,9 @@ typedef struct px_mesh_part {
     /// 1 when the part is a closed surface: after joining vertices at
     /// exactly equal positions (no tolerance), every edge is used by exactly
     /// two triangles, once in each direction, and no triangle is degenerate
-    /// (two equal corners, or three collinear ones: decided exactly for
-    /// coordinates of magnitude 2^-500 to 2^500, where no product of two
-    /// coordinate differences over- or underflows). Such a part bounds a
+    /// (two equal corners, or three collinear ones: decided exactly, each
+    /// triangle scaled by a power of two first; coordinates more than 2^900
+    /// below the triangle's largest may round to zero there). Such a part bounds a
     /// solid, and its triangles face out (see `px_mesh_create`). 0: an
     /// open, non-manifold or inconsistently wound surface, or a point set.
     uint32_t closed;

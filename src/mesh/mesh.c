@@ -110,8 +110,21 @@ static int orient2d_sign(double px, double py, double qx, double qy, double rx, 
     return e[n - 1] > 0 ? 1 : -1;
 }
 
-/* 1 when the three points are collinear (or two coincide), exactly. */
-static int collinear(const double *a, const double *b, const double *c) {
+/* A power of two that brings magnitudes up to `big` near 1, so that the
+ * products below neither overflow nor underflow (1 in the usual range). */
+static double unit_scale(double big) {
+    if (!(big > 0x1p-100 && big < 0x1p100) && big > 0.0 && isfinite(big)) return ldexp(1.0, -ilogb(big));
+    return 1.0;
+}
+
+/* 1 when the three points are collinear (or two coincide), exactly. The
+ * points are first scaled by a power of two (exact but for coordinates that
+ * underflow far below the largest). */
+static int collinear(const double *a0, const double *b0, const double *c0) {
+    double big = 0.0;
+    for (int k = 0; k < 3; ++k) big = fmax(big, fmax(fabs(a0[k]), fmax(fabs(b0[k]), fabs(c0[k]))));
+    double s = unit_scale(big), a[3], b[3], c[3];
+    for (int k = 0; k < 3; ++k) a[k] = a0[k] * s, b[k] = b0[k] * s, c[k] = c0[k] * s;
     return orient2d_sign(a[0], a[1], b[0], b[1], c[0], c[1]) == 0 &&
            orient2d_sign(a[1], a[2], b[1], b[2], c[1], c[2]) == 0 &&
            orient2d_sign(a[2], a[0], b[2], b[0], c[2], c[0]) == 0;
@@ -187,13 +200,21 @@ static uint32_t part_closed(px_mesh *m, const px_mesh_part *p, closed_work *w) {
     }
     double vol = 0;
     const double *o = xyz;
+    /* Scaled by a power of two so that the cubes stay in range. */
+    double big = 0.0;
+    for (uint32_t t = 0; t < nt; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const double *v = xyz + 3 * (size_t)(tri[3 * (size_t)t + k] - fv);
+            big = fmax(big, fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))));
+        }
+    double sc = unit_scale(big);
     for (uint32_t t = 0; t < nt; ++t) {
         const double *a = xyz + 3 * (size_t)(tri[3 * (size_t)t] - fv);
         const double *b = xyz + 3 * (size_t)(tri[3 * (size_t)t + 1] - fv);
         const double *c = xyz + 3 * (size_t)(tri[3 * (size_t)t + 2] - fv);
-        double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
-        double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
-        double cx = c[0] - o[0], cy = c[1] - o[1], cz = c[2] - o[2];
+        double ax = a[0] * sc - o[0] * sc, ay = a[1] * sc - o[1] * sc, az = a[2] * sc - o[2] * sc;
+        double bx = b[0] * sc - o[0] * sc, by = b[1] * sc - o[1] * sc, bz = b[2] * sc - o[2] * sc;
+        double cx = c[0] * sc - o[0] * sc, cy = c[1] * sc - o[1] * sc, cz = c[2] * sc - o[2] * sc;
         vol += ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
     }
     if (vol < 0) {

@@ -304,7 +304,7 @@ static uint32_t uf_find(uint32_t *parent, uint32_t x) {
     return x;
 }
 
-static px_status triangle_reps(px_model *m, px_error *err) {
+px_status pxi_model_triangle_reps(px_model *m, px_error *err) {
     uint32_t nv = m->nv;
     vkey *keys = pxi_alloc_array(&m->alloc, nv, sizeof *keys);
     uint32_t *parent = pxi_alloc_array(&m->alloc, nv, sizeof *parent);
@@ -357,7 +357,7 @@ static px_status triangle_reps(px_model *m, px_error *err) {
 }
 
 /* Convex trees: one representative vertex per piece. */
-static px_status convex_reps(px_model *m, px_convex **convex, px_error *err) {
+px_status pxi_model_convex_reps(px_model *m, px_convex **convex, px_error *err) {
     m->reps = pxi_alloc_array(&m->alloc, m->n_leaves, sizeof *m->reps);
     if (!m->reps) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
     for (uint32_t i = 0; i < m->n_leaves; ++i) px_convex_vertex(convex[i], 0, &m->reps[i]);
@@ -391,6 +391,7 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
                   piece_count);
         return NULL;
     }
+    if (pxi_model_check_range(xyz, piece_end[piece_count - 1], 0, err) != PX_OK) return NULL;
     px_allocator alloc;
     px_model *m = model_alloc(options, err, &alloc);
     if (!m) return NULL;
@@ -424,7 +425,7 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
             m->leaves[i].h = m->leaves[i].h_overlap = 0.0;
             start = piece_end[i];
         }
-        if (st == PX_OK) st = convex_reps(m, convex, err);
+        if (st == PX_OK) st = pxi_model_convex_reps(m, convex, err);
         if (st == PX_OK) {
             st = build_tree(m, convex, 1, err);
         } else {
@@ -433,6 +434,26 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
     }
     pxi_free(&alloc, convex, (size_t)piece_count * sizeof *convex);
     return finish(m, st, err);
+}
+
+px_status pxi_model_check_range(const double *xyz, size_t n, int triangles, px_error *err) {
+    double big = 0.0, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < 3 * n; ++i) {
+        big = fmax(big, fabs(xyz[i]));
+        lo[i % 3] = fmin(lo[i % 3], xyz[i]);
+        hi[i % 3] = fmax(hi[i % 3], xyz[i]);
+    }
+    double size = n ? fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2])) : 0.0;
+    if (!(big <= PXI_MODEL_MAX_COORD))
+        return pxi_error(err, PX_ERR_RANGE,
+                         "px_model: a coordinate of magnitude %.3g is beyond the models' range 2^250", big);
+    if (triangles && size > 0.0 && size < PXI_MODEL_MIN_SIZE)
+        return pxi_error(
+            err, PX_ERR_RANGE,
+            "px_model: the triangles span %.3g, below the triangle models' range 2^-250 (their closest "
+            "points square lengths)",
+            size);
+    return PX_OK;
 }
 
 /* Copies vertices and triangles into the model (body frame = mesh frame). */
@@ -469,7 +490,8 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
     px_model *m = model_alloc(&o, err, &alloc);
     if (!m) return NULL;
     m->pieces = PX_PIECES_TRIANGLES;
-    px_status st = copy_triangles(m, xyz, nv, tri, nt, err);
+    px_status st = pxi_model_check_range(xyz, nv, 1, err);
+    if (st == PX_OK) st = copy_triangles(m, xyz, nv, tri, nt, err);
     if (st == PX_OK) {
         m->n_leaves = nt;
         m->leaves = pxi_alloc_array(&alloc, nt, sizeof *m->leaves);
@@ -484,7 +506,7 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
             m->tri_solid[t] = closed && part && part[t] < n_parts ? closed[part[t]] : 0;
         }
         for (uint32_t p = 0; closed && p < n_parts; ++p) m->solid_parts += closed[p] != 0;
-        st = triangle_reps(m, err);
+        st = pxi_model_triangle_reps(m, err);
     }
     if (st == PX_OK) st = build_tree(m, NULL, hulls, err);
     return finish(m, st, err);
@@ -515,6 +537,13 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
         pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_mesh: mesh is NULL");
         return NULL;
     }
+    for (size_t i = 0; options && i < sizeof options->reserved / sizeof options->reserved[0]; ++i) {
+        if (options->reserved[i]) {
+            pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                      "px_model_create_from_mesh: options.reserved[%zu] is not zero", i);
+            return NULL;
+        }
+    }
     uint32_t pieces = options ? options->pieces : PX_PIECES_PARTS;
     if (pieces != PX_PIECES_PARTS && pieces != PX_PIECES_TRIANGLES) {
         pxi_error(err, PX_ERR_INVALID_ARGUMENT,
@@ -539,6 +568,9 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
             pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
         } else {
             int ok = 1;
+            /* Triangles outside every part (px_mesh_create allows them) are
+             * leaves of no part: surfaces, never solid. */
+            for (uint32_t t = 0; t < nt; ++t) part[t] = PXI_NONE;
             for (uint32_t p = 0; p < np && ok; ++p) {
                 px_mesh_part mp;
                 px_mesh_get_part(mesh, p, &mp);
@@ -552,15 +584,28 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
                 }
                 for (uint32_t t = 0; t < mp.triangle_count; ++t) part[mp.first_triangle + t] = p;
             }
-            if (ok && options && options->reserved[0])
-                ok = 0, pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model: options.reserved[0] is not zero");
             if (ok) m = pxi_model_from_triangles(xyz, nv, tri, nt, part, closed, np, 1, &alloc, err);
         }
         pxi_free(&alloc, part, (size_t)(nt ? nt : 1) * sizeof *part);
         pxi_free(&alloc, closed, np);
         return m;
     }
-    /* One hull per part. */
+    /* One hull per part: every triangle must belong to a part, or the
+     * model would not stand for it. */
+    uint64_t covered = 0;
+    for (uint32_t p = 0; p < np; ++p) {
+        px_mesh_part mp;
+        px_mesh_get_part(mesh, p, &mp);
+        covered += mp.triangle_count;
+    }
+    if (covered != nt) {
+        pxi_error(
+            err, PX_ERR_INVALID_ARGUMENT,
+            "px_model_create_from_mesh: %llu of the mesh's %u triangles belong to no part; PX_PIECES_PARTS "
+            "needs every triangle in a part",
+            (unsigned long long)(nt - covered), nt);
+        return NULL;
+    }
     px_model *m = model_alloc(options, err, &alloc);
     if (!m) return NULL;
     m->pieces = PX_PIECES_PARTS;
@@ -591,7 +636,7 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
             st = part_bounds(&alloc, convex[p], xyz, tri, &mp, &m->leaves[p].h, &m->leaves[p].h_overlap, err);
             m->max_h = fmax(m->max_h, m->leaves[p].h_overlap);
         }
-        if (st == PX_OK) st = convex_reps(m, convex, err);
+        if (st == PX_OK) st = pxi_model_convex_reps(m, convex, err);
         if (st == PX_OK) {
             st = build_tree(m, convex, 1, err);
         } else {

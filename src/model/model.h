@@ -73,6 +73,12 @@ struct px_model {
     px_allocator alloc;
 };
 
+/* Models keep coordinates within 2^250 (boxes square them), and triangle
+ * models span at least 2^-250 (closest points square edge lengths). */
+#define PXI_MODEL_MAX_COORD 0x1p250
+#define PXI_MODEL_MIN_SIZE 0x1p-250
+px_status pxi_model_check_range(const double *xyz, size_t n, int triangles, px_error *err);
+
 /* Builds a triangle tree (internal entry for the tests and
  * px_model_create_from_mesh): nv vertices, nt triangles, part[t] the part
  * of triangle t, closed[p] whether part p bounds a solid. */
@@ -90,6 +96,12 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
  * at most `limit` (returns `limit` when none is nearer); *tri gets the
  * triangle (PXI_NONE when none is nearer than limit). */
 double pxi_model_nearest(const px_model *m, px_vec3 p, double limit, uint32_t *tri);
+
+/* The representative points of a model (one per connected piece of a
+ * triangle model, one vertex per convex piece; build.c): m->reps, counted in
+ * m->bytes. For convex models `convex` lists the leaves' pieces. */
+px_status pxi_model_triangle_reps(px_model *m, px_error *err);
+px_status pxi_model_convex_reps(px_model *m, px_convex **convex, px_error *err);
 
 /* Triangle geometry (tri.c). Closest point of triangle (a, b, c) to p,
  * with the feature realising it (vertex k, edge k from vertex k to k+1, or

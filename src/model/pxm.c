@@ -25,6 +25,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -342,6 +343,134 @@ static void compute_boxes(px_model *m, reader *r) {
     pxi_free(&m->alloc, stack, (size_t)m->n_nodes * sizeof *stack);
 }
 
+static int cmp_u32(const void *x, const void *y) {
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return a < b ? -1 : a > b;
+}
+
+/* Solids and representative points are derived from the geometry, not
+ * taken from the file: the closed flags are recomputed by px_mesh_create
+ * over each part's triangles (its rule: exact join, every edge used twice
+ * in opposite directions, no zero-area triangle, outward orientation), and
+ * must match the file's; the representative points are recomputed. */
+static void check_solids(px_model *m, reader *r) {
+    /* Replace the file's representative points. */
+    pxi_free(&m->alloc, m->reps, (size_t)m->n_reps * sizeof *m->reps);
+    m->bytes -= (size_t)m->n_reps * sizeof *m->reps;
+    m->reps = NULL;
+    m->n_reps = 0;
+    if (m->pieces != PX_PIECES_TRIANGLES) {
+        px_convex **pieces = pxi_alloc_array(&m->alloc, m->n_leaves, sizeof *pieces);
+        if (!pieces) {
+            r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+            return;
+        }
+        for (uint32_t i = 0; i < m->n_nodes; ++i)
+            if (m->nodes[i].child[1] == PXI_NONE) pieces[m->nodes[i].child[0]] = m->nodes[i].hull;
+        r->st = pxi_model_convex_reps(m, pieces, r->err);
+        pxi_free(&m->alloc, pieces, (size_t)m->n_leaves * sizeof *pieces);
+        return;
+    }
+    r->st = pxi_model_triangle_reps(m, r->err);
+    if (r->st != PX_OK) return;
+    /* Parts: contiguous triangle ranges (leaves are in the mesh's triangle
+     * order) over disjoint vertex ranges, as px_mesh made them. */
+    uint32_t nt = m->nt, np = 0;
+    px_mesh_part_desc *parts = pxi_alloc_array(&m->alloc, nt, sizeof *parts);
+    if (!parts) {
+        r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+        return;
+    }
+    memset(parts, 0, (size_t)nt * sizeof *parts);
+    uint32_t prev = PXI_NONE - 1, solid_parts = 0;
+    for (uint32_t t = 0; t < nt && r->st == PX_OK; ++t) {
+        uint32_t part = m->leaves[t].part;
+        if (part == PXI_NONE) {
+            if (m->tri_solid[t])
+                BAD(r, "px_model_load: '%s': triangle %u of no part is marked solid", r->name, t);
+            prev = PXI_NONE;
+            continue;
+        }
+        if (part != prev) {
+            parts[np].first_triangle = t;
+            parts[np].triangle_count = 0;
+            parts[np].node = -1;
+            parts[np].first_vertex = UINT32_MAX;
+            parts[np].vertex_count = 0;
+            parts[np].reserved = part; /* the part's id, while checking */
+            ++np;
+            prev = part;
+        }
+        px_mesh_part_desc *d = &parts[np - 1];
+        d->triangle_count++;
+        for (int k = 0; k < 3; ++k) {
+            uint32_t v = m->tri[3 * (size_t)t + k];
+            uint32_t end = d->first_vertex == UINT32_MAX ? 0 : d->first_vertex + d->vertex_count;
+            if (d->first_vertex == UINT32_MAX) d->first_vertex = v, end = v + 1;
+            if (v < d->first_vertex) d->first_vertex = v;
+            if (v + 1 > end) end = v + 1;
+            d->vertex_count = end - d->first_vertex;
+        }
+        if (m->tri_solid[t] != m->tri_solid[d->first_triangle])
+            BAD(r, "px_model_load: '%s': part %u is partly solid", r->name, part);
+    }
+    /* Each part one run of triangles: no id twice among the runs. */
+    uint32_t *ids = r->st == PX_OK && np ? pxi_alloc_array(&m->alloc, np, sizeof *ids) : NULL;
+    if (r->st == PX_OK && np && !ids)
+        r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+    if (ids) {
+        for (uint32_t i = 0; i < np; ++i) ids[i] = parts[i].reserved;
+        qsort(ids, np, sizeof *ids, cmp_u32);
+        for (uint32_t i = 1; i < np && r->st == PX_OK; ++i)
+            if (ids[i] == ids[i - 1])
+                BAD(r, "px_model_load: '%s': the triangles of part %u are not contiguous", r->name, ids[i]);
+        pxi_free(&m->alloc, ids, (size_t)np * sizeof *ids);
+    }
+    px_mesh *mesh = NULL;
+    if (r->st == PX_OK && np) {
+        for (uint32_t i = 0; i < np; ++i) parts[i].reserved = 0;
+        double *xyz = pxi_alloc_array(&m->alloc, (size_t)m->nv * 3, sizeof *xyz);
+        if (!xyz) {
+            r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+        } else {
+            for (uint32_t i = 0; i < m->nv; ++i)
+                xyz[3 * i] = m->v[i].x, xyz[3 * i + 1] = m->v[i].y, xyz[3 * i + 2] = m->v[i].z;
+            px_mesh_desc desc;
+            memset(&desc, 0, sizeof desc);
+            desc.xyz = xyz;
+            desc.vertex_count = m->nv;
+            desc.triangles = m->tri;
+            desc.triangle_count = nt;
+            desc.parts = parts;
+            desc.part_count = np;
+            px_mesh_options mo;
+            memset(&mo, 0, sizeof mo);
+            mo.allocator = &m->alloc;
+            px_error e;
+            mesh = px_mesh_create(&desc, &mo, &e);
+            if (!mesh) BAD(r, "px_model_load: '%s': its triangles do not form parts: %s", r->name, e.message);
+            pxi_free(&m->alloc, xyz, (size_t)m->nv * 3 * sizeof *xyz);
+        }
+    }
+    for (uint32_t i = 0; mesh && i < np && r->st == PX_OK; ++i) {
+        px_mesh_part mp;
+        px_mesh_get_part(mesh, i, &mp);
+        uint8_t flag = m->tri_solid[parts[i].first_triangle];
+        if (flag != (mp.closed != 0))
+            BAD(r, "px_model_load: '%s': a part is marked %s but its triangles are %s", r->name,
+                flag ? "solid" : "open", mp.closed ? "closed" : "open");
+        solid_parts += flag;
+    }
+    if (mesh && r->st == PX_OK &&
+        memcmp(px_mesh_triangles(mesh), m->tri, (size_t)nt * 3 * sizeof *m->tri) != 0)
+        BAD(r, "px_model_load: '%s': a closed part is inside out", r->name);
+    if (r->st == PX_OK && solid_parts != m->solid_parts)
+        BAD(r, "px_model_load: '%s': the header counts %u solid parts, the triangles %u", r->name,
+            m->solid_parts, solid_parts);
+    px_mesh_destroy(mesh);
+    pxi_free(&m->alloc, parts, (size_t)nt * sizeof *parts);
+}
+
 static int finite3(px_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 static px_model *load_memory(const unsigned char *d, size_t size, const px_model_options *options,
@@ -476,6 +605,24 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     }
     if (r->st == PX_OK && hv_total != nhv)
         BAD(r, "px_model_load: '%s': hull vertex counts do not add up", r->name);
+    /* Depth first, before any work that grows with it: the builder's median
+     * splits give ceil(log2 leaves) + 1 at most. */
+    if (r->st == PX_OK) {
+        uint32_t *depth = pxi_alloc_array(&alloc, nn, sizeof *depth);
+        if (!depth) {
+            r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
+        } else {
+            depth[0] = 0;
+            for (uint32_t i = 0; i < nn && r->st == PX_OK; ++i) {
+                if (depth[i] > m->depth) m->depth = depth[i];
+                if (depth[i] > 64)
+                    BAD(r, "px_model_load: '%s': the tree is more than 64 levels deep", r->name);
+                if (m->nodes[i].child[1] != PXI_NONE)
+                    depth[m->nodes[i].child[0]] = depth[m->nodes[i].child[1]] = depth[i] + 1;
+            }
+            pxi_free(&alloc, depth, nn * sizeof *depth);
+        }
+    }
     for (uint32_t i = 0; i < nl && r->st == PX_OK; ++i, p += PXM_LEAF) {
         pxi_mleaf *l = &m->leaves[i];
         l->part = r_u32(p);
@@ -541,6 +688,7 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     for (uint32_t i = 0; i < nn; ++i) m->nodes[i].box = PXI_NONE;
     if (r->st == PX_OK) finish_nodes(m, r);
     if (r->st == PX_OK) compute_boxes(m, r);
+    if (r->st == PX_OK) check_solids(m, r);
     if (r->st == PX_OK) {
         /* Depth, and the hull of every inner node holding its children's hulls. */
         for (uint32_t i = 0; i < nn && r->st == PX_OK; ++i) {
@@ -561,19 +709,6 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
                 }
             }
         }
-        uint32_t *depth = pxi_alloc_array(&alloc, nn, sizeof *depth);
-        if (depth) {
-            depth[0] = 0;
-            for (uint32_t i = 0; i < nn; ++i) {
-                if (depth[i] > m->depth) m->depth = depth[i];
-                if (m->nodes[i].child[1] != PXI_NONE)
-                    depth[m->nodes[i].child[0]] = depth[m->nodes[i].child[1]] = depth[i] + 1;
-            }
-            if (m->depth > 100) BAD(r, "px_model_load: '%s': the tree is %u levels deep", r->name, m->depth);
-        } else {
-            r->st = pxi_error(r->err, PX_ERR_OUT_OF_MEMORY, "px_model_load: out of memory for '%s'", r->name);
-        }
-        pxi_free(&alloc, depth, nn * sizeof *depth);
     }
     if (r->st != PX_OK) {
         px_model_destroy(m);

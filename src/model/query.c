@@ -280,6 +280,19 @@ static int mixed_pair(qctx *q, const pxi_mnode *na, const pxi_mnode *nb, double 
     co.lut_resolution = 1;
     px_error e;
     px_convex *tc = px_convex_create(xyz, 3, &co, &e);
+    if (!tc && e.code == PX_ERR_DEGENERATE) {
+        /* A sliver too thin for its plane to be represented: measured as
+         * its longest edge (the far corner lies within rounding of it). */
+        int k = 0;
+        double best = -1.0;
+        for (int j = 0; j < 3; ++j) {
+            double l = pxi_len2(pxi_sub(t[(j + 1) % 3], t[j]));
+            if (l > best) best = l, k = j;
+        }
+        double seg[6] = {t[k].x, t[k].y, t[k].z, t[(k + 1) % 3].x, t[(k + 1) % 3].y, t[(k + 1) % 3].z};
+        tc = px_convex_create(seg, 2, &co, &e);
+        if (!tc && e.code == PX_ERR_DEGENERATE) tc = px_convex_create(seg, 1, &co, &e);
+    }
     if (!tc) {
         q->status = e.code;
         return 0;
@@ -516,6 +529,24 @@ static void ray_walk(const px_model *m, uint32_t id, ray_state *r) {
     if (!r->grazed) ray_walk(m, n->child[1], r);
 }
 
+/* Generalised winding number of the closed triangles about p: the sum of
+ * their signed solid angles over 4 pi (A. Van Oosterom and J. Strackee,
+ * "The solid angle of a plane triangle", IEEE Trans. Biomed. Eng. 30(2),
+ * 1983). 1 inside a closed outward surface, 0 outside; O(triangles). */
+static double winding_number(const px_model *m, px_vec3 p) {
+    double total = 0.0;
+    for (uint32_t t = 0; t < m->nt; ++t) {
+        if (!m->tri_solid[t]) continue;
+        const uint32_t *v = m->tri + 3 * (size_t)t;
+        px_vec3 a = pxi_sub(m->v[v[0]], p), b = pxi_sub(m->v[v[1]], p), c = pxi_sub(m->v[v[2]], p);
+        double la = pxi_len(a), lb = pxi_len(b), lc = pxi_len(c);
+        double num = pxi_dot(a, pxi_cross(b, c));
+        double den = la * lb * lc + pxi_dot(a, b) * lc + pxi_dot(b, c) * la + pxi_dot(c, a) * lb;
+        total += 2.0 * atan2(num, den);
+    }
+    return total / (4.0 * 3.14159265358979323846);
+}
+
 int pxi_model_point_inside(const px_model *m, px_vec3 p) {
     if (m->pieces != PX_PIECES_TRIANGLES || m->solid_parts == 0) return 0;
     if (p.x < m->lo.x || p.y < m->lo.y || p.z < m->lo.z || p.x > m->hi.x || p.y > m->hi.y || p.z > m->hi.z)
@@ -529,9 +560,10 @@ int pxi_model_point_inside(const px_model *m, px_vec3 p) {
         ray_walk(m, 0, &r);
         if (!r.grazed) return r.winding != 0;
     }
-    /* Every ray grazed an edge: the point is within rounding of the
-     * surface, where the surface queries already decide. */
-    return r.winding != 0;
+    /* Every ray grazed an edge or vertex (a point on a symmetry plane of a
+     * finely tessellated part, say): the winding number by solid angles
+     * decides, which has no special directions. */
+    return winding_number(m, p) > 0.5;
 }
 
 /* A piece of `in` lying inside a solid of `out` (poses: world). */
@@ -561,6 +593,8 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     q->pb = pb;
     q->t_ab = pxi_relative(pb, pa);
     if (!pxi_is_finite3(q->t_ab.t)) return PX_ERR_NON_FINITE;
+    /* Both models in A's frame stay within the models' range. */
+    if (!(pxi_max_abs(q->t_ab.t) <= PXI_MODEL_MAX_COORD)) return PX_ERR_RANGE;
     q->cache = cache;
     q->mc = cache_open(cache, a, b, a, idb ? idb : b);
     q->kind = kind;

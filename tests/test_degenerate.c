@@ -18,13 +18,11 @@
  *     over the same axes the line {tau d} enters B - A at
  *     max_{n.d<0} h_{B-A}(n) / (n.d) and leaves it at the min over n.d > 0
  *     (the translation oracle).
- * Per shape pair (ordered, 32 of them: 4 lower-dimensional kinds against
- * 6 kinds) >= 1,000 random poses (PROXIMA_TEST_SCALE; fewer under
- * sanitizers), a quarter of them aligned (pieces in one plane, a polygon
- * on a box's face plane) where the degenerate contacts happen. On every
- * pose: px_distance with each method, unsigned and signed, px_intersect
- * and px_translate (forward and both ways) along a random and an aimed
- * direction.
+ * Per shape pair (ordered, 45 of them: 5 lower-dimensional kinds, a
+ * 40-gon with a direction table among them, against 7 kinds) >= 1,000 random poses (PROXIMA_TEST_SCALE; fewer
+ * under sanitizers), a quarter of them aligned (pieces in one plane, a polygon on a box's face plane) where
+ * the degenerate contacts happen. On every pose: px_distance with each method, unsigned and signed,
+ * px_intersect and px_translate (forward and both ways) along a random and an aimed direction.
  *
  * Then the construction itself: dimension, counts, Euler, validation,
  * bounds, exact duplicates, collinear points that are not exactly so, a
@@ -139,7 +137,18 @@ static int seg_crosses_tri(px_vec3 p, px_vec3 q, px_vec3 a, px_vec3 b, px_vec3 c
 typedef struct simplex {
     int n;
     px_vec3 p[3];
+    px_vec3 c; /* a bounding sphere, to prune pairs that cannot be closer */
+    double r;
 } simplex;
+
+static void simplex_bound(simplex *s) {
+    px_vec3 c = s->p[0];
+    for (int i = 1; i < s->n; ++i) c = pxi_add(c, s->p[i]);
+    s->c = pxi_scale(c, 1.0 / s->n);
+    s->r = 0;
+    for (int i = 0; i < s->n; ++i) s->r = fmax(s->r, pxi_len(pxi_sub(s->p[i], s->c)));
+    s->r = s->r * (1 + 1e-9) + 1e-300;
+}
 
 static double pt_simplex(px_vec3 x, const simplex *s) {
     if (s->n == 1) return pxi_len(pxi_sub(x, s->p[0]));
@@ -169,11 +178,13 @@ static int piece_simplices(const piece *p, const px_vec3 *w, simplex *out) {
     if (p->dim < 2) {
         out[0].n = (int)p->nv;
         for (uint32_t i = 0; i < p->nv; ++i) out[0].p[i] = w[i];
+        simplex_bound(&out[0]);
         return 1;
     }
     for (uint32_t t = 0; t < p->ntri; ++t) {
         out[t].n = 3;
         for (int k = 0; k < 3; ++k) out[t].p[k] = w[p->tri[3 * t + k]];
+        simplex_bound(&out[t]);
     }
     return (int)p->ntri;
 }
@@ -208,7 +219,9 @@ static double brute_distance(const piece *a, const px_pose *pa, const piece *b, 
     int na = piece_simplices(a, wa, sa), nb = piece_simplices(b, wb, sb);
     double d = INFINITY;
     for (int i = 0; i < na; ++i)
-        for (int j = 0; j < nb; ++j) d = fmin(d, simplex_distance(&sa[i], &sb[j]));
+        for (int j = 0; j < nb; ++j)
+            if (pxi_len(pxi_sub(sa[i].c, sb[j].c)) - sa[i].r - sb[j].r <= d)
+                d = fmin(d, simplex_distance(&sa[i], &sb[j]));
     return d;
 }
 
@@ -220,7 +233,8 @@ static double brute_point_distance(const piece *p, const px_pose *pose, px_vec3 
     static simplex s[MAXT];
     int n = piece_simplices(p, w, s);
     double d = INFINITY;
-    for (int i = 0; i < n; ++i) d = fmin(d, pt_simplex(x, &s[i]));
+    for (int i = 0; i < n; ++i)
+        if (pxi_len(pxi_sub(x, s[i].c)) - s[i].r <= d) d = fmin(d, pt_simplex(x, &s[i]));
     return d;
 }
 
@@ -228,12 +242,16 @@ static double brute_point_distance(const piece *p, const px_pose *pose, px_vec3 
 
 typedef struct axes {
     int n;
-    px_vec3 a[4096];
+    px_vec3 a[16384];
 } axes;
 
 static void add_axis(axes *x, px_vec3 n, double min_len) {
     double l = pxi_len(n);
-    if (!(l > min_len) || x->n + 2 > (int)(sizeof x->a / sizeof x->a[0])) return;
+    if (x->n + 2 > (int)(sizeof x->a / sizeof x->a[0])) {
+        CHECK(0, "separating axes: more than %d", x->n);
+        return;
+    }
+    if (!(l > min_len)) return;
     x->a[x->n++] = pxi_scale(n, 1.0 / l);
     x->a[x->n++] = pxi_scale(n, -1.0 / l);
 }
@@ -320,8 +338,8 @@ static void sat_translation(const piece *a, const px_pose *pa, const piece *b, c
  * frame (so that poses turning about z and moving in z = 0 keep two of
  * them in one plane), the segment along a line of that plane. ---- */
 
-enum { K_TRI, K_POLY, K_SEG, K_PT, K_BOX, K_HULL, K_COUNT };
-static const char *kind_names[K_COUNT] = {"triangle", "polygon", "segment", "point", "box", "hull"};
+enum { K_TRI, K_POLY, K_BIGPOLY, K_SEG, K_PT, K_BOX, K_HULL, K_COUNT };
+static const char *kind_names[K_COUNT] = {"triangle", "polygon", "40-gon", "segment", "point", "box", "hull"};
 
 static int make_kind(piece *p, int kind, pg_rng *rng) {
     double xyz[3 * 64];
@@ -337,6 +355,13 @@ static int make_kind(piece *p, int kind, pg_rng *rng) {
         for (size_t i = 0; i < n; ++i) {
             double t = pg_range(rng, 0, 2 * M_PI), r = i < 12 ? 1.0 : pg_range(rng, 0, 1);
             xyz[3 * i] = r * cos(t), xyz[3 * i + 1] = 0.7 * r * sin(t), xyz[3 * i + 2] = 0;
+        }
+        break;
+    case K_BIGPOLY: /* 40 points of an ellipse: a polygon with a direction table (>= 24 vertices) */
+        n = 40;
+        for (size_t i = 0; i < n; ++i) {
+            double t = 2 * M_PI * ((double)i + pg_range(rng, 0, 0.5)) / (double)n;
+            xyz[3 * i] = cos(t), xyz[3 * i + 1] = 0.4 * sin(t), xyz[3 * i + 2] = 0;
         }
         break;
     case K_SEG: { /* collinear exactly: small integers along (3, 1, 0) */
@@ -481,7 +506,7 @@ static void check_pose(const piece *a, const piece *b, const px_pose *pa, const 
                     CHECK(after <= 2e-9 * size, "%s/%s %s: pushed out by the depth, %.3g apart", a->name,
                           b->name, method_names[m], after);
                     px_vec3 nn;
-                    double left = sat_depth(a, &moved, b, pb, &nn);
+                    double left = m == 0 ? sat_depth(a, &moved, b, pb, &nn) : 0.0; /* once per pose */
                     CHECK(left <= 2e-9 * size, "%s/%s %s: pushed out by the depth, still %.3g deep", a->name,
                           b->name, method_names[m], left);
                 }
@@ -699,7 +724,7 @@ static void test_construction(void) {
         for (int i = 0; i < 20; ++i) {
             piece p;
             if (make_kind(&p, kind, &rng)) return;
-            static const uint32_t want_dim[4] = {2, 2, 1, 0};
+            static const uint32_t want_dim[5] = {2, 2, 2, 1, 0};
             CHECK(p.dim == want_dim[kind], "%s: dimension %u", p.name, p.dim);
             long euler = (long)p.nv - (long)p.ne + (long)p.nf;
             CHECK(euler == (p.dim >= 2 ? 2 : 1), "%s: V - E + F = %ld", p.name, euler);
@@ -783,10 +808,162 @@ static void test_construction(void) {
     CHECK(!c && err.code == PX_ERR_RANGE, "a 1e-310 segment: %s", px_status_string(err.code));
 }
 
+/* Near contact: from a random separated pose, B moved along the closest
+ * points' direction until the gap is size * 10^-k (k = 16, 14, .., 2) or
+ * exactly closed; every method against the exact distance, and the
+ * intersecting flags (px_distance, px_intersect) against it outside the
+ * contact band. */
+static void test_near_contact(void) {
+    int poses = tu_scaled(tu_sanitized() ? 2 : 12);
+    pg_rng rng;
+    pg_seed(&rng, 9002);
+    long checked = 0;
+    double worst[3] = {0, 0, 0};
+    for (int ka = K_TRI; ka <= K_PT; ++ka)
+        for (int kb = 0; kb < K_COUNT; ++kb)
+            for (int i = 0; i < poses; ++i) {
+                piece a, b;
+                if (make_kind(&a, ka, &rng) || make_kind(&b, kb, &rng)) return;
+                px_pose pa = pg_pose_random(&rng, 0.5), pb = pg_pose_random(&rng, 2.5);
+                px_distance_result r0;
+                px_distance(a.c, &pa, b.c, &pb, NULL, NULL, &r0);
+                if (!r0.intersecting && r0.distance > 0) {
+                    px_vec3 n = pxi_scale(pxi_sub(r0.point_b, r0.point_a), 1.0 / r0.distance);
+                    for (int k = 16; k >= 0; k -= 2) {
+                        double size = tc_scale(a.c, &pa, b.c, &pb);
+                        double gap = k == 0 ? 0.0 : size * pow(10.0, -k);
+                        px_pose q = pb;
+                        q.t = pxi_madd(pb.t, n, gap - r0.distance);
+                        double ed;
+                        int ez;
+                        if (tc_exact(a.c, &pa, b.c, &q, &ed, &ez) != 0) continue;
+                        double s2 = tc_scale(a.c, &pa, b.c, &q);
+                        /* the contact band of query.h, from the bounds' centres and radii */
+                        px_bounds ba, bb;
+                        px_convex_bounds(a.c, &pa, &ba);
+                        px_convex_bounds(b.c, &q, &bb);
+                        double band = 64 * DBL_EPSILON *
+                                      (ba.radius + bb.radius + pxi_len(pxi_sub(ba.center, bb.center)));
+                        checked++;
+                        for (int m = 0; m < 3; ++m) {
+                            px_query_options opt = {0};
+                            opt.method = (uint32_t)m;
+                            px_distance_result r;
+                            px_distance(a.c, &pa, b.c, &q, &opt, NULL, &r);
+                            double e = fabs(r.distance - ed) / s2;
+                            if (e > worst[m] && !(r.intersecting && ed <= band)) worst[m] = e;
+                            CHECK(fabs(r.distance - ed) <= 64 * DBL_EPSILON * s2 ||
+                                      (r.intersecting && ed <= band),
+                                  "%s/%s %s near contact 1e-%d: distance %.17g, exact %.17g", a.name, b.name,
+                                  method_names[m], k, r.distance, ed);
+                            px_intersect_result ir;
+                            px_intersect(a.c, &pa, b.c, &q, &opt, NULL, &ir);
+                            if (ez || ed > 2 * band)
+                                CHECK(r.intersecting == ez && ir.intersecting == ez,
+                                      "%s/%s %s near contact 1e-%d: intersecting %d / %d, exact %.3g", a.name,
+                                      b.name, method_names[m], k, r.intersecting, ir.intersecting, ed);
+                        }
+                    }
+                }
+                piece_free(&a);
+                piece_free(&b);
+            }
+    printf("  near contact: %ld poses against the exact distance, worst |d - exact| %.2g / %.2g / %.2g eps S "
+           "(lin-canny / gjk / hybrid)\n",
+           checked, worst[0] / DBL_EPSILON, worst[1] / DBL_EPSILON, worst[2] / DBL_EPSILON);
+}
+
+/* Tracked motion: B moves by small steps (a hundredth of its size, a
+ * hundredth of a radian) with one cache per method; every answer against
+ * brute force. */
+static void test_motion(void) {
+    int seqs = tu_scaled(tu_sanitized() ? 1 : 4), steps = 40;
+    pg_rng rng;
+    pg_seed(&rng, 9003);
+    long queries = 0, fallbacks[3] = {0, 0, 0};
+    for (int ka = K_TRI; ka <= K_PT; ++ka)
+        for (int kb = 0; kb < K_COUNT; ++kb)
+            for (int sq = 0; sq < seqs; ++sq) {
+                piece a, b;
+                if (make_kind(&a, ka, &rng) || make_kind(&b, kb, &rng)) return;
+                px_pose pa = pg_pose_random(&rng, 0.3), pb = pg_pose_random(&rng, 1.5);
+                px_pair_cache caches[3];
+                memset(caches, 0, sizeof caches);
+                px_vec3 drift = pxi_scale(pg_unit(&rng), 0.01);
+                for (int st = 0; st < steps; ++st) {
+                    double turn[9];
+                    pg_rot_axis_angle(pg_unit(&rng), 0.01, turn);
+                    pg_mat_mul(turn, pb.r, pb.r);
+                    pb.t = pxi_add(pb.t, drift);
+                    if (pxi_len(pxi_sub(pb.t, pa.t)) > 2.5) drift = pxi_neg(drift);
+                    double bd = brute_distance(&a, &pa, &b, &pb), size = tc_scale(a.c, &pa, b.c, &pb);
+                    for (int m = 0; m < 3; ++m) {
+                        px_query_options opt = {0};
+                        opt.method = (uint32_t)m;
+                        px_distance_result r;
+                        px_distance(a.c, &pa, b.c, &pb, &opt, &caches[m], &r);
+                        queries++;
+                        fallbacks[m] += r.diag.fallbacks;
+                        CHECK(fabs(r.distance - bd) <= 1e-12 * size,
+                              "%s/%s %s tracked step %d: %.17g, brute %.17g", a.name, b.name, method_names[m],
+                              st, r.distance, bd);
+                    }
+                }
+                piece_free(&a);
+                piece_free(&b);
+            }
+    printf("  tracked: %ld queries, fallbacks %ld / %ld / %ld\n", queries, fallbacks[0], fallbacks[1],
+           fallbacks[2]);
+}
+
+/* The contact band (query.h) with a point above a triangle: a gap of a
+ * quarter band is touching (flagged), four bands apart is not; the same
+ * for every method, px_intersect and the forward translation. */
+static void test_band(void) {
+    const double tri[9] = {-1, -1, 0, 1, -1, 0, 0, 1, 0};
+    const double pt[3] = {0, 0, 0};
+    px_convex *t = px_convex_create(tri, 3, NULL, NULL), *p = px_convex_create(pt, 1, NULL, NULL);
+    CHECK(t && p, "band pieces");
+    if (!t || !p) return;
+    px_pose pt_pose = px_pose_identity(), tri_pose = px_pose_identity();
+    for (int far = 0; far < 2; ++far) {
+        px_bounds ba, bb;
+        pt_pose.t = pxi_v(0, 0, 0.5);
+        px_convex_bounds(p, &pt_pose, &ba);
+        px_convex_bounds(t, &tri_pose, &bb);
+        double band = 64 * DBL_EPSILON * (ba.radius + bb.radius + pxi_len(pxi_sub(ba.center, bb.center)));
+        double h = far ? 4 * band : 0.25 * band;
+        pt_pose.t = pxi_v(0, 0, h);
+        for (int m = 0; m < 3; ++m) {
+            px_query_options opt = {0};
+            opt.method = (uint32_t)m;
+            px_distance_result r;
+            px_distance(p, &pt_pose, t, &tri_pose, &opt, NULL, &r);
+            CHECK(r.intersecting == !far && (far || (r.diag.quality & PX_QUALITY_CONTACT_BAND)) &&
+                      (!far || fabs(r.distance - h) <= 1e-15 * h),
+                  "band %s at %s: intersecting %d, distance %.3g, quality %u", method_names[m],
+                  far ? "4 bands" : "band/4", r.intersecting, r.distance, r.diag.quality);
+            px_intersect_result ir;
+            px_intersect(p, &pt_pose, t, &tri_pose, &opt, NULL, &ir);
+            CHECK(ir.intersecting == !far, "band %s: px_intersect %d at %s", method_names[m], ir.intersecting,
+                  far ? "4 bands" : "band/4");
+        }
+        px_translate_result tr;
+        px_translate(p, &pt_pose, t, &tri_pose, pxi_v(1, 0, 0), NULL, NULL, &tr);
+        CHECK(tr.in_contact == !far, "band: translation in contact %d at %s", tr.in_contact,
+              far ? "4 bands" : "band/4");
+    }
+    px_convex_destroy(t);
+    px_convex_destroy(p);
+}
+
 int main(void) {
     tu_init("test_degenerate");
     test_construction();
     test_special();
+    test_band();
+    test_motion();
+    test_near_contact();
     test_pairs();
     return tu_finish();
 }

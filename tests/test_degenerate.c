@@ -783,6 +783,40 @@ static void test_construction(void) {
         }
         piece_free(&s);
     }
+    /* random slivers: the third point on the line of the first two, then
+     * one coordinate moved by an ulp. CGAL says a segment or a triangle;
+     * either is built (never refused) and answers right. */
+    int built = 0;
+    for (int i = 0; i < 100; ++i) {
+        double sl[9];
+        for (int k = 0; k < 6; ++k) sl[k] = pg_range(&rng, -1, 1);
+        double t = pg_range(&rng, 0.1, 0.9);
+        for (int k = 0; k < 3; ++k) sl[6 + k] = sl[k] + t * (sl[3 + k] - sl[k]);
+        int which = (int)pg_below(&rng, 3);
+        sl[6 + which] = nextafter(sl[6 + which], pg_below(&rng, 2) ? 2.0 : -2.0);
+        piece q;
+        px_error e2;
+        px_convex *cq = px_convex_create(sl, 3, NULL, &e2);
+        CHECK(cq != NULL, "sliver %d refused: %s", i, e2.message);
+        px_convex_destroy(cq);
+        if (!cq || piece_init(&q, "random sliver", sl, 3)) continue;
+        built++;
+        CHECK(px_convex_validate(q.c, &e2) == PX_OK, "sliver %d: %s", i, e2.message);
+        piece bx;
+        double box2[24];
+        pg_box(0.6, 0.4, 0.5, box2);
+        if (piece_init(&bx, "box", box2, 8) == 0) {
+            px_pair_cache caches[3];
+            memset(caches, 0, sizeof caches);
+            for (int k = 0; k < 10; ++k) {
+                px_pose pa = pg_pose_random(&rng, 0.5), pb = pg_pose_random(&rng, 2.0);
+                check_pose(&q, &bx, &pa, &pb, &rng, k == 0, caches);
+            }
+            piece_free(&bx);
+        }
+        piece_free(&q);
+    }
+    CHECK(built == 100, "slivers built: %d of 100", built);
     /* a slab thinner than double precision resolves: its two sides round
      * to one plane, so the input is coplanar and the piece a polygon */
     double slab[24];

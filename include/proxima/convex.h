@@ -24,6 +24,10 @@
 /// opposite normals (face 1's plane is face 0's turned over, exactly), each
 /// listing the vertices counter-clockwise seen from its own side, and every
 /// edge lies between them. A segment's edge runs from vertex 0 to vertex 1.
+/// A sliver polygon whose area is rounding (three points one ulp off a
+/// line) is accepted too: its plane is then one through its longest edge,
+/// which holds it to within rounding, and the queries answer it from
+/// support functions alone (docs/methods.md).
 /// Points exactly collinear or coplanar count as such however they were
 /// produced; points one ulp off a plane make a solid (a very thin one, see
 /// PX_ERR_DEGENERATE below).
@@ -66,12 +70,11 @@ typedef struct px_convex_options {
 ///   option out of range or a reserved field not zero;
 /// - PX_ERR_NON_FINITE: a NaN or infinite coordinate (index in the message);
 /// - PX_ERR_RANGE: coordinates outside the supported range (below);
-/// - PX_ERR_DEGENERATE: the hull exists but double precision cannot hold
-///   its planes (a solid thinner than rounding, such as a slab 2^-1060
-///   thick at unit size, or a polygon whose normal or edge directions come
-///   out wrong, such as a triangle collinear but for the last bits of its
-///   coordinates); the message says which. Flat, collinear and
-///   single-point input is accepted (above);
+/// - PX_ERR_DEGENERATE: the hull is a solid but double precision cannot
+///   hold its planes (thinner than rounding, such as a slab 2^-1060 thick
+///   at unit size, or a sliver tetrahedron); the message says which. Flat,
+///   collinear and single-point input, sliver polygons included, is
+///   accepted (above);
 /// - PX_ERR_OUT_OF_MEMORY.
 /// On success `err->code` is PX_OK. `options` may be NULL.
 PX_API px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,

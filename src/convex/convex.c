@@ -97,6 +97,18 @@ static px_vec3 unit(px_vec3 a) {
     return pxi_scale(a, 1.0 / pxi_len(a));
 }
 
+/* Whether the plane of unit normal n through the polygon's mean holds
+ * every vertex of the polygon within validate_local's tolerance. */
+static int polygon_plane_ok(const px_vec3 *v, const uint32_t *ids, uint32_t n, px_vec3 nrm) {
+    if (!(fabs(pxi_len(nrm) - 1.0) <= 1e-12)) return 0;
+    double d = 0.0, big = 0.0;
+    for (uint32_t k = 0; k < n; ++k) d += pxi_dot(nrm, v[ids[k]]), big = fmax(big, pxi_max_abs(v[ids[k]]));
+    d /= n;
+    for (uint32_t k = 0; k < n; ++k)
+        if (!(fabs(pxi_dot(nrm, v[ids[k]]) - d) <= 1e-10 * big)) return 0;
+    return 1;
+}
+
 static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_error *err) {
     int ok = 1;
     size_t nhalf = h->face_offsets[h->face_count];
@@ -202,7 +214,26 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_e
             F->n = pxi_neg(c->f[0].n);
             F->d = -c->f[0].d;
         } else {
-            F->n = unit(polygon_normal(c->v, c->f_verts + first, n));
+            px_vec3 N = polygon_normal(c->v, c->f_verts + first, n);
+            if (dim == 2 && !polygon_plane_ok(c->v, c->f_verts + first, n, unit(N))) {
+                /* A sliver whose area is rounding (three points one ulp off
+                 * a line): Newell's normal is noise, and its plane misses
+                 * the vertices. The sliver lies within rounding of its
+                 * longest edge, so a plane through that edge holds it (it
+                 * turns by less than PXI_WALK_MIN_TURN: the queries serve
+                 * it from supports alone, convex.h). */
+                px_vec3 L = pxi_v(0, 0, 0);
+                for (uint32_t k = 0; k < n; ++k) {
+                    px_vec3 e = pxi_sub(c->v[c->f_verts[first + (k + 1) % n]], c->v[c->f_verts[first + k]]);
+                    if (pxi_max_abs(e) > pxi_max_abs(L)) L = e;
+                }
+                L = unit(L);
+                px_vec3 axis = fabs(L.x) <= fabs(L.y) && fabs(L.x) <= fabs(L.z) ? pxi_v(1, 0, 0)
+                               : fabs(L.y) <= fabs(L.z)                         ? pxi_v(0, 1, 0)
+                                                                                : pxi_v(0, 0, 1);
+                N = pxi_cross(L, axis);
+            }
+            F->n = unit(N);
             double d = 0.0;
             for (uint32_t k = 0; k < n; ++k) d += pxi_dot(F->n, c->v[c->f_verts[first + k]]);
             F->d = d / n;
@@ -414,12 +445,14 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
          * normal, a slab 2^-1060 thick whose subnormal coordinates carry too
          * few bits (its side normals came out 0.79999 for 0.8), faces meeting
          * at an angle below rounding. Refused rather than answered on wrong
-         * planes. */
+         * planes. (Polygons do not get here: a sliver polygon takes a plane
+         * through its longest edge, in build_from_hull.) */
+        static const char *what[] = {"a point", "a segment", "a polygon", "a solid"};
         px_error why;
         validate_local(c, &why);
         st = pxi_error(err, PX_ERR_DEGENERATE,
-                       "px_convex_create: the hull is a solid but too thin for double precision (%s)",
-                       why.message);
+                       "px_convex_create: the hull is %s but too thin for double precision (%s)",
+                       what[c->dim <= 3 ? c->dim : 3], why.message);
     }
     if (st == PX_OK) {
         uint32_t res =

@@ -305,11 +305,17 @@ static void try_feature_edges(const px_convex *a, const px_convex *b, const px_p
 }
 
 /* Lin-Canny with A moved by s along dir (the pose in *tt), started from the
- * features of the translation answer, whose iteration count it adds to. */
+ * features of the translation answer, whose iteration count it adds to; a
+ * pair Lin-Canny cannot walk (a sliver polygon) gets GJK there instead. */
 static void lin_canny_moved(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
                             double s, pxi_translation *out, px_pose *tt, pxi_answer *ans) {
     *tt = *t_ab;
     tt->t = pxi_madd(tt->t, dir, s);
+    if (!pair_walk_ok(a, b)) {
+        pxi_gjk_distance(a, b, tt, NULL, ans, NULL);
+        out->iterations += ans->iterations;
+        return;
+    }
     pxi_lc_start start;
     memset(&start, 0, sizeof start);
     start.fa = out->fa;
@@ -373,7 +379,9 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
     int warm = cache && cache->simplex_count >= 1 && cache->simplex_count <= 3 &&
                cache->vertex_a[0] < a->nv && cache->vertex_b[0] < b->nv &&
                cache->feature_a.type >= PX_FEATURE_VERTEX && cache->feature_b.type >= PX_FEATURE_VERTEX;
-    if (warm && pxi_advance_warm(a, b, t_ab, dir, cache, out) == PXI_DONE) return;
+    /* Advancement walks with Lin-Canny: not on a pair it cannot walk. */
+    int walk = pair_walk_ok(a, b);
+    if (warm && walk && pxi_advance_warm(a, b, t_ab, dir, cache, out) == PXI_DONE) return;
     pxi_ray_bound bound;
     px_pair_cache *ray_cache = cache;
     pxi_outcome st = pxi_raycast(a, b, t_ab, dir, ray_cache, out, &bound);
@@ -393,7 +401,8 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
      * stands. */
     ++*fallbacks;
     pxi_translation adv;
-    if (pxi_advance(a, b, t_ab, dir, bound.tau, bound.normal, bound.fa, bound.fb, &adv) != PXI_DONE) {
+    if (!walk ||
+        pxi_advance(a, b, t_ab, dir, bound.tau, bound.normal, bound.fa, bound.fb, &adv) != PXI_DONE) {
         check_floor_hit(a, b, t_ab, dir, out);
         return;
     }

@@ -991,11 +991,88 @@ static void test_band(void) {
     px_convex_destroy(p);
 }
 
+/* Scale: every coordinate and translation times 2^k (|k| up to 900),
+ * with the bodies' coordinates also offset by 2^40 of their size: the
+ * distances and tau scale bit for bit, as for solids (test_range). */
+static void scaled_xyz(const piece *p, double f, px_vec3 off, double *xyz) {
+    for (uint32_t i = 0; i < p->nv; ++i) {
+        xyz[3 * i] = (p->v[i].x + off.x) * f;
+        xyz[3 * i + 1] = (p->v[i].y + off.y) * f;
+        xyz[3 * i + 2] = (p->v[i].z + off.z) * f;
+    }
+}
+
+static void test_scale(void) {
+    pg_rng rng;
+    pg_seed(&rng, 9004);
+    static const int ks[4] = {-900, -300, 300, 900};
+    long compared = 0;
+    for (int ka = K_TRI; ka <= K_PT; ++ka)
+        for (int kb = 0; kb < K_COUNT; ++kb)
+            for (int i = 0; i < 3; ++i) {
+                piece a, b;
+                if (make_kind(&a, ka, &rng) || make_kind(&b, kb, &rng)) return;
+                px_pose pa = pg_pose_random(&rng, 0.5), pb = pg_pose_random(&rng, 2.0);
+                px_vec3 off = i == 2 ? pxi_v(0x1p40, -0x1p40, 0x1p39) : pxi_v(0, 0, 0);
+                double xa[3 * MAXV], xb[3 * MAXV];
+                px_distance_result r1[3];
+                px_translate_result t1;
+                px_vec3 dir = pxi_sub(pb.t, pa.t);
+                /* unscaled, with the same offset (the offset is moved back by the pose) */
+                for (int pass = 0; pass < 5; ++pass) {
+                    double f = pass == 0 ? 1.0 : ldexp(1.0, ks[pass - 1]);
+                    scaled_xyz(&a, f, off, xa);
+                    scaled_xyz(&b, f, off, xb);
+                    px_convex *ca = px_convex_create(xa, a.nv, NULL, NULL),
+                              *cb = px_convex_create(xb, b.nv, NULL, NULL);
+                    CHECK(ca && cb, "scale 2^%d: pieces not built", pass ? ks[pass - 1] : 0);
+                    if (ca && cb) {
+                        px_pose qa = pa, qb = pb;
+                        /* the offset o is undone by the pose: t' = f (t - R o) */
+                        qa.t = pxi_scale(pxi_sub(pa.t, pxi_rot(pa.r, off)), f);
+                        qb.t = pxi_scale(pxi_sub(pb.t, pxi_rot(pb.r, off)), f);
+                        for (int m = 0; m < 3; ++m) {
+                            px_query_options opt = {0};
+                            opt.method = (uint32_t)m;
+                            opt.flags = PX_QUERY_SIGNED;
+                            px_distance_result r;
+                            px_distance(ca, &qa, cb, &qb, &opt, NULL, &r);
+                            if (pass == 0) {
+                                r1[m] = r;
+                            } else {
+                                compared++;
+                                CHECK(r.distance == ldexp(r1[m].distance, ks[pass - 1]) &&
+                                          r.signed_distance == ldexp(r1[m].signed_distance, ks[pass - 1]) &&
+                                          r.intersecting == r1[m].intersecting,
+                                      "%s/%s %s at 2^%d: distance %.17g, unscaled %.17g", a.name, b.name,
+                                      method_names[m], ks[pass - 1], ldexp(r.distance, -ks[pass - 1]),
+                                      r1[m].distance);
+                            }
+                        }
+                        px_translate_result t;
+                        px_translate(ca, &qa, cb, &qb, dir, NULL, NULL, &t);
+                        if (pass == 0)
+                            t1 = t;
+                        else
+                            CHECK(t.hit == t1.hit && t.tau == ldexp(t1.tau, ks[pass - 1]),
+                                  "%s/%s translate at 2^%d: hit %d tau %.17g, unscaled %d %.17g", a.name,
+                                  b.name, ks[pass - 1], t.hit, ldexp(t.tau, -ks[pass - 1]), t1.hit, t1.tau);
+                    }
+                    px_convex_destroy(ca);
+                    px_convex_destroy(cb);
+                }
+                piece_free(&a);
+                piece_free(&b);
+            }
+    printf("  scale: %ld answers at 2^-900..2^900 compared bit for bit with the unscaled ones\n", compared);
+}
+
 int main(void) {
     tu_init("test_degenerate");
     test_construction();
     test_special();
     test_band();
+    test_scale();
     test_motion();
     test_near_contact();
     test_pairs();

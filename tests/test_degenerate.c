@@ -713,6 +713,15 @@ static void test_special(void) {
     special("segment through a box", segz, 2, box, 8, id, id, 0, 0);
     special("segment along a box edge", seg, 2, box, 8, pose_at(0, 0.4, 0.5), id, 0, 0);
     special("box on a triangle", box, 8, tri, 3, pose_at(0.1, 0.1, 0.5), id, 0, 0);
+    /* overlapping triangles crossing at small angles: A - B is a solid
+     * thinner and thinner, its depth shrinking with the angle (separating
+     * axes check it; at 1e-14 rad it is flat within rounding: depth 0) */
+    static const double tilts[4] = {1e-2, 1e-6, 1e-10, 1e-14};
+    for (int k = 0; k < 4; ++k) {
+        px_pose tilted = pose_at(-0.1, -0.1, 0);
+        pg_rot_axis_angle(pxi_v(1, 1, 0), tilts[k], tilted.r);
+        special("triangles crossing at a small angle", tri, 3, tri2, 3, id, tilted, 0, 0);
+    }
 }
 
 /* Construction: dimension, Euler, validation, bounds, and the inputs at

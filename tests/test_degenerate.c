@@ -1026,6 +1026,8 @@ static void test_scale(void) {
                 double xa[3 * MAXV], xb[3 * MAXV];
                 px_distance_result r1[3];
                 px_translate_result t1;
+                memset(&t1, 0, sizeof t1);
+                memset(r1, 0, sizeof r1);
                 px_vec3 dir = pxi_sub(pb.t, pa.t);
                 /* unscaled, with the same offset (the offset is moved back by the pose) */
                 for (int pass = 0; pass < 5; ++pass) {

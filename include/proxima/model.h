@@ -75,7 +75,7 @@ typedef struct px_model_options {
 /// [piece_end[i-1], piece_end[i]) of `xyz` (3 doubles each; piece_end[-1]
 /// is 0). Errors as `px_convex_create` for each piece (the message names the
 /// piece), PX_ERR_INVALID_ARGUMENT for NULL arrays, zero pieces or ends
-/// that decrease.
+/// that decrease, PX_ERR_RANGE for a coordinate beyond 2^250.
 PX_API px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_end,
                                              uint32_t piece_count, const px_model_options *options,
                                              px_error *err);
@@ -83,8 +83,10 @@ PX_API px_model *px_model_create_from_points(const double *xyz, const uint32_t *
 /// A model from a mesh, with leaves as `options->pieces` says. Parts without
 /// triangles become point-set pieces (h = 0). The mesh may be destroyed
 /// afterwards. PX_ERR_DEGENERATE names a part whose hull cannot be built;
-/// PX_ERR_INVALID_ARGUMENT for a mesh without triangles with
-/// PX_PIECES_TRIANGLES.
+/// PX_ERR_INVALID_ARGUMENT for a part without triangles with
+/// PX_PIECES_TRIANGLES, or triangles of no part with PX_PIECES_PARTS;
+/// PX_ERR_RANGE for a coordinate beyond 2^250 or triangles spanning less
+/// than 2^-250.
 PX_API px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options *options,
                                            px_error *err);
 
@@ -118,7 +120,7 @@ PX_API px_status px_model_get_info(const px_model *model, px_model_info *out);
 /// is 1-Lipschitz), refined where it matters. 0 for exact leaves and for
 /// parts without triangles (a point set stands for its hull).
 typedef struct px_model_leaf {
-    uint32_t part;
+    uint32_t part;     ///< UINT32_MAX for a triangle that belongs to no part of its mesh
     uint32_t triangle; ///< UINT32_MAX for convex leaves
     double h;
     double h_overlap;
@@ -198,7 +200,8 @@ typedef struct px_model_distance_result {
 /// descent with hull distances as lower bounds (seed 000 ch. 4), started
 /// from the cache's previous best pair. `cache` may be NULL (cold).
 /// PX_ERR_INVALID_ARGUMENT for NULL models, poses or result; a bad pose as
-/// px_pose_check.
+/// px_pose_check; PX_ERR_RANGE when the models are placed more than 2^250
+/// apart.
 PX_API px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_model *b,
                                    const px_pose *pose_b, px_model_cache *cache,
                                    px_model_distance_result *out);

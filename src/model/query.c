@@ -666,13 +666,15 @@ static px_status model_distance(const px_model *a, const px_pose *pose_a, const 
     return st;
 }
 
-static px_status model_collide(const px_model *a, const px_pose *pose_a, const px_model *b,
+/* Collide (kind Q_COLLIDE) and within (Q_WITHIN, `tol`): one descent. */
+static px_status model_boolean(const px_model *a, const px_pose *pose_a, const px_model *b,
                                const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out,
-                               const void *ident) {
+                               int kind, double tol, const void *ident) {
     if (out) memset(out, 0, sizeof *out);
     if (!out) return PX_ERR_INVALID_ARGUMENT;
     qctx q;
-    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_COLLIDE, ident);
+    px_status st = start(&q, a, pose_a, b, pose_b, cache, kind, ident);
+    q.tol = tol;
     if (st == PX_OK) st = run_boolean(&q, out);
     if (st != PX_OK) memset(out, 0, sizeof *out);
     return st;
@@ -685,20 +687,14 @@ px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_m
 
 px_status px_model_collide(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
                            px_model_cache *cache, px_model_collide_result *out) {
-    return model_collide(a, pose_a, b, pose_b, cache, out, NULL);
+    return model_boolean(a, pose_a, b, pose_b, cache, out, Q_COLLIDE, 0.0, NULL);
 }
 
 px_status px_model_within(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
                           double tolerance, px_model_cache *cache, px_model_collide_result *out) {
     if (out) memset(out, 0, sizeof *out);
-    if (!out) return PX_ERR_INVALID_ARGUMENT;
     if (!isfinite(tolerance) || tolerance < 0.0) return PX_ERR_INVALID_ARGUMENT;
-    qctx q;
-    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_WITHIN, NULL);
-    q.tol = tolerance;
-    if (st == PX_OK) st = run_boolean(&q, out);
-    if (st != PX_OK) memset(out, 0, sizeof *out);
-    return st;
+    return model_boolean(a, pose_a, b, pose_b, cache, out, Q_WITHIN, tolerance, NULL);
 }
 
 /* A convex polytope seen as a model of one leaf, without allocating. */
@@ -749,5 +745,5 @@ px_status px_model_collide_convex(const px_model *a, const px_pose *pose_a, cons
     if (out) memset(out, 0, sizeof *out);
     convex_view v;
     if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;
-    return model_collide(a, pose_a, &v.m, pose_b, cache, out, b);
+    return model_boolean(a, pose_a, &v.m, pose_b, cache, out, Q_COLLIDE, 0.0, b);
 }

@@ -5,7 +5,19 @@
  * a per-node-pair cache), and pairs whose bound is not below the best leaf
  * distance found are pruned. Children are visited nearest first, so the
  * order is best-first along every path, and the previous query's best leaf
- * pair seeds the bound (temporal coherence). */
+ * pair seeds the bound (temporal coherence).
+ *
+ * With a cache, a query also starts where the previous one stopped: the
+ * front of node pairs it pruned or measured, each with its lower bound
+ * (front tracking as in SWIFT++: S. Ehmann and M. Lin, "Accurate and fast
+ * proximity queries between polyhedra using convex surface decomposition",
+ * Eurographics 2001). Unlike SWIFT++, which tests every front pair again,
+ * a stored bound is reused untested while it stays valid: since it was
+ * measured, B has moved relative to A by at most `drift` (a bound on any
+ * point's displacement, summed over queries, as conservative advancement
+ * bounds motion), so the stored bound minus the drift still bounds the pair.
+ * Only pairs whose bound has come within reach of the query's limit are
+ * measured again, and descended if they must be. */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -21,12 +33,28 @@ typedef struct mc_entry {
     px_pair_cache pc;
 } mc_entry;
 
+/* A node pair of the front and its lower bound, stored as bound + the
+ * cache's drift when it was measured (so that key - drift bounds it now). */
+typedef struct mc_front {
+    uint32_t a, b;
+    double key;
+} mc_front;
+
 typedef struct mc_impl {
     const void *ida, *idb; /* the models (or convex polytope) the cache serves */
     uint32_t na, nb;       /* their node counts, part of the identity */
     uint32_t best_a, best_b;
     uint32_t cap, count;
     mc_entry *table;
+    /* The front: `front` (n_front entries, a cover of all leaf pairs when
+     * front_ok) is read while `next` is written; they swap after a query. */
+    mc_front *front, *next;
+    uint32_t n_front, cap_front, n_next, cap_next;
+    int front_ok;
+    uint32_t cold_front; /* the front's size after the last cold descent */
+    px_pose t_prev;      /* the relative pose of the previous query */
+    int has_prev;
+    double drift;
     px_allocator alloc;
     size_t bytes;
 } mc_impl;
@@ -39,6 +67,8 @@ void px_model_cache_release(px_model_cache *cache) {
     if (mc) {
         px_allocator a = mc->alloc;
         pxi_free(&a, mc->table, (size_t)mc->cap * sizeof *mc->table);
+        pxi_free(&a, mc->front, (size_t)mc->cap_front * sizeof *mc->front);
+        pxi_free(&a, mc->next, (size_t)mc->cap_next * sizeof *mc->next);
         pxi_free(&a, mc, sizeof *mc);
     }
     cache->impl = NULL;
@@ -62,9 +92,11 @@ static mc_impl *cache_open(px_model_cache *cache, const px_model *a, const px_mo
     if (!mc) {
         px_allocator alloc;
         if (pxi_allocator_resolve(cache->allocator, &alloc, NULL) != PX_OK) return NULL;
-        if (sizeof *mc > cache_limit(cache)) return NULL;
-        mc = pxi_alloc(&alloc, sizeof *mc);
-        if (!mc) return NULL;
+        mc = sizeof *mc <= cache_limit(cache) ? pxi_alloc(&alloc, sizeof *mc) : NULL;
+        if (!mc) {
+            cache->cold_runs++; /* too small to hold even its header */
+            return NULL;
+        }
         memset(mc, 0, sizeof *mc);
         mc->alloc = alloc;
         mc->ida = ida;
@@ -152,6 +184,9 @@ typedef struct qctx {
     uint32_t node_pairs, leaf_pairs;
     px_diagnostics diag;
     px_status status;
+    int emit;        /* recording the new front into q->mc->next */
+    int emit_failed; /* out of room: the new front is incomplete */
+    double drift;    /* the cache's drift at this query */
 } qctx;
 
 typedef struct qpair {
@@ -237,8 +272,11 @@ static double tri_gap(const px_vec3 s[3], const px_vec3 t[3], const px_vec3 *hin
     if (hint) g = axis_gap(s, t, *hint);
     g = max2(g, axis_gap(s, t, pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]))));
     g = max2(g, axis_gap(s, t, pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]))));
-    double size = pxi_max_abs(s[0]) + pxi_max_abs(t[0]) + pxi_len(pxi_sub(s[1], s[0])) +
-                  pxi_len(pxi_sub(s[2], s[0])) + pxi_len(pxi_sub(t[1], t[0])) + pxi_len(pxi_sub(t[2], t[0]));
+    /* The size of the coordinates and edges (|e| <= sqrt 3 |e|_inf, and 2
+     * covers that without a square root). */
+    double size = pxi_max_abs(s[0]) + pxi_max_abs(t[0]) +
+                  2.0 * (pxi_max_abs(pxi_sub(s[1], s[0])) + pxi_max_abs(pxi_sub(s[2], s[0])) +
+                         pxi_max_abs(pxi_sub(t[1], t[0])) + pxi_max_abs(pxi_sub(t[2], t[0])));
     return g - 64.0 * DBL_EPSILON * size;
 }
 
@@ -315,8 +353,9 @@ static int mixed_pair(qctx *q, const pxi_mnode *na, const pxi_mnode *nb, double 
 }
 
 /* Measures a leaf pair; for Q_DISTANCE updates the best, for the boolean
- * queries sets hit. */
-static void leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
+ * queries sets hit. Returns a lower bound on the pair's distance (its
+ * distance when measured; 0 on error, with q->status set). */
+static double leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
     const pxi_mnode *na = &q->a->nodes[ia], *nb = &q->b->nodes[ib];
     uint32_t la = na->child[0], lb = nb->child[0];
     q->leaf_pairs++;
@@ -325,7 +364,7 @@ static void leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
     px_feature fa, fb;
     if (na->hull && nb->hull) {
         px_distance_result r;
-        if (!hull_distance(q, ia, ib, &r)) return;
+        if (!hull_distance(q, ia, ib, &r)) return 0.0;
         d = r.distance;
         pa = r.point_a;
         pb = r.point_b;
@@ -340,22 +379,24 @@ static void leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
         /* A cheap bound first: the two triangles projected on the
          * direction between the best witnesses and on each one's normal. */
         double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : node_band(q, na, nb);
-        if (tri_gap(s, t, q->has_hint ? &q->hint : NULL) > limit) return;
+        double gap = tri_gap(s, t, q->has_hint ? &q->hint : NULL);
+        if (gap > limit) return gap;
         d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
         pa = pxi_xform(q->pa, pa);
         pb = pxi_xform(q->pa, pb);
     } else {
-        if (!mixed_pair(q, na, nb, &d, &pa, &pb, &fa, &fb)) return;
+        if (!mixed_pair(q, na, nb, &d, &pa, &pb, &fa, &fb)) return 0.0;
     }
     if (q->kind == Q_DISTANCE) {
         if (d < q->ub) record(q, d, ia, ib, pa, pb, fa, fb);
-        return;
+        return d;
     }
     double limit = q->kind == Q_COLLIDE ? node_band(q, na, nb) : q->tol;
     if (d <= limit) {
         q->hit = 1;
         record(q, d, ia, ib, pa, pb, fa, fb);
     }
+    return d;
 }
 
 /* Lower bound of node pair (ia, ib) for pruning against `limit`: the
@@ -398,28 +439,75 @@ static int done(const qctx *q) {
 /* Pruning: Q_DISTANCE keeps pairs whose bound is below the best; the
  * boolean queries pairs whose bound is at most the tolerance (plus the
  * contact band for collisions, so that touching pairs are not pruned). */
-static int keep(const qctx *q, double lb, uint32_t ia, uint32_t ib) {
-    (void)ia;
-    (void)ib;
+static int keep(const qctx *q, double lb) {
     if (q->kind == Q_DISTANCE) return lb < q->ub;
     /* q->band: at least every node pair's band, computed once. */
     return lb <= current_limit(q) + q->band;
 }
 
-static void descend(qctx *q) {
+/* ---- The front ---------------------------------------------------------- */
+
+/* Appends an entry to the new front, growing it within the cache's limit. */
+static void emit_key(qctx *q, uint32_t a, uint32_t b, double key) {
+    if (!q->emit) return;
+    mc_impl *mc = q->mc;
+    if (mc->n_next == mc->cap_next) {
+        uint32_t cap = mc->cap_next ? 2 * mc->cap_next : 256;
+        size_t bytes = mc->bytes + ((size_t)cap - mc->cap_next) * sizeof *mc->next;
+        mc_front *f = bytes <= cache_limit(q->cache) && cap < (1u << 28)
+                          ? pxi_alloc_array(&mc->alloc, cap, sizeof *f)
+                          : NULL;
+        if (!f) {
+            q->emit = 0;
+            q->emit_failed = 1;
+            return;
+        }
+        if (mc->n_next) memcpy(f, mc->next, (size_t)mc->n_next * sizeof *f);
+        pxi_free(&mc->alloc, mc->next, (size_t)mc->cap_next * sizeof *mc->next);
+        mc->next = f;
+        mc->cap_next = cap;
+        mc->bytes = bytes;
+        q->cache->memory_bytes = bytes;
+    }
+    mc->next[mc->n_next++] = (mc_front){a, b, key};
+}
+
+/* A pair pruned or measured with lower bound lb at this query. */
+static void emit(qctx *q, uint32_t a, uint32_t b, double lb) { emit_key(q, a, b, lb + q->drift); }
+
+/* What a stored key still guarantees: key - drift, less the rounding of
+ * the two sums (a few ulps of their size). */
+static double front_bound(const qctx *q, double key) {
+    return key - q->drift - 4.0 * DBL_EPSILON * (fabs(key) + q->drift);
+}
+
+/* Node pair (a0, b0) measured afresh and, where its bound is within the
+ * limit, descended depth first, nearest child pair first. Every pair where
+ * the descent stops (pruned, or a leaf pair measured) joins the new front,
+ * as do the pairs left unvisited when the query ends early (with their
+ * parent's bound). */
+static void expand(qctx *q, uint32_t a0, uint32_t b0) {
     qpair stack[512];
     uint32_t top = 0;
     const px_model *a = q->a, *b = q->b;
-    if (is_leaf(&a->nodes[0]) && is_leaf(&b->nodes[0])) {
-        leaf_pair(q, 0, 0);
+    if (is_leaf(&a->nodes[a0]) && is_leaf(&b->nodes[b0])) {
+        double lb = sphere_bound(q, &a->nodes[a0], &b->nodes[b0]);
+        if (keep(q, lb)) lb = max2(lb, leaf_pair(q, a0, b0));
+        emit(q, a0, b0, lb);
         return;
     }
-    double lb0 = pair_bound(q, 0, 0, current_limit(q));
-    if (!keep(q, lb0, 0, 0)) return;
-    stack[top++] = (qpair){0, 0, lb0};
-    while (top > 0 && !done(q)) {
+    double lb0 = pair_bound(q, a0, b0, current_limit(q));
+    if (!keep(q, lb0)) {
+        emit(q, a0, b0, lb0);
+        return;
+    }
+    stack[top++] = (qpair){a0, b0, lb0};
+    while (top > 0) {
         qpair e = stack[--top];
-        if (!keep(q, e.lb, e.a, e.b)) continue;
+        if (done(q) || !keep(q, e.lb)) {
+            emit(q, e.a, e.b, e.lb);
+            continue;
+        }
         const pxi_mnode *na = &a->nodes[e.a], *nb = &b->nodes[e.b];
         /* Both nodes split when both are inner (four child pairs, a level
          * of each tree per step), else the inner one. */
@@ -428,16 +516,24 @@ static void descend(qctx *q) {
         if (!is_leaf(nb)) cb_list[0] = nb->child[0], cb_list[1] = nb->child[1], ncb = 2;
         qpair kids[4];
         uint32_t nk = 0;
-        for (uint32_t i = 0; i < nca && !done(q); ++i) {
-            for (uint32_t j = 0; j < ncb && !done(q); ++j) {
+        for (uint32_t i = 0; i < nca; ++i) {
+            for (uint32_t j = 0; j < ncb; ++j) {
                 uint32_t ca = ca_list[i], cb = cb_list[j];
+                if (done(q)) {
+                    emit(q, ca, cb, e.lb);
+                    continue;
+                }
                 if (is_leaf(&a->nodes[ca]) && is_leaf(&b->nodes[cb])) {
                     double lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
-                    if (keep(q, lb, ca, cb)) leaf_pair(q, ca, cb);
+                    if (keep(q, lb)) lb = max2(lb, leaf_pair(q, ca, cb));
+                    emit(q, ca, cb, lb);
                     continue;
                 }
                 double lb = pair_bound(q, ca, cb, current_limit(q));
-                if (keep(q, lb, ca, cb)) kids[nk++] = (qpair){ca, cb, lb};
+                if (keep(q, lb))
+                    kids[nk++] = (qpair){ca, cb, lb};
+                else
+                    emit(q, ca, cb, lb);
             }
         }
         /* Farthest pushed first, so the nearest is taken next. */
@@ -455,6 +551,72 @@ static void descend(qctx *q) {
             stack[top++] = kids[k];
         }
     }
+}
+
+/* A bound on how far any point of B has moved in A's frame since the
+ * previous query: |(R1 - R0) c + t1 - t0| + |R1 - R0| r over B's root
+ * sphere (c, r), the Frobenius norm bounding the rotation's, with a
+ * rounding margin. */
+static double motion_bound(const px_pose *t0, const px_pose *t1, const pxi_mnode *root) {
+    double dr[9], f2 = 0.0;
+    for (int k = 0; k < 9; ++k) dr[k] = t1->r[k] - t0->r[k], f2 += dr[k] * dr[k];
+    px_vec3 c = root->center;
+    px_vec3 m = pxi_add(pxi_rot(dr, c), pxi_sub(t1->t, t0->t));
+    double size = pxi_len(c) + root->radius + pxi_len(t0->t) + pxi_len(t1->t);
+    return (pxi_len(m) + sqrt(f2) * root->radius) * (1.0 + 1e-12) + 16.0 * DBL_EPSILON * size;
+}
+
+/* The descent: from the previous front when the cache holds a usable one,
+ * else from the roots. The new front replaces the old when complete. */
+static void descend(qctx *q) {
+    mc_impl *mc = q->mc;
+    if (!mc) {
+        expand(q, 0, 0);
+        return;
+    }
+    double reach = q->a->nodes[0].radius + q->b->nodes[0].radius;
+    int warm = mc->front_ok && mc->has_prev;
+    if (warm) {
+        mc->drift += motion_bound(&mc->t_prev, &q->t_ab, &q->b->nodes[0]);
+        /* Cold again when the front has outgrown its last cold size, or B
+         * has moved about as far as the models reach (the stored bounds say
+         * little then, and the sums would lose precision). */
+        if (!(mc->drift <= 0.5 * reach) || mc->n_front > 4 * mc->cold_front + 256) warm = 0;
+    }
+    if (!warm) mc->drift = 0.0;
+    mc->t_prev = q->t_ab;
+    mc->has_prev = 1;
+    q->drift = mc->drift;
+    q->emit = 1;
+    q->emit_failed = 0;
+    mc->n_next = 0;
+    if (warm) {
+        for (uint32_t i = 0; i < mc->n_front; ++i) {
+            mc_front f = mc->front[i];
+            if (done(q) || !keep(q, front_bound(q, f.key)))
+                emit_key(q, f.a, f.b, f.key);
+            else
+                expand(q, f.a, f.b);
+        }
+    } else {
+        expand(q, 0, 0);
+    }
+    if (q->emit_failed || q->status != PX_OK) {
+        if (q->emit_failed) q->cache->cold_runs++;
+        mc->front_ok = 0;
+        mc->n_front = 0;
+        return;
+    }
+    mc_front *t = mc->front;
+    uint32_t tc = mc->cap_front;
+    mc->front = mc->next;
+    mc->cap_front = mc->cap_next;
+    mc->n_front = mc->n_next;
+    mc->next = t;
+    mc->cap_next = tc;
+    mc->n_next = 0;
+    mc->front_ok = 1;
+    if (!warm) mc->cold_front = mc->n_front;
 }
 
 /* ---- Containment -------------------------------------------------------- */
@@ -607,12 +769,17 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     return PX_OK;
 }
 
-static px_status run_distance(qctx *q, px_model_distance_result *out) {
-    /* Seed from the previous best leaf pair. */
+/* Measures the cache's previous best (distance) or hitting (boolean) leaf
+ * pair first: its distance bounds the search, or its hit ends it. */
+static void seed(qctx *q) {
     if (q->mc && q->mc->best_a < q->a->n_nodes && q->mc->best_b < q->b->n_nodes &&
         is_leaf(&q->a->nodes[q->mc->best_a]) && is_leaf(&q->b->nodes[q->mc->best_b])) {
         leaf_pair(q, q->mc->best_a, q->mc->best_b);
     }
+}
+
+static px_status run_distance(qctx *q, px_model_distance_result *out) {
+    seed(q);
     if (q->status == PX_OK && q->ub > 0.0) descend(q);
     if (q->status != PX_OK) return q->status;
     if (q->leaf_a == PXI_NONE) return PX_ERR_INTERNAL;
@@ -637,10 +804,15 @@ static px_status run_distance(qctx *q, px_model_distance_result *out) {
 }
 
 static px_status run_boolean(qctx *q, px_model_collide_result *out) {
-    descend(q);
+    seed(q);
+    if (q->status == PX_OK && !q->hit) descend(q);
     if (q->status != PX_OK) return q->status;
     out->leaf_a = out->leaf_b = PXI_NONE;
     if (q->hit) {
+        if (q->mc) {
+            q->mc->best_a = q->node_a;
+            q->mc->best_b = q->node_b;
+        }
         out->hit = 1;
         out->leaf_a = q->leaf_a;
         out->leaf_b = q->leaf_b;

@@ -105,32 +105,60 @@ int pxi_segment_crosses_tri(px_vec3 p, px_vec3 q, const px_vec3 t[3]) {
     return 1;
 }
 
+/* All three values strictly of one sign. */
+static int one_side(const double d[3]) {
+    return (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0);
+}
+
+/* Closest parameters of edges p0 + s d1 and q0 + t d2 (r = p0 - q0): the
+ * rescaled routine only where the fourth powers of the lengths could leave
+ * the double range; elsewhere the same arithmetic without the rescaling's
+ * library calls. */
+static void edge_edge(px_vec3 p0, px_vec3 d1, px_vec3 q0, px_vec3 d2, double *a, double *b) {
+    px_vec3 r = pxi_sub(p0, q0);
+    double m = pxi_max_abs(d1);
+    if (pxi_max_abs(d2) > m) m = pxi_max_abs(d2);
+    if (pxi_max_abs(r) > m) m = pxi_max_abs(r);
+    if (m >= 0x1p-100 && m <= 0x1p100)
+        pxi_segment_closest_dir(d1, d2, r, a, b);
+    else
+        pxi_segment_closest(p0, pxi_add(p0, d1), q0, pxi_add(q0, d2), a, b);
+}
+
 double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 *pt, px_feature *fs,
                    px_feature *ft) {
-    /* An edge of one crossing the other: they intersect. */
-    for (int k = 0; k < 3; ++k) {
-        if (pxi_segment_crosses_tri(s[k], s[(k + 1) % 3], t)) {
-            px_vec3 n = pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]));
-            double dp = pxi_dot(n, pxi_sub(s[k], t[0])), dq = pxi_dot(n, pxi_sub(s[(k + 1) % 3], t[0]));
-            *ps = *pt = pxi_madd(s[k], pxi_sub(s[(k + 1) % 3], s[k]), dp / (dp - dq));
-            *fs = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
-            *ft = tri_feature(PX_FEATURE_FACE, 0);
-            return 0.0;
-        }
-        if (pxi_segment_crosses_tri(t[k], t[(k + 1) % 3], s)) {
-            px_vec3 n = pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]));
-            double dp = pxi_dot(n, pxi_sub(t[k], s[0])), dq = pxi_dot(n, pxi_sub(t[(k + 1) % 3], s[0]));
-            *ps = *pt = pxi_madd(t[k], pxi_sub(t[(k + 1) % 3], t[k]), dp / (dp - dq));
-            *fs = tri_feature(PX_FEATURE_FACE, 0);
-            *ft = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
-            return 0.0;
+    /* An edge of one crossing the other: they intersect. Not possible when
+     * one triangle lies strictly on one side of the other's plane (the
+     * crossing test's own first step, done once for all six edges). */
+    px_vec3 ns = pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]));
+    px_vec3 nt = pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]));
+    double ds[3], dt[3];
+    for (int k = 0; k < 3; ++k)
+        ds[k] = pxi_dot(nt, pxi_sub(s[k], t[0])), dt[k] = pxi_dot(ns, pxi_sub(t[k], s[0]));
+    if (!one_side(ds) && !one_side(dt)) {
+        for (int k = 0; k < 3; ++k) {
+            if (pxi_segment_crosses_tri(s[k], s[(k + 1) % 3], t)) {
+                double dp = ds[k], dq = ds[(k + 1) % 3];
+                *ps = *pt = pxi_madd(s[k], pxi_sub(s[(k + 1) % 3], s[k]), dp / (dp - dq));
+                *fs = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
+                *ft = tri_feature(PX_FEATURE_FACE, 0);
+                return 0.0;
+            }
+            if (pxi_segment_crosses_tri(t[k], t[(k + 1) % 3], s)) {
+                double dp = dt[k], dq = dt[(k + 1) % 3];
+                *ps = *pt = pxi_madd(t[k], pxi_sub(t[(k + 1) % 3], t[k]), dp / (dp - dq));
+                *fs = tri_feature(PX_FEATURE_FACE, 0);
+                *ft = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
+                return 0.0;
+            }
         }
     }
+    /* Squared distances compared; one square root at the end. */
     double best = INFINITY;
     for (uint32_t k = 0; k < 3; ++k) {
         px_feature f;
         px_vec3 q = pxi_tri_closest(s[k], t, &f);
-        double d = pxi_len(pxi_sub(q, s[k]));
+        double d = pxi_len2(pxi_sub(q, s[k]));
         if (d < best) {
             best = d;
             *ps = s[k];
@@ -139,7 +167,7 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
             *ft = f;
         }
         q = pxi_tri_closest(t[k], s, &f);
-        d = pxi_len(pxi_sub(q, t[k]));
+        d = pxi_len2(pxi_sub(q, t[k]));
         if (d < best) {
             best = d;
             *ps = q;
@@ -148,14 +176,16 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
             *ft = tri_feature(PX_FEATURE_VERTEX, k);
         }
     }
+    px_vec3 es[3], et[3];
+    for (int k = 0; k < 3; ++k) es[k] = pxi_sub(s[(k + 1) % 3], s[k]), et[k] = pxi_sub(t[(k + 1) % 3], t[k]);
     for (uint32_t i = 0; i < 3; ++i) {
         for (uint32_t j = 0; j < 3; ++j) {
             double a, b;
-            pxi_segment_closest(s[i], s[(i + 1) % 3], t[j], t[(j + 1) % 3], &a, &b);
+            edge_edge(s[i], es[i], t[j], et[j], &a, &b);
             px_feature fa, fb;
             px_vec3 p = edge_point(s[i], s[(i + 1) % 3], a, i, &fa);
             px_vec3 q = edge_point(t[j], t[(j + 1) % 3], b, j, &fb);
-            double d = pxi_len(pxi_sub(q, p));
+            double d = pxi_len2(pxi_sub(q, p));
             if (d < best) {
                 best = d;
                 *ps = p;
@@ -165,5 +195,5 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
             }
         }
     }
-    return best;
+    return sqrt(best);
 }

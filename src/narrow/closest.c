@@ -30,6 +30,10 @@ void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double 
         double k = pxi_pow2_unit(m); /* clamped: 2^-ilogb(m) is inf for subnormal m */
         d1 = pxi_scale(d1, k), d2 = pxi_scale(d2, k), r = pxi_scale(r, k);
     }
+    pxi_segment_closest_dir(d1, d2, r, s_out, t_out);
+}
+
+void pxi_segment_closest_dir(px_vec3 d1, px_vec3 d2, px_vec3 r, double *s_out, double *t_out) {
     double a = pxi_dot(d1, d1), e = pxi_dot(d2, d2), f = pxi_dot(d2, r);
     double c = pxi_dot(d1, r), b = pxi_dot(d1, d2);
     double s, t;

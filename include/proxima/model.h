@@ -154,12 +154,17 @@ PX_API px_model *px_model_load_memory(const void *data, size_t size, const px_mo
                                       px_error *err);
 
 /// Caller-owned coherence cache for one pair of models (A, B), in that
-/// order. Zero-initialise it: zero means cold. It keeps the last best leaf
-/// pair and one small Lin-Canny cache per node pair a query visited, created
-/// on first use through `allocator` (NULL: malloc) up to `max_bytes` (0:
-/// 1 MiB); when full, further node pairs run cold (counted in `cold_runs`).
-/// Release it with px_model_cache_release. A cache used with another pair
-/// of models is reset (detected by the models' identities).
+/// order. Zero-initialise it: zero means cold. It keeps the last best (or
+/// hitting) leaf pair, one small Lin-Canny cache per node pair a query
+/// visited, and the front of node pairs where the last query's descent
+/// stopped, each with its lower bound: the next query re-measures only the
+/// pairs that B's motion since could have brought within reach (front
+/// tracking; docs/model.md). Everything is allocated on first use through
+/// `allocator` (NULL: malloc) up to `max_bytes` (0: 16 MiB); when full,
+/// further node pairs, or the whole front, run cold (counted in
+/// `cold_runs`). Release it with px_model_cache_release. A cache used with
+/// another pair of models is reset (detected by the models' identities).
+/// One cache may serve distance, collide and within queries of its pair.
 typedef struct px_model_cache {
     const px_allocator *allocator;
     size_t max_bytes;

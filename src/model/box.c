@@ -106,8 +106,18 @@ static inline double box_radius(const px_vec3 ax[3], const double h[3], px_vec3 
     return h[0] * fabs(pxi_dot(ax[0], u)) + h[1] * fabs(pxi_dot(ax[1], u)) + h[2] * fabs(pxi_dot(ax[2], u));
 }
 
-double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint,
-                   double limit) {
+/* Keeps the larger of (best, *axis) and (g, sign * u). */
+static inline void take(double *best, px_vec3 *axis, double g, px_vec3 u, double sign) {
+    if (g > *best) {
+        *best = g;
+        *axis = pxi_scale(u, sign);
+    }
+}
+
+static inline double sgn(double x) { return x < 0.0 ? -1.0 : 1.0; }
+
+double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint, double limit,
+                   px_vec3 *axis_out) {
     /* B's axes and centre in A's frame. */
     px_vec3 d = pxi_sub(pxi_xform(t_ab, b->center), a->center);
     px_vec3 aa[3], ba[3];
@@ -121,19 +131,22 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
     double dl = pxi_len(d);
     double margin = 64.0 * DBL_EPSILON * (dl + ha[0] + ha[1] + ha[2] + hb[0] + hb[1] + hb[2]);
     double best = -INFINITY;
+    px_vec3 axis = pxi_v(0, 0, 0);
     /* Cheapest and most often decisive first, each returning as soon as
      * the bound exceeds `limit`: the caller's hint (the direction between
      * the closest points found so far, which sees two parallel surfaces
      * facing each other), then the line of centres (boxes lying
      * diagonally from each other). */
     if (hint) {
-        best = fabs(pxi_dot(d, *hint)) - box_radius(aa, ha, *hint) - box_radius(ba, hb, *hint) - margin;
-        if (best > limit) return best;
+        double dh = pxi_dot(d, *hint);
+        take(&best, &axis, fabs(dh) - box_radius(aa, ha, *hint) - box_radius(ba, hb, *hint) - margin, *hint,
+             sgn(dh));
+        if (best > limit) goto out;
     }
     if (dl > 0.0) {
         px_vec3 u = pxi_scale(d, 1.0 / dl);
-        best = max2(best, dl - box_radius(aa, ha, u) - box_radius(ba, hb, u) - margin);
-        if (best > limit) return best;
+        take(&best, &axis, dl - box_radius(aa, ha, u) - box_radius(ba, hb, u) - margin, u, 1.0);
+        if (best > limit) goto out;
     }
     /* The 15 axes of the separating-axis test, in A's box basis. */
     double r[3][3], ar[3][3], t[3];
@@ -145,15 +158,17 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
         }
     }
     for (int i = 0; i < 3; ++i)
-        best = max2(best,
-                    fabs(t[i]) - ha[i] - (hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2]) - margin);
-    if (best > limit) return best;
+        take(&best, &axis,
+             fabs(t[i]) - ha[i] - (hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2]) - margin, aa[i],
+             sgn(t[i]));
+    if (best > limit) goto out;
     for (int j = 0; j < 3; ++j) {
         double tb = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
-        best =
-            max2(best, fabs(tb) - (ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j]) - hb[j] - margin);
+        take(&best, &axis,
+             fabs(tb) - (ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j]) - hb[j] - margin, ba[j],
+             sgn(tb));
     }
-    if (best > limit) return best;
+    if (best > limit) goto out;
     /* Cross products A_i x B_j, normalised (|A_i x B_j| = sqrt(1 - r_ij^2));
      * nearly parallel pairs are skipped (their gap is ill-conditioned and
      * the face axes already cover them). */
@@ -165,15 +180,19 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
             int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
             double ra = ha[i1] * ar[i2][j] + ha[i2] * ar[i1][j];
             double rb = hb[j1] * ar[i][j2] + hb[j2] * ar[i][j1];
-            double tt = fabs(t[i2] * r[i1][j] - t[i1] * r[i2][j]);
-            best = max2(best, (tt - ra - rb - margin) / sqrt(len2));
+            double ts = t[i2] * r[i1][j] - t[i1] * r[i2][j]; /* d . (A_i x B_j) */
+            double l = sqrt(len2);
+            take(&best, &axis, (fabs(ts) - ra - rb - margin) / l, pxi_scale(pxi_cross(aa[i], ba[j]), 1.0 / l),
+                 sgn(ts));
         }
     }
+out:
+    if (axis_out) *axis_out = axis;
     return best;
 }
 
 double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_box, const px_vec3 *hint,
-                       double limit) {
+                       double limit, px_vec3 *axis_out) {
     px_vec3 c = t_box ? pxi_xform(t_box, b->center) : b->center;
     px_vec3 ax[3];
     for (int k = 0; k < 3; ++k) {
@@ -185,13 +204,17 @@ double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_bo
     px_vec3 d0 = pxi_sub(t[0], c);
     double margin = 64.0 * DBL_EPSILON * (pxi_len(d0) + pxi_len(e1) + pxi_len(e2) + h[0] + h[1] + h[2]);
     double best = -INFINITY;
-    /* On a unit axis u: the triangle's interval against the box's. */
+    px_vec3 axis = pxi_v(0, 0, 0);
+    /* On an axis u of length unit_len: the triangle's interval against the
+     * box's; the oriented axis points from the box to the triangle. */
 #define PXI_TRI_AXIS(u, unit_len)                                                                            \
     do {                                                                                                     \
         double p0 = pxi_dot(d0, u), p1 = p0 + pxi_dot(e1, u), p2 = p0 + pxi_dot(e2, u);                      \
         double lo = fmin(p0, fmin(p1, p2)), hi = max2(p0, max2(p1, p2)), rr = box_radius(ax, h, u);          \
-        best = max2(best, (max2(lo - rr, -rr - hi) - margin) / (unit_len));                                  \
-        if (best > limit) return best;                                                                       \
+        double above = lo - rr, below = -rr - hi;                                                            \
+        take(&best, &axis, (max2(above, below) - margin) / (unit_len), pxi_scale(u, 1.0 / (unit_len)),       \
+             above >= below ? 1.0 : -1.0);                                                                   \
+        if (best > limit) goto out;                                                                          \
     } while (0)
     if (hint) PXI_TRI_AXIS(*hint, 1.0);
     for (int k = 0; k < 3; ++k) PXI_TRI_AXIS(ax[k], 1.0);
@@ -199,5 +222,7 @@ double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_bo
     double nl = pxi_len(n);
     if (nl > 0.0) PXI_TRI_AXIS(n, nl);
 #undef PXI_TRI_AXIS
+out:
+    if (axis_out) *axis_out = axis;
     return best;
 }

@@ -125,14 +125,19 @@ void pxi_box_fit(const px_vec3 *p, size_t n, pxi_box *out);
  * over the 15 axes, the line of centres and `hint` (a unit vector in A's
  * frame, or NULL), minus a rounding margin; <= 0 when they may overlap;
  * a value above `limit` may be returned before every axis is tried. */
-double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint,
-                   double limit);
+double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint, double limit,
+                   px_vec3 *axis);
 
 /* The same between triangle t (A's frame) and box b (its frame mapped into
  * A's by t_box; NULL: already in A's) over the box's axes, the triangle's
- * normal and the hint. Both return as soon as the bound exceeds `limit`. */
+ * normal and the hint. Both return as soon as the bound exceeds `limit`.
+ * `axis` (may be NULL) receives the unit axis of the returned gap, pointing
+ * from the first set to the second (pxi_box_gap: from a to b;
+ * pxi_tri_box_gap: from the box to the triangle), so that every point y of
+ * the second and x of the first have axis . (y - x) >= the gap, up to the
+ * margin already taken off; (0, 0, 0) when no axis was tried. */
 double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_box, const px_vec3 *hint,
-                       double limit);
+                       double limit, px_vec3 *axis);
 
 /* Ray parity: 1 when p lies inside the solid bounded by the model's closed
  * parts, 0 outside, found by casting rays and counting crossings with the

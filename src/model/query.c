@@ -12,13 +12,14 @@
  * (front tracking as in SWIFT++: S. Ehmann and M. Lin, "Accurate and fast
  * proximity queries between polyhedra using convex surface decomposition",
  * Eurographics 2001). Unlike SWIFT++, which tests every front pair again,
- * a stored bound is reused untested while it stays valid: since it was
- * measured, B has moved relative to A by at most `drift` (a bound on any
- * point's displacement, summed over queries, as conservative advancement
- * bounds motion), so the stored bound minus the drift still bounds the pair.
- * Only pairs whose bound has come within reach of the query's limit are
- * measured again, and descended if they must be. */
+ * a stored bound is reused untested while B's motion since it was measured
+ * cannot have closed it: first against a bound on any point's displacement
+ * summed over queries (`drift`, as conservative advancement bounds motion),
+ * then against the displacement of the pair's own node projected on the
+ * axis of its gap. Only pairs that B actually closes on are measured again,
+ * and descended if they must be (docs/model.md, "The front"). */
 #include <float.h>
+#include <stddef.h>
 #include <math.h>
 #include <string.h>
 
@@ -33,12 +34,23 @@ typedef struct mc_entry {
     px_pair_cache pc;
 } mc_entry;
 
-/* A node pair of the front and its lower bound, stored as bound + the
- * cache's drift when it was measured (so that key - drift bounds it now). */
+/* A node pair of the front. Its bound when measured, two ways:
+ * - key: the bound plus the cache's drift then, so that key - drift bounds
+ *   it now (one subtraction: the test that skips most entries);
+ * - g along n: every point y of B's node and x of A's node had
+ *   n . (y - x) >= g at the relative pose of query `stamp` (n a unit vector
+ *   in A's frame; (0, 0, 0) when the bound has no axis). Moved by B's
+ *   displacement since then, projected on n, this is a tighter bound than
+ *   key - drift: motion across n does not close the gap. */
 typedef struct mc_front {
     uint32_t a, b;
-    double key;
+    uint64_t stamp;
+    double key, g;
+    px_vec3 n;
 } mc_front;
+
+/* The relative poses of the last MC_RING queries, for the entries' stamps. */
+#define MC_RING 32
 
 typedef struct mc_impl {
     const void *ida, *idb; /* the models (or convex polytope) the cache serves */
@@ -46,8 +58,8 @@ typedef struct mc_impl {
     uint32_t best_a, best_b;
     uint32_t cap, count;
     mc_entry *table;
-    /* The front: `front` (n_front entries, a cover of all leaf pairs when
-     * front_ok) is read while `next` is written; they swap after a query. */
+    /* The front: n_front entries, a cover of all leaf pairs when front_ok;
+     * `next` collects what a query's expansions add to it. */
     mc_front *front, *next;
     uint32_t n_front, cap_front, n_next, cap_next;
     int front_ok;
@@ -55,11 +67,15 @@ typedef struct mc_impl {
     px_pose t_prev;      /* the relative pose of the previous query */
     int has_prev;
     double drift;
+    uint64_t stamp; /* queries that descended, this one included */
+    px_pose ring[MC_RING];
+    uint64_t ring_stamp[MC_RING];
+    double ring_drift[MC_RING]; /* the drift at that query */
     px_allocator alloc;
     size_t bytes;
 } mc_impl;
 
-#define MC_DEFAULT_MAX_BYTES ((size_t)1 << 20)
+#define MC_DEFAULT_MAX_BYTES ((size_t)1 << 24)
 
 void px_model_cache_release(px_model_cache *cache) {
     if (!cache) return;
@@ -187,18 +203,35 @@ typedef struct qctx {
     int emit;        /* recording the new front into q->mc->next */
     int emit_failed; /* out of room: the new front is incomplete */
     double drift;    /* the cache's drift at this query */
+    uint32_t ready;  /* bit k: ring slot k's motion below is filled */
+    /* B's motion since ring slot k: rotation and translation differences,
+     * the rotation difference's Frobenius norm and a rounding scale. Last
+     * in the struct: start() zeroes only what comes before. */
+    double dr[MC_RING][9], dr_norm[MC_RING], dscale[MC_RING];
+    px_vec3 dt[MC_RING];
 } qctx;
 
-typedef struct qpair {
-    uint32_t a, b;
-    double lb;
-} qpair;
+/* A lower bound and, where there is one, the unit axis n (A's frame, from
+ * A's node to B's) with n . (y - x) >= g for the nodes' points; g <= lb. */
+typedef struct qbound {
+    double lb, g;
+    px_vec3 n;
+} qbound;
+
+static qbound no_axis(double lb) { return (qbound){lb, lb, {0, 0, 0}}; }
+
+static qbound larger(qbound x, qbound y) { return y.lb > x.lb ? y : x; }
 
 static int is_leaf(const pxi_mnode *n) { return n->child[1] == PXI_NONE; }
 
-static double sphere_bound(const qctx *q, const pxi_mnode *na, const pxi_mnode *nb) {
-    px_vec3 cb = pxi_xform(&q->t_ab, nb->center);
-    return pxi_len(pxi_sub(cb, na->center)) - na->radius - nb->radius;
+/* The spheres' gap, along the line of centres. */
+static qbound sphere_bound(const qctx *q, const pxi_mnode *na, const pxi_mnode *nb) {
+    px_vec3 d = pxi_sub(pxi_xform(&q->t_ab, nb->center), na->center);
+    double l = pxi_len(d);
+    qbound r = {l - na->radius - nb->radius, 0.0, {0, 0, 0}};
+    r.g = r.lb;
+    if (l > 0.0) r.n = pxi_scale(d, 1.0 / l);
+    return r;
 }
 
 /* Contact band of a pair of nodes (the convex query's formula, with the
@@ -254,30 +287,43 @@ static void record(qctx *q, double d, uint32_t ia, uint32_t ib, px_vec3 pa, px_v
 /* max of a and b without libm's call. */
 static inline double max2(double a, double b) { return a > b ? a : b; }
 
-/* Gap between the projections of s and t on u (any length: divided by it). */
-static double axis_gap(const px_vec3 s[3], const px_vec3 t[3], px_vec3 u) {
+/* Gap between the projections of s and t on u (any length: divided by it),
+ * kept in *best with its axis (unit, from s to t) when larger. */
+static void axis_gap(const px_vec3 s[3], const px_vec3 t[3], px_vec3 u, qbound *best) {
     double s0 = pxi_dot(u, s[0]), s1 = pxi_dot(u, s[1]), s2 = pxi_dot(u, s[2]);
     double t0 = pxi_dot(u, t[0]), t1 = pxi_dot(u, t[1]), t2 = pxi_dot(u, t[2]);
     double slo = fmin(s0, fmin(s1, s2)), shi = max2(s0, max2(s1, s2));
     double tlo = fmin(t0, fmin(t1, t2)), thi = max2(t0, max2(t1, t2));
-    double gap = max2(tlo - shi, slo - thi);
+    double up = tlo - shi, down = slo - thi;
     double len = pxi_len(u);
-    return len > 0.0 ? gap / len : -INFINITY;
+    if (!(len > 0.0)) return;
+    double gap = max2(up, down) / len;
+    if (gap > best->lb) {
+        best->lb = gap;
+        best->n = pxi_scale(u, (up >= down ? 1.0 : -1.0) / len);
+    }
 }
 
-/* A lower bound on the distance of two triangles (A's frame) from a few
- * separating axes, minus a rounding margin: the hint, and both normals. */
-static double tri_gap(const px_vec3 s[3], const px_vec3 t[3], const px_vec3 *hint) {
-    double g = -INFINITY;
-    if (hint) g = axis_gap(s, t, *hint);
-    g = max2(g, axis_gap(s, t, pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]))));
-    g = max2(g, axis_gap(s, t, pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]))));
+/* The rounding margin of projection gaps between triangles s and t. */
+static double tri_margin(const px_vec3 s[3], const px_vec3 t[3]) {
     /* The size of the coordinates and edges (|e| <= sqrt 3 |e|_inf, and 2
      * covers that without a square root). */
     double size = pxi_max_abs(s[0]) + pxi_max_abs(t[0]) +
                   2.0 * (pxi_max_abs(pxi_sub(s[1], s[0])) + pxi_max_abs(pxi_sub(s[2], s[0])) +
                          pxi_max_abs(pxi_sub(t[1], t[0])) + pxi_max_abs(pxi_sub(t[2], t[0])));
-    return g - 64.0 * DBL_EPSILON * size;
+    return 64.0 * DBL_EPSILON * size;
+}
+
+/* A lower bound on the distance of two triangles (A's frame) from a few
+ * separating axes, minus a rounding margin: the hint, and both normals. */
+static qbound tri_gap(const px_vec3 s[3], const px_vec3 t[3], const px_vec3 *hint) {
+    qbound g = {-INFINITY, 0.0, {0, 0, 0}};
+    if (hint) axis_gap(s, t, *hint, &g);
+    axis_gap(s, t, pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0])), &g);
+    axis_gap(s, t, pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0])), &g);
+    g.lb -= tri_margin(s, t);
+    g.g = g.lb;
+    return g;
 }
 
 /* The triangle feature of a feature of its px_convex copy (whose vertex
@@ -354,17 +400,19 @@ static int mixed_pair(qctx *q, const pxi_mnode *na, const pxi_mnode *nb, double 
 
 /* Measures a leaf pair; for Q_DISTANCE updates the best, for the boolean
  * queries sets hit. Returns a lower bound on the pair's distance (its
- * distance when measured; 0 on error, with q->status set). */
-static double leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
+ * distance when measured; 0 on error, with q->status set); triangle pairs
+ * with the axis of their best projection gap. */
+static qbound leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
     const pxi_mnode *na = &q->a->nodes[ia], *nb = &q->b->nodes[ib];
     uint32_t la = na->child[0], lb = nb->child[0];
     q->leaf_pairs++;
     double d;
     px_vec3 pa, pb;
     px_feature fa, fb;
+    qbound out = no_axis(0.0);
     if (na->hull && nb->hull) {
         px_distance_result r;
-        if (!hull_distance(q, ia, ib, &r)) return 0.0;
+        if (!hull_distance(q, ia, ib, &r)) return out;
         d = r.distance;
         pa = r.point_a;
         pb = r.point_b;
@@ -379,55 +427,73 @@ static double leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
         /* A cheap bound first: the two triangles projected on the
          * direction between the best witnesses and on each one's normal. */
         double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : node_band(q, na, nb);
-        double gap = tri_gap(s, t, q->has_hint ? &q->hint : NULL);
-        if (gap > limit) return gap;
+        out = tri_gap(s, t, q->has_hint ? &q->hint : NULL);
+        if (out.lb > limit) return out;
         d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
+        /* The projection gap along the witnesses' direction: for the next
+         * query's front (the distance itself has no axis one can trust
+         * when the witnesses are only nearly the closest pair). */
+        if (d > 0.0) {
+            qbound w = {-INFINITY, 0.0, {0, 0, 0}};
+            axis_gap(s, t, pxi_sub(pb, pa), &w);
+            w.lb -= tri_margin(s, t);
+            if (w.lb > out.g) out.g = w.lb, out.n = w.n;
+        }
         pa = pxi_xform(q->pa, pa);
         pb = pxi_xform(q->pa, pb);
     } else {
-        if (!mixed_pair(q, na, nb, &d, &pa, &pb, &fa, &fb)) return 0.0;
+        if (!mixed_pair(q, na, nb, &d, &pa, &pb, &fa, &fb)) return out;
     }
+    out.lb = d;
     if (q->kind == Q_DISTANCE) {
         if (d < q->ub) record(q, d, ia, ib, pa, pb, fa, fb);
-        return d;
+        return out;
     }
     double limit = q->kind == Q_COLLIDE ? node_band(q, na, nb) : q->tol;
     if (d <= limit) {
         q->hit = 1;
         record(q, d, ia, ib, pa, pb, fa, fb);
     }
-    return d;
+    return out;
 }
 
 /* Lower bound of node pair (ia, ib) for pruning against `limit`: the
- * sphere bound, then the hull distance when both nodes have hulls. */
-static double pair_bound(qctx *q, uint32_t ia, uint32_t ib, double limit) {
+ * sphere bound, the boxes' (or a triangle's against a box), then the hull
+ * distance when both nodes have hulls. The axis is the best gap's among
+ * spheres and boxes (a hull distance has none). */
+static qbound pair_bound(qctx *q, uint32_t ia, uint32_t ib, double limit) {
     const pxi_mnode *na = &q->a->nodes[ia], *nb = &q->b->nodes[ib];
     q->node_pairs++;
-    double lb = sphere_bound(q, na, nb);
-    if (lb > limit) return lb;
+    qbound lb = sphere_bound(q, na, nb);
+    if (lb.lb > limit) return lb;
     /* Boxes: inner nodes keep theirs; a triangle leaf against an inner node
      * is tested against the box directly (two triangles are measured). */
     const px_vec3 *hint = q->has_hint ? &q->hint : NULL;
     const pxi_box *ba = na->box != PXI_NONE ? &q->a->boxes[na->box] : NULL;
     const pxi_box *bb = nb->box != PXI_NONE ? &q->b->boxes[nb->box] : NULL;
+    qbound bx = {-INFINITY, -INFINITY, {0, 0, 0}};
     if (ba && bb) {
-        lb = max2(lb, pxi_box_gap(ba, bb, &q->t_ab, hint, limit));
+        bx.lb = pxi_box_gap(ba, bb, &q->t_ab, hint, limit, &bx.n);
     } else if (!ba && bb && !na->hull) {
         px_vec3 t[3];
         tri_of(q->a, na->child[0], t);
-        lb = max2(lb, pxi_tri_box_gap(t, bb, &q->t_ab, hint, limit));
+        /* The axis points from B's box to A's triangle: turned round. */
+        bx.lb = pxi_tri_box_gap(t, bb, &q->t_ab, hint, limit, &bx.n);
+        bx.n = pxi_neg(bx.n);
     } else if (ba && !bb && !nb->hull) {
         px_vec3 t[3];
         tri_of(q->b, nb->child[0], t);
         for (int k = 0; k < 3; ++k) t[k] = pxi_xform(&q->t_ab, t[k]);
-        lb = max2(lb, pxi_tri_box_gap(t, ba, NULL, hint, limit));
+        bx.lb = pxi_tri_box_gap(t, ba, NULL, hint, limit, &bx.n);
     }
-    if (lb > limit) return lb;
+    bx.g = bx.lb;
+    lb = larger(lb, bx);
+    if (lb.lb > limit) return lb;
     if (!na->hull || !nb->hull) return lb;
     px_distance_result r;
-    if (!hull_distance(q, ia, ib, &r)) return INFINITY;
-    return r.intersecting ? 0.0 : fmax(lb, r.distance);
+    if (!hull_distance(q, ia, ib, &r)) return no_axis(INFINITY);
+    lb.lb = r.intersecting ? 0.0 : fmax(lb.lb, r.distance);
+    return lb;
 }
 
 static double current_limit(const qctx *q) { return q->kind == Q_DISTANCE ? q->ub : q->tol; }
@@ -447,33 +513,35 @@ static int keep(const qctx *q, double lb) {
 
 /* ---- The front ---------------------------------------------------------- */
 
-/* Appends an entry to the new front, growing it within the cache's limit. */
-static void emit_key(qctx *q, uint32_t a, uint32_t b, double key) {
+/* Appends an entry to `next`, growing it within the cache's limit. */
+static void emit_entry(qctx *q, mc_front f) {
     if (!q->emit) return;
     mc_impl *mc = q->mc;
     if (mc->n_next == mc->cap_next) {
         uint32_t cap = mc->cap_next ? 2 * mc->cap_next : 256;
         size_t bytes = mc->bytes + ((size_t)cap - mc->cap_next) * sizeof *mc->next;
-        mc_front *f = bytes <= cache_limit(q->cache) && cap < (1u << 28)
-                          ? pxi_alloc_array(&mc->alloc, cap, sizeof *f)
-                          : NULL;
-        if (!f) {
+        mc_front *nf = bytes <= cache_limit(q->cache) && cap < (1u << 26)
+                           ? pxi_alloc_array(&mc->alloc, cap, sizeof *nf)
+                           : NULL;
+        if (!nf) {
             q->emit = 0;
             q->emit_failed = 1;
             return;
         }
-        if (mc->n_next) memcpy(f, mc->next, (size_t)mc->n_next * sizeof *f);
+        if (mc->n_next) memcpy(nf, mc->next, (size_t)mc->n_next * sizeof *nf);
         pxi_free(&mc->alloc, mc->next, (size_t)mc->cap_next * sizeof *mc->next);
-        mc->next = f;
+        mc->next = nf;
         mc->cap_next = cap;
         mc->bytes = bytes;
         q->cache->memory_bytes = bytes;
     }
-    mc->next[mc->n_next++] = (mc_front){a, b, key};
+    mc->next[mc->n_next++] = f;
 }
 
-/* A pair pruned or measured with lower bound lb at this query. */
-static void emit(qctx *q, uint32_t a, uint32_t b, double lb) { emit_key(q, a, b, lb + q->drift); }
+/* A pair pruned or measured at this query with bound lb. */
+static void emit(qctx *q, uint32_t a, uint32_t b, qbound lb) {
+    if (q->emit) emit_entry(q, (mc_front){a, b, q->mc->stamp, lb.lb + q->drift, lb.g, lb.n});
+}
 
 /* What a stored key still guarantees: key - drift, less the rounding of
  * the two sums (a few ulps of their size). */
@@ -481,30 +549,75 @@ static double front_bound(const qctx *q, double key) {
     return key - q->drift - 4.0 * DBL_EPSILON * (fabs(key) + q->drift);
 }
 
+/* B's motion since ring slot k, computed on first use in this query. */
+static void ring_motion(qctx *q, uint32_t k) {
+    if (q->ready & (1u << k)) return;
+    const px_pose *t0 = &q->mc->ring[k], *t1 = &q->t_ab;
+    double f2 = 0.0;
+    for (int i = 0; i < 9; ++i) q->dr[k][i] = t1->r[i] - t0->r[i], f2 += q->dr[k][i] * q->dr[k][i];
+    q->dr_norm[k] = sqrt(f2) * (1.0 + 1e-12);
+    q->dt[k] = pxi_sub(t1->t, t0->t);
+    q->dscale[k] = pxi_max_abs(t0->t) + pxi_max_abs(t1->t);
+    q->ready |= 1u << k;
+}
+
+static int has_axis(const mc_front *f) { return f->n.x != 0.0 || f->n.y != 0.0 || f->n.z != 0.0; }
+
+/* Bounds, at this query, on entry f measured at an earlier one still in
+ * the ring (0 when its pose has left the ring). Since then B's node
+ * (sphere c, r) has moved by m = dR c + dt, give or take |dR| r: the gap
+ * along f's axis has closed by at most (dR c + dt) . n + |dR| r, and the
+ * distance by at most |dR c + dt| + |dR| r. The first is tried first (no
+ * square root); out->g is the moved gap along f->n (-inf without axis). */
+static int moved_bound(qctx *q, const mc_front *f, qbound *out) {
+    uint32_t k = (uint32_t)(f->stamp % MC_RING);
+    if (q->mc->ring_stamp[k] != f->stamp) return 0;
+    ring_motion(q, k);
+    const pxi_mnode *nb = &q->b->nodes[f->b];
+    px_vec3 m = pxi_add(pxi_rot(q->dr[k], nb->center), q->dt[k]);
+    double turn = q->dr_norm[k] * nb->radius;
+    double lb_then = f->key - q->mc->ring_drift[k];
+    double slack = 32.0 * DBL_EPSILON *
+                   (fabs(f->key) + q->mc->ring_drift[k] + fabs(f->g) + pxi_max_abs(nb->center) + nb->radius +
+                    q->dscale[k]);
+    *out = (qbound){-INFINITY, -INFINITY, f->n};
+    if (has_axis(f)) {
+        out->g = f->g + pxi_dot(f->n, m) - turn - slack;
+        out->lb = out->g;
+        if (!keep(q, out->lb)) return 1;
+    }
+    out->lb = max2(out->lb, lb_then - pxi_len(m) - turn - slack);
+    return 1;
+}
+
 /* Node pair (a0, b0) measured afresh and, where its bound is within the
  * limit, descended depth first, nearest child pair first. Every pair where
  * the descent stops (pruned, or a leaf pair measured) joins the new front,
  * as do the pairs left unvisited when the query ends early (with their
- * parent's bound). */
+ * parent's bound, which holds for them). */
 static void expand(qctx *q, uint32_t a0, uint32_t b0) {
-    qpair stack[512];
+    typedef struct {
+        uint32_t a, b;
+        qbound lb;
+    } spair;
+    spair stack[512];
     uint32_t top = 0;
     const px_model *a = q->a, *b = q->b;
     if (is_leaf(&a->nodes[a0]) && is_leaf(&b->nodes[b0])) {
-        double lb = sphere_bound(q, &a->nodes[a0], &b->nodes[b0]);
-        if (keep(q, lb)) lb = max2(lb, leaf_pair(q, a0, b0));
+        qbound lb = sphere_bound(q, &a->nodes[a0], &b->nodes[b0]);
+        if (keep(q, lb.lb)) lb = larger(lb, leaf_pair(q, a0, b0));
         emit(q, a0, b0, lb);
         return;
     }
-    double lb0 = pair_bound(q, a0, b0, current_limit(q));
-    if (!keep(q, lb0)) {
+    qbound lb0 = pair_bound(q, a0, b0, current_limit(q));
+    if (!keep(q, lb0.lb)) {
         emit(q, a0, b0, lb0);
         return;
     }
-    stack[top++] = (qpair){a0, b0, lb0};
+    stack[top++] = (spair){a0, b0, lb0};
     while (top > 0) {
-        qpair e = stack[--top];
-        if (done(q) || !keep(q, e.lb)) {
+        spair e = stack[--top];
+        if (done(q) || !keep(q, e.lb.lb)) {
             emit(q, e.a, e.b, e.lb);
             continue;
         }
@@ -514,7 +627,7 @@ static void expand(qctx *q, uint32_t a0, uint32_t b0) {
         uint32_t ca_list[2] = {e.a, e.a}, cb_list[2] = {e.b, e.b}, nca = 1, ncb = 1;
         if (!is_leaf(na)) ca_list[0] = na->child[0], ca_list[1] = na->child[1], nca = 2;
         if (!is_leaf(nb)) cb_list[0] = nb->child[0], cb_list[1] = nb->child[1], ncb = 2;
-        qpair kids[4];
+        spair kids[4];
         uint32_t nk = 0;
         for (uint32_t i = 0; i < nca; ++i) {
             for (uint32_t j = 0; j < ncb; ++j) {
@@ -524,22 +637,22 @@ static void expand(qctx *q, uint32_t a0, uint32_t b0) {
                     continue;
                 }
                 if (is_leaf(&a->nodes[ca]) && is_leaf(&b->nodes[cb])) {
-                    double lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
-                    if (keep(q, lb)) lb = max2(lb, leaf_pair(q, ca, cb));
+                    qbound lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
+                    if (keep(q, lb.lb)) lb = larger(lb, leaf_pair(q, ca, cb));
                     emit(q, ca, cb, lb);
                     continue;
                 }
-                double lb = pair_bound(q, ca, cb, current_limit(q));
-                if (keep(q, lb))
-                    kids[nk++] = (qpair){ca, cb, lb};
+                qbound lb = pair_bound(q, ca, cb, current_limit(q));
+                if (keep(q, lb.lb))
+                    kids[nk++] = (spair){ca, cb, lb};
                 else
                     emit(q, ca, cb, lb);
             }
         }
         /* Farthest pushed first, so the nearest is taken next. */
         for (uint32_t i = 1; i < nk; ++i)
-            for (uint32_t j = i; j > 0 && kids[j - 1].lb < kids[j].lb; --j) {
-                qpair t = kids[j];
+            for (uint32_t j = i; j > 0 && kids[j - 1].lb.lb < kids[j].lb.lb; --j) {
+                spair t = kids[j];
                 kids[j] = kids[j - 1];
                 kids[j - 1] = t;
             }
@@ -586,34 +699,68 @@ static void descend(qctx *q) {
     if (!warm) mc->drift = 0.0;
     mc->t_prev = q->t_ab;
     mc->has_prev = 1;
+    /* This query's pose joins the ring, for the entries it writes. */
+    mc->stamp++;
+    uint32_t slot = (uint32_t)(mc->stamp % MC_RING);
+    mc->ring[slot] = q->t_ab;
+    mc->ring_stamp[slot] = mc->stamp;
+    mc->ring_drift[slot] = mc->drift;
     q->drift = mc->drift;
     q->emit = 1;
     q->emit_failed = 0;
     mc->n_next = 0;
+    /* The old front is rewritten in place (entries kept or rebased move
+     * down over the expanded ones); what expansions emit collects in
+     * `next` and is appended at the end. */
+    uint32_t w = 0;
     if (warm) {
-        for (uint32_t i = 0; i < mc->n_front; ++i) {
+        uint32_t n = mc->n_front;
+        for (uint32_t i = 0; i < n; ++i) {
             mc_front f = mc->front[i];
-            if (done(q) || !keep(q, front_bound(q, f.key)))
-                emit_key(q, f.a, f.b, f.key);
-            else
-                expand(q, f.a, f.b);
+            if (done(q) || !keep(q, front_bound(q, f.key))) {
+                mc->front[w++] = f;
+                continue;
+            }
+            /* The tighter bounds from B's motion since f was measured: if
+             * they still prune, f is kept, rebased on this query. */
+            qbound lb;
+            if (moved_bound(q, &f, &lb) && !keep(q, lb.lb)) {
+                if (!(lb.g > -INFINITY)) lb.n = pxi_v(0, 0, 0);
+                mc->front[w++] = (mc_front){f.a, f.b, mc->stamp, lb.lb + q->drift, lb.g, lb.n};
+                continue;
+            }
+            expand(q, f.a, f.b);
         }
     } else {
         expand(q, 0, 0);
+    }
+    if (!q->emit_failed && q->status == PX_OK && (size_t)w + mc->n_next > mc->cap_front) {
+        /* Room for the appended entries, within the cache's limit. */
+        size_t cap = (size_t)w + mc->n_next + ((size_t)w + mc->n_next) / 2 + 256;
+        size_t bytes = mc->bytes + (cap - mc->cap_front) * sizeof *mc->front;
+        mc_front *nf = bytes <= cache_limit(q->cache) && cap < ((size_t)1 << 26)
+                           ? pxi_alloc_array(&mc->alloc, cap, sizeof *nf)
+                           : NULL;
+        if (nf) {
+            if (w) memcpy(nf, mc->front, (size_t)w * sizeof *nf);
+            pxi_free(&mc->alloc, mc->front, (size_t)mc->cap_front * sizeof *mc->front);
+            mc->front = nf;
+            mc->cap_front = (uint32_t)cap;
+            mc->bytes = bytes;
+            q->cache->memory_bytes = bytes;
+        } else {
+            q->emit_failed = 1;
+        }
     }
     if (q->emit_failed || q->status != PX_OK) {
         if (q->emit_failed) q->cache->cold_runs++;
         mc->front_ok = 0;
         mc->n_front = 0;
+        mc->n_next = 0;
         return;
     }
-    mc_front *t = mc->front;
-    uint32_t tc = mc->cap_front;
-    mc->front = mc->next;
-    mc->cap_front = mc->cap_next;
-    mc->n_front = mc->n_next;
-    mc->next = t;
-    mc->cap_next = tc;
+    if (mc->n_next) memcpy(mc->front + w, mc->next, (size_t)mc->n_next * sizeof *mc->front);
+    mc->n_front = w + mc->n_next;
     mc->n_next = 0;
     mc->front_ok = 1;
     if (!warm) mc->cold_front = mc->n_front;
@@ -744,7 +891,7 @@ static int contained(const qctx *q, const px_model *in, const px_pose *pose_in, 
 
 static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_model *b, const px_pose *pb,
                        px_model_cache *cache, int kind, const void *idb) {
-    memset(q, 0, sizeof *q);
+    memset(q, 0, offsetof(qctx, dr));
     if (!a || !b || !pa || !pb) return PX_ERR_INVALID_ARGUMENT;
     px_status st = px_pose_check(pa, NULL);
     if (st == PX_OK) st = px_pose_check(pb, NULL);

@@ -106,15 +106,19 @@ static inline double box_radius(const px_vec3 ax[3], const double h[3], px_vec3 
     return h[0] * fabs(pxi_dot(ax[0], u)) + h[1] * fabs(pxi_dot(ax[1], u)) + h[2] * fabs(pxi_dot(ax[2], u));
 }
 
-/* Keeps the larger of (best, *axis) and (g, sign * u). */
-static inline void take(double *best, px_vec3 *axis, double g, px_vec3 u, double sign) {
+/* Keeps the larger of (best, its axis id and sign) and (g, id, sign); the
+ * axis itself is built once at the end. */
+static inline void take(double *best, int *id, double *sign, double g, int gid, double gsign) {
     if (g > *best) {
         *best = g;
-        *axis = pxi_scale(u, sign);
+        *id = gid;
+        *sign = gsign;
     }
 }
 
 static inline double sgn(double x) { return x < 0.0 ? -1.0 : 1.0; }
+
+enum { AX_NONE = -1, AX_HINT = 0, AX_CENTRES = 1, AX_A = 2, AX_B = 5, AX_CROSS = 8 };
 
 double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, const px_vec3 *hint, double limit,
                    px_vec3 *axis_out) {
@@ -130,8 +134,9 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
      * the axis length for the cross products). */
     double dl = pxi_len(d);
     double margin = 64.0 * DBL_EPSILON * (dl + ha[0] + ha[1] + ha[2] + hb[0] + hb[1] + hb[2]);
-    double best = -INFINITY;
-    px_vec3 axis = pxi_v(0, 0, 0);
+    double best = -INFINITY, sign = 1.0;
+    int id = AX_NONE;
+    double r[3][3], ar[3][3], t[3];
     /* Cheapest and most often decisive first, each returning as soon as
      * the bound exceeds `limit`: the caller's hint (the direction between
      * the closest points found so far, which sees two parallel surfaces
@@ -139,17 +144,16 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
      * diagonally from each other). */
     if (hint) {
         double dh = pxi_dot(d, *hint);
-        take(&best, &axis, fabs(dh) - box_radius(aa, ha, *hint) - box_radius(ba, hb, *hint) - margin, *hint,
-             sgn(dh));
+        take(&best, &id, &sign, fabs(dh) - box_radius(aa, ha, *hint) - box_radius(ba, hb, *hint) - margin,
+             AX_HINT, sgn(dh));
         if (best > limit) goto out;
     }
     if (dl > 0.0) {
         px_vec3 u = pxi_scale(d, 1.0 / dl);
-        take(&best, &axis, dl - box_radius(aa, ha, u) - box_radius(ba, hb, u) - margin, u, 1.0);
+        take(&best, &id, &sign, dl - box_radius(aa, ha, u) - box_radius(ba, hb, u) - margin, AX_CENTRES, 1.0);
         if (best > limit) goto out;
     }
     /* The 15 axes of the separating-axis test, in A's box basis. */
-    double r[3][3], ar[3][3], t[3];
     for (int i = 0; i < 3; ++i) {
         t[i] = pxi_dot(aa[i], d);
         for (int j = 0; j < 3; ++j) {
@@ -158,14 +162,14 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
         }
     }
     for (int i = 0; i < 3; ++i)
-        take(&best, &axis,
-             fabs(t[i]) - ha[i] - (hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2]) - margin, aa[i],
+        take(&best, &id, &sign,
+             fabs(t[i]) - ha[i] - (hb[0] * ar[i][0] + hb[1] * ar[i][1] + hb[2] * ar[i][2]) - margin, AX_A + i,
              sgn(t[i]));
     if (best > limit) goto out;
     for (int j = 0; j < 3; ++j) {
         double tb = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
-        take(&best, &axis,
-             fabs(tb) - (ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j]) - hb[j] - margin, ba[j],
+        take(&best, &id, &sign,
+             fabs(tb) - (ha[0] * ar[0][j] + ha[1] * ar[1][j] + ha[2] * ar[2][j]) - hb[j] - margin, AX_B + j,
              sgn(tb));
     }
     if (best > limit) goto out;
@@ -181,13 +185,27 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
             double ra = ha[i1] * ar[i2][j] + ha[i2] * ar[i1][j];
             double rb = hb[j1] * ar[i][j2] + hb[j2] * ar[i][j1];
             double ts = t[i2] * r[i1][j] - t[i1] * r[i2][j]; /* d . (A_i x B_j) */
-            double l = sqrt(len2);
-            take(&best, &axis, (fabs(ts) - ra - rb - margin) / l, pxi_scale(pxi_cross(aa[i], ba[j]), 1.0 / l),
+            take(&best, &id, &sign, (fabs(ts) - ra - rb - margin) / sqrt(len2), AX_CROSS + 3 * i + j,
                  sgn(ts));
         }
     }
 out:
-    if (axis_out) *axis_out = axis;
+    if (axis_out) {
+        px_vec3 u = pxi_v(0, 0, 0);
+        if (id == AX_HINT)
+            u = *hint;
+        else if (id == AX_CENTRES)
+            u = pxi_scale(d, 1.0 / dl);
+        else if (id >= AX_A && id < AX_B)
+            u = aa[id - AX_A];
+        else if (id >= AX_B && id < AX_CROSS)
+            u = ba[id - AX_B];
+        else if (id >= AX_CROSS) {
+            int i = (id - AX_CROSS) / 3, j = (id - AX_CROSS) % 3;
+            u = pxi_scale(pxi_cross(aa[i], ba[j]), 1.0 / sqrt(1.0 - r[i][j] * r[i][j]));
+        }
+        *axis_out = pxi_scale(u, sign);
+    }
     return best;
 }
 
@@ -203,8 +221,9 @@ double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_bo
     px_vec3 e1 = pxi_sub(t[1], t[0]), e2 = pxi_sub(t[2], t[0]);
     px_vec3 d0 = pxi_sub(t[0], c);
     double margin = 64.0 * DBL_EPSILON * (pxi_len(d0) + pxi_len(e1) + pxi_len(e2) + h[0] + h[1] + h[2]);
-    double best = -INFINITY;
+    double best = -INFINITY, sign = 1.0;
     px_vec3 axis = pxi_v(0, 0, 0);
+    double axis_len = 1.0;
     /* On an axis u of length unit_len: the triangle's interval against the
      * box's; the oriented axis points from the box to the triangle. */
 #define PXI_TRI_AXIS(u, unit_len)                                                                            \
@@ -212,8 +231,8 @@ double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_bo
         double p0 = pxi_dot(d0, u), p1 = p0 + pxi_dot(e1, u), p2 = p0 + pxi_dot(e2, u);                      \
         double lo = fmin(p0, fmin(p1, p2)), hi = max2(p0, max2(p1, p2)), rr = box_radius(ax, h, u);          \
         double above = lo - rr, below = -rr - hi;                                                            \
-        take(&best, &axis, (max2(above, below) - margin) / (unit_len), pxi_scale(u, 1.0 / (unit_len)),       \
-             above >= below ? 1.0 : -1.0);                                                                   \
+        double g = (max2(above, below) - margin) / (unit_len);                                               \
+        if (g > best) best = g, axis = (u), axis_len = (unit_len), sign = above >= below ? 1.0 : -1.0;       \
         if (best > limit) goto out;                                                                          \
     } while (0)
     if (hint) PXI_TRI_AXIS(*hint, 1.0);
@@ -223,6 +242,6 @@ double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_bo
     if (nl > 0.0) PXI_TRI_AXIS(n, nl);
 #undef PXI_TRI_AXIS
 out:
-    if (axis_out) *axis_out = axis;
+    if (axis_out) *axis_out = pxi_scale(axis, sign / axis_len);
     return best;
 }

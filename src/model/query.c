@@ -557,7 +557,12 @@ static void ring_motion(qctx *q, uint32_t k) {
     for (int i = 0; i < 9; ++i) q->dr[k][i] = t1->r[i] - t0->r[i], f2 += q->dr[k][i] * q->dr[k][i];
     q->dr_norm[k] = sqrt(f2) * (1.0 + 1e-12);
     q->dt[k] = pxi_sub(t1->t, t0->t);
-    q->dscale[k] = pxi_max_abs(t0->t) + pxi_max_abs(t1->t);
+    /* Every node's |c| + r is below |c_root| + 3 r_root (its points lie in
+     * the root's sphere, so its centre does and its radius is at most the
+     * root's diameter). */
+    const pxi_mnode *root = &q->b->nodes[0];
+    q->dscale[k] =
+        pxi_max_abs(t0->t) + pxi_max_abs(t1->t) + 2.0 * (pxi_max_abs(root->center) + 3.0 * root->radius);
     q->ready |= 1u << k;
 }
 
@@ -577,9 +582,7 @@ static int moved_bound(qctx *q, const mc_front *f, qbound *out) {
     px_vec3 m = pxi_add(pxi_rot(q->dr[k], nb->center), q->dt[k]);
     double turn = q->dr_norm[k] * nb->radius;
     double lb_then = f->key - q->mc->ring_drift[k];
-    double slack = 32.0 * DBL_EPSILON *
-                   (fabs(f->key) + q->mc->ring_drift[k] + fabs(f->g) + pxi_max_abs(nb->center) + nb->radius +
-                    q->dscale[k]);
+    double slack = 32.0 * DBL_EPSILON * (fabs(f->key) + q->mc->ring_drift[k] + fabs(f->g) + q->dscale[k]);
     *out = (qbound){-INFINITY, -INFINITY, f->n};
     if (has_axis(f)) {
         out->g = f->g + pxi_dot(f->n, m) - turn - slack;

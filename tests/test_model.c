@@ -6,6 +6,10 @@
  *   and open models;
  * - part hulls: the exact triangle distance of the same meshes lies in the
  *   bracket [distance, upper_bound];
+ * - front tracking: warm caches (one shared by every kind of query, one for
+ *   distances, caches too small for the front, one cache passed between
+ *   pairs of models) along coherent approaches through contact, steps of
+ *   1e-9, repeated poses and jumps, against the same brute force;
  * - argument checks. */
 #include <float.h>
 #include <math.h>
@@ -276,7 +280,7 @@ static void test_points(void) {
         CHECK(info.leaves == pa.n && info.nodes == 2 * pa.n - 1 && info.solid == 1 && info.max_h == 0.0,
               "info leaves %u nodes %u", info.leaves, info.nodes);
         px_model_cache warm = {0}, tiny = {0};
-        tiny.max_bytes = 200; /* holds the state, never a pair: every pair runs cold */
+        tiny.max_bytes = 200; /* too small even for its own state: every query runs cold */
         px_pose posa = random_pose(&rng, 1.0), posb = random_pose(&rng, 6.0);
         for (int step = 0; step < 40; ++step) {
             posb = nudge(&rng, posb, 0.05, 0.08);
@@ -1026,6 +1030,699 @@ static void test_pxm_lies(void) {
     mesh_free(&t);
 }
 
+/* ---- Front tracking: warm caches against brute force ---------------------- */
+
+/* A pair of models with their oracle: triangle meshes (brute_tris) or
+ * convex pieces (brute_convex). In every scene below neither model can lie
+ * inside the other's solid (the sphere's and the small torus' inscribed
+ * radii exceed the big torus' tube; point sets are never containers), so
+ * collide hits exactly when the brute force is 0. */
+typedef struct fscene {
+    const char *name;
+    const px_model *ma, *mb;
+    const tri_mesh *ta, *tb; /* triangle scenes */
+    const pieces *qa, *qb;   /* point-set scenes */
+    uint32_t leaves_a, leaves_b;
+    px_vec3 centre_b; /* B's box centre, body frame */
+    double size;      /* diagonal of A's box */
+} fscene;
+
+static void fscene_init(fscene *s, const char *name, const px_model *ma, const px_model *mb) {
+    memset(s, 0, sizeof *s);
+    s->name = name;
+    s->ma = ma;
+    s->mb = mb;
+    px_model_info ia, ib;
+    px_model_get_info(ma, &ia);
+    px_model_get_info(mb, &ib);
+    s->leaves_a = ia.leaves;
+    s->leaves_b = ib.leaves;
+    s->centre_b =
+        (px_vec3){0.5 * (ib.min.x + ib.max.x), 0.5 * (ib.min.y + ib.max.y), 0.5 * (ib.min.z + ib.max.z)};
+    s->size = vlen(ia.max, ia.min);
+}
+
+/* The brute force at one pose: the models' distance, and for point-set
+ * scenes the distance of A to B's piece 0 alone (the convex queries). */
+typedef struct foracle {
+    const fscene *s;
+    px_pose pa, pb;
+    or_tris oa, ob;
+    double bf, bf_conv;
+} foracle;
+
+static void foracle_init(foracle *o, const fscene *s, const px_pose *pa, const px_pose *pb) {
+    memset(o, 0, sizeof *o);
+    o->s = s;
+    o->pa = *pa;
+    o->pb = *pb;
+    if (s->ta) {
+        or_tris_init(&o->oa, s->ta, pa);
+        or_tris_init(&o->ob, s->tb, pb);
+        o->bf = brute_tris(&o->oa, &o->ob);
+    } else {
+        o->bf = brute_convex(s->qa->c, s->qa->n, pa, s->qb->c, s->qb->n, pb);
+        o->bf_conv = brute_convex(s->qa->c, s->qa->n, pa, s->qb->c, 1, pb);
+    }
+}
+
+static void foracle_free(foracle *o) {
+    if (o->s->ta) {
+        or_tris_free(&o->oa);
+        or_tris_free(&o->ob);
+    }
+}
+
+/* The oracle's distance of leaf pair (la, lb); INFINITY for a bad index. */
+static double foracle_pair(const foracle *o, uint32_t la, uint32_t lb) {
+    const fscene *s = o->s;
+    if (la >= s->leaves_a || lb >= s->leaves_b) return INFINITY;
+    if (!s->ta) return brute_convex(&s->qa->c[la], 1, &o->pa, &s->qb->c[lb], 1, &o->pb);
+    px_model_leaf a, b;
+    px_model_get_leaf(s->ma, la, &a);
+    px_model_get_leaf(s->mb, lb, &b);
+    if (a.triangle >= o->oa.n || b.triangle >= o->ob.n) return INFINITY;
+    return or_face_face(&o->oa.p[a.triangle], 0, &o->ob.p[b.triangle], 0, NULL, NULL);
+}
+
+/* The caches a sequence queries at every pose: `mixed` ones get distance,
+ * collide and two withins (random tolerances) in a random order, the
+ * boolean ones each skipped one time in four, so that the front one kind
+ * leaves is what the next kind starts from; the others get distances only.
+ * `conv` (point-set scenes): px_model_distance_convex and
+ * px_model_collide_convex of A against B's piece 0, interleaved. */
+#define FRONT_MAX_CACHES 6
+typedef struct fcaches {
+    px_model_cache *c[FRONT_MAX_CACHES];
+    int mixed[FRONT_MAX_CACHES];
+    int n;
+    px_model_cache *conv;
+} fcaches;
+
+/* What each cache answered at the last pose (for exact repeats). */
+typedef struct fanswer {
+    double distance[FRONT_MAX_CACHES];
+    uint32_t leaf_a[FRONT_MAX_CACHES], leaf_b[FRONT_MAX_CACHES];
+} fanswer;
+
+typedef struct fstats {
+    int poses, overlaps, near, queries, hits, repeats;
+    double worst;
+} fstats;
+
+static const double front_tols[4] = {0.0, 0.004, 0.03, 0.15};
+
+static void front_check_distance(const foracle *o, const px_model_distance_result *r, px_status st, double bf,
+                                 const char *tag, int step, int k, fstats *fs) {
+    double tol = 1e-12 * (1.0 + bf);
+    CHECK(st == PX_OK, "%s step %d cache %d: distance status %d", tag, step, k, st);
+    CHECK(fabs(r->distance - bf) <= tol, "%s step %d cache %d: warm distance %.17g brute %.17g", tag, step, k,
+          r->distance, bf);
+    CHECK(r->upper_bound == r->distance, "%s step %d cache %d: exact leaves, bracket %.17g vs %.17g", tag,
+          step, k, r->upper_bound, r->distance);
+    fs->worst = fmax(fs->worst, fabs(r->distance - bf) / (1.0 + bf));
+    double lp = foracle_pair(o, r->leaf_a, r->leaf_b);
+    CHECK(fabs(lp - bf) <= tol, "%s step %d cache %d: leaf pair %u,%u at %.17g, brute %.17g", tag, step, k,
+          r->leaf_a, r->leaf_b, lp, bf);
+    if (bf > 0.0 || o->s->ta) {
+        double w = vlen(r->point_a, r->point_b);
+        CHECK(fabs(w - r->distance) <= tol, "%s step %d cache %d: witnesses %.17g apart, distance %.17g", tag,
+              step, k, w, r->distance);
+    }
+}
+
+/* collide (tol < 0) or within(tol) against the brute force, away from ties. */
+static void front_check_boolean(const foracle *o, const px_model_collide_result *c, px_status st, double bf,
+                                double t, const char *tag, int step, int k, fstats *fs) {
+    const char *what = t < 0.0 ? "collide" : "within";
+    CHECK(st == PX_OK, "%s step %d cache %d: %s status %d", tag, step, k, what, st);
+    CHECK(!c->contained, "%s step %d cache %d: %s reports a containment (impossible here), brute %.17g", tag,
+          step, k, what, bf);
+    fs->hits += c->hit;
+    if (t < 0.0) {
+        if (bf > 1e-9)
+            CHECK(!c->hit, "%s step %d cache %d: collide hits at distance %.17g", tag, step, k, bf);
+        if (bf == 0.0) CHECK(c->hit, "%s step %d cache %d: collide misses an overlap", tag, step, k);
+    } else if (fabs(bf - t) > 1e-9) {
+        CHECK(c->hit == (bf < t), "%s step %d cache %d: within %g says %d at distance %.17g", tag, step, k, t,
+              c->hit, bf);
+    }
+    if (c->hit && !c->contained) {
+        /* The leaf pair that proves the hit does. */
+        double lp = foracle_pair(o, c->leaf_a, c->leaf_b);
+        CHECK(lp <= fmax(t, 0.0) + 1e-9, "%s step %d cache %d: %s %g proved by leaf pair %u,%u at %.17g", tag,
+              step, k, what, t, c->leaf_a, c->leaf_b, lp);
+    }
+}
+
+/* Queries every cache at the oracle's pose and checks the answers. With
+ * `prev` (the same pose queried again), distance-only caches must answer
+ * exactly as before: same value, same leaf pair. */
+static void front_step(const foracle *o, fcaches *fc, pg_rng *rng, const char *tag, int step, fstats *fs,
+                       fanswer *ans, const fanswer *prev) {
+    const fscene *s = o->s;
+    double bf = o->bf;
+    fs->poses++;
+    fs->overlaps += bf == 0.0;
+    fs->near += bf > 0.0 && bf < 1e-6 * s->size;
+    fs->repeats += prev != NULL;
+    for (int k = 0; k < fc->n; ++k) {
+        px_model_cache *c = fc->c[k];
+        int ops[4] = {0, 1, 2, 3}, nops = fc->mixed[k] ? 4 : 1;
+        for (int i = nops - 1; i > 0; --i) {
+            int j = (int)pg_below(rng, (uint32_t)i + 1), t = ops[i];
+            ops[i] = ops[j], ops[j] = t;
+        }
+        for (int i = 0; i < nops; ++i) {
+            if (ops[i] != 0 && pg_below(rng, 4) == 0) continue;
+            px_status st;
+            if (ops[i] == 0) {
+                px_model_distance_result r;
+                st = px_model_distance(s->ma, &o->pa, s->mb, &o->pb, c, &r);
+                front_check_distance(o, &r, st, bf, tag, step, k, fs);
+                if (prev && !fc->mixed[k])
+                    CHECK(r.distance == prev->distance[k] && r.leaf_a == prev->leaf_a[k] &&
+                              r.leaf_b == prev->leaf_b[k],
+                          "%s step %d cache %d: repeated pose answers %.17g (leaves %u,%u), before %.17g "
+                          "(leaves %u,%u)",
+                          tag, step, k, r.distance, r.leaf_a, r.leaf_b, prev->distance[k], prev->leaf_a[k],
+                          prev->leaf_b[k]);
+                ans->distance[k] = r.distance;
+                ans->leaf_a[k] = r.leaf_a;
+                ans->leaf_b[k] = r.leaf_b;
+            } else {
+                px_model_collide_result cr;
+                double t = ops[i] == 1 ? -1.0 : front_tols[pg_below(rng, 4)];
+                st = t < 0.0 ? px_model_collide(s->ma, &o->pa, s->mb, &o->pb, c, &cr)
+                             : px_model_within(s->ma, &o->pa, s->mb, &o->pb, t, c, &cr);
+                front_check_boolean(o, &cr, st, bf, t, tag, step, k, fs);
+            }
+            fs->queries++;
+            if (c->max_bytes)
+                CHECK(c->memory_bytes <= c->max_bytes, "%s step %d cache %d: %zu bytes, limit %zu", tag, step,
+                      k, c->memory_bytes, c->max_bytes);
+        }
+    }
+    if (fc->conv) {
+        const px_convex *cb = s->qb->c[0];
+        double bc = o->bf_conv, tol = 1e-12 * (1.0 + bc);
+        int first = (int)pg_below(rng, 2);
+        for (int i = 0; i < 2; ++i) {
+            if ((i ^ first) == 0) {
+                px_model_distance_result r;
+                px_status st = px_model_distance_convex(s->ma, &o->pa, cb, &o->pb, fc->conv, &r);
+                CHECK(st == PX_OK && fabs(r.distance - bc) <= tol,
+                      "%s step %d: warm distance_convex %.17g brute %.17g (status %d)", tag, step, r.distance,
+                      bc, st);
+                CHECK(r.leaf_b == 0 && r.leaf_a < s->leaves_a, "%s step %d: distance_convex leaves %u,%u",
+                      tag, step, r.leaf_a, r.leaf_b);
+                if (r.leaf_a < s->leaves_a) {
+                    double lp = brute_convex(&s->qa->c[r.leaf_a], 1, &o->pa, &s->qb->c[0], 1, &o->pb);
+                    CHECK(fabs(lp - bc) <= tol, "%s step %d: distance_convex leaf %u at %.17g, brute %.17g",
+                          tag, step, r.leaf_a, lp, bc);
+                }
+                fs->worst = fmax(fs->worst, fabs(r.distance - bc) / (1.0 + bc));
+            } else {
+                px_model_collide_result cr;
+                px_status st = px_model_collide_convex(s->ma, &o->pa, cb, &o->pb, fc->conv, &cr);
+                CHECK(st == PX_OK, "%s step %d: collide_convex status %d", tag, step, st);
+                if (bc > 1e-9)
+                    CHECK(!cr.hit, "%s step %d: collide_convex hits at distance %.17g", tag, step, bc);
+                if (bc == 0.0) CHECK(cr.hit, "%s step %d: collide_convex misses an overlap", tag, step);
+            }
+            fs->queries++;
+        }
+    }
+}
+
+/* B at rotation r with its box centre at `at`. */
+static px_pose front_place(const fscene *s, const double r[9], px_vec3 at) {
+    return pg_pose_centred(r, s->centre_b, at);
+}
+
+static px_vec3 v_axpy(px_vec3 p, double a, px_vec3 d) {
+    return (px_vec3){p.x + a * d.x, p.y + a * d.y, p.z + a * d.z};
+}
+
+/* A line of approach: B (rotation r) centred at target + (far - s) d, with
+ * target a vertex of A, first touches A near s = contact (brute force,
+ * bisected to 1e-12 of the size): positive just before, 0 just after.
+ * fline_make draws up to 20 lines and returns 0 when none starts apart
+ * and reaches contact. */
+typedef struct fline {
+    px_pose pa;
+    double r[9];
+    px_vec3 target, d;
+    double far, contact;
+} fline;
+
+static px_vec3 fline_at(const fline *l, double s) { return v_axpy(l->target, l->far - s, l->d); }
+
+static double fline_bf(const fscene *s, const fline *l, double at) {
+    px_pose pb = front_place(s, l->r, fline_at(l, at));
+    foracle o;
+    foracle_init(&o, s, &l->pa, &pb);
+    double bf = o.bf;
+    foracle_free(&o);
+    return bf;
+}
+
+static int fline_make(const fscene *s, pg_rng *rng, fline *l) {
+    for (int attempt = 0; attempt < 20; ++attempt) {
+        l->pa = random_pose(rng, 0.1);
+        pg_rot_random(rng, l->r);
+        /* The target: a vertex of A (world frame). */
+        const double *v;
+        if (s->ta)
+            v = s->ta->xyz + 3 * pg_below(rng, s->ta->nv);
+        else
+            v = s->qa->xyz + 3 * pg_below(rng, s->qa->end[s->qa->n - 1]);
+        l->target = px_pose_apply(&l->pa, (px_vec3){v[0], v[1], v[2]});
+        l->d = pg_unit(rng);
+        px_vec3 out = {l->target.x - l->pa.t.x, l->target.y - l->pa.t.y, l->target.z - l->pa.t.z};
+        if (l->d.x * out.x + l->d.y * out.y + l->d.z * out.z < 0.0)
+            l->d = (px_vec3){-l->d.x, -l->d.y, -l->d.z};
+        l->far = 0.6 * s->size;
+        if (!(fline_bf(s, l, 0.0) > 0.0)) continue;
+        double lo = 0.0, hi = -1.0, h = 0.02 * s->size;
+        for (double at = h; at <= l->far + 0.5 * s->size; at += h) {
+            if (fline_bf(s, l, at) == 0.0) {
+                hi = at;
+                break;
+            }
+            lo = at;
+        }
+        if (hi < 0.0) continue;
+        while (hi - lo > 1e-12 * s->size) {
+            double mid = 0.5 * (lo + hi);
+            if (fline_bf(s, l, mid) > 0.0)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        l->contact = hi;
+        return 1;
+    }
+    return 0;
+}
+
+static void front_report(const char *what, const char *name, const fstats *fs, const char *extra) {
+    printf("front: %s (%s): %d poses (%d overlapping, %d within 1e-6 of the size), %d queries, %d hits, "
+           "worst relative error %.3g%s\n",
+           what, name, fs->poses, fs->overlaps, fs->near, fs->queries, fs->hits, fs->worst, extra);
+}
+
+/* Case 1 (and, with small caches, case 4): B moves along a line toward A
+ * in n steps, through first contact into overlap (a tenth of the size
+ * deep), and back out, turning about a fixed axis each step (by `turn`
+ * radians over each half); A moves a little every fourth step. */
+static void front_approach(const fscene *s, uint64_t seed, int n, double turn, fcaches *fc, fstats *fs) {
+    pg_rng rng;
+    pg_seed(&rng, seed);
+    fline l;
+    int ok = fline_make(s, &rng, &l);
+    CHECK(ok, "%s seed %llu: no line of approach", s->name, (unsigned long long)seed);
+    if (!ok) return;
+    char tag[96];
+    snprintf(tag, sizeof tag, "approach %s seed %llu", s->name, (unsigned long long)seed);
+    int half = n / 2 > 0 ? n / 2 : 1;
+    double travel = 0.2 * s->size, h = travel / half, ang = turn / half;
+    px_vec3 axis = pg_unit(&rng);
+    px_pose pa = l.pa;
+    int overlaps = fs->overlaps, poses = fs->poses;
+    fanswer ans;
+    for (int i = 0; i <= 2 * half; ++i) {
+        double at = l.contact - 0.5 * travel + h * (i <= half ? i : 2 * half - i);
+        pg_rot_turn(axis, ang, l.r);
+        pg_rot_orthonormalize(l.r);
+        if (i % 4 == 3) pa = nudge(&rng, pa, 2e-3, 1e-3 * s->size);
+        px_pose pb = front_place(s, l.r, fline_at(&l, at));
+        foracle o;
+        foracle_init(&o, s, &pa, &pb);
+        front_step(&o, fc, &rng, tag, i, fs, &ans, NULL);
+        foracle_free(&o);
+    }
+    /* The sequence does what it is meant to: it overlaps and it separates. */
+    CHECK(fs->overlaps > overlaps && fs->overlaps - overlaps < fs->poses - poses,
+          "%s: %d of %d poses overlapping", tag, fs->overlaps - overlaps, fs->poses - poses);
+}
+
+/* Case 2: at stations along the line (far, 1e-6 of the size, a few 1e-9
+ * from contact, just in overlap, deep in overlap), steps of 1e-9 of the
+ * size (and 1e-9 radians) toward A, with the pose repeated exactly after
+ * every fourth. */
+static void front_tiny(const fscene *s, uint64_t seed, int steps, fcaches *fc, fstats *fs) {
+    pg_rng rng;
+    pg_seed(&rng, seed);
+    fline l;
+    int ok = fline_make(s, &rng, &l);
+    CHECK(ok, "%s seed %llu: no line of approach", s->name, (unsigned long long)seed);
+    if (!ok) return;
+    char tag[96];
+    snprintf(tag, sizeof tag, "tiny %s seed %llu", s->name, (unsigned long long)seed);
+    const double stations[5] = {-0.05, -1e-6, -4e-9, 1e-9, 0.03};
+    px_vec3 axis = pg_unit(&rng);
+    int step = 0, overlaps = fs->overlaps, near = fs->near;
+    fanswer ans, again;
+    for (int k = 0; k < 5; ++k) {
+        double at = l.contact + stations[k] * s->size;
+        for (int i = 0; i < steps; ++i, ++step) {
+            at += 1e-9 * s->size;
+            pg_rot_turn(axis, 1e-9, l.r);
+            px_pose pb = front_place(s, l.r, fline_at(&l, at));
+            foracle o;
+            foracle_init(&o, s, &l.pa, &pb);
+            front_step(&o, fc, &rng, tag, step, fs, &ans, NULL);
+            if (i % 4 == 3)
+                for (int rep = 0; rep < 3; ++rep) {
+                    front_step(&o, fc, &rng, tag, step, fs, &again, &ans);
+                    ans = again;
+                }
+            foracle_free(&o);
+        }
+    }
+    CHECK(fs->overlaps > overlaps && fs->near > near, "%s: %d poses overlapping, %d near contact", tag,
+          fs->overlaps - overlaps, fs->near - near);
+}
+
+/* Case 3: coherent motion toward a point near A, broken every 50 steps by
+ * a jump: B far away, B near A, A turned at random, or B placed near A
+ * where both then spin in place (B about its centre, A about its origin):
+ * motion that only the rotation term of the drift sees. */
+static void front_jumps(const fscene *s, uint64_t seed, int n, fcaches *fc, fstats *fs) {
+    pg_rng rng;
+    pg_seed(&rng, seed);
+    char tag[96];
+    snprintf(tag, sizeof tag, "jumps %s seed %llu", s->name, (unsigned long long)seed);
+    px_pose pa = random_pose(&rng, 0.1);
+    double r[9];
+    px_vec3 at = {0, 0, 0}, v = {0, 0, 0}, axis = {1, 0, 0}, axis_a = {0, 0, 1};
+    int kind = 0;
+    fanswer ans;
+    for (int i = 0; i < n; ++i) {
+        if (i % 50 == 0) {
+            kind = (i / 50) % 4;
+            pg_rot_random(&rng, r);
+            if (kind == 2) pa = random_pose(&rng, 0.1);
+            px_vec3 u = pg_unit(&rng);
+            double dist = kind == 0 ? 2.0 : kind == 3 ? pg_range(&rng, 0.15, 0.35) : 0.5;
+            at = v_axpy(pa.t, dist * s->size, u);
+            px_vec3 target = v_axpy(pa.t, 0.15 * s->size, pg_unit(&rng));
+            if (kind == 3)
+                v = (px_vec3){0, 0, 0};
+            else
+                v = (px_vec3){(target.x - at.x) / 40, (target.y - at.y) / 40, (target.z - at.z) / 40};
+            axis = pg_unit(&rng);
+            axis_a = pg_unit(&rng);
+        } else {
+            at = v_axpy(at, 1.0, v);
+            pg_rot_turn(axis, kind == 3 ? 0.05 : 0.01, r);
+            pg_rot_orthonormalize(r);
+            if (kind == 3) {
+                pg_rot_turn(axis_a, 0.01, pa.r);
+                pg_rot_orthonormalize(pa.r);
+            } else if (i % 5 == 0) {
+                pa = nudge(&rng, pa, 2e-3, 1e-3 * s->size);
+            }
+        }
+        px_pose pb = front_place(s, r, at);
+        foracle o;
+        foracle_init(&o, s, &pa, &pb);
+        front_step(&o, fc, &rng, tag, i, fs, &ans, NULL);
+        foracle_free(&o);
+    }
+}
+
+static px_model *front_tri_model(const tri_mesh *t) {
+    px_mesh *mesh = make_mesh(t, 1);
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_TRIANGLES;
+    px_error e;
+    px_model *m = mesh ? px_model_create_from_mesh(mesh, &o, &e) : NULL;
+    CHECK(m != NULL, "front model: %s", mesh ? e.message : "mesh");
+    px_mesh_destroy(mesh);
+    return m;
+}
+
+/* Case 6: one cache through the pairs in turn, B moving on one track
+ * (placed by its body origin) that the pair changes under without a jump:
+ * nothing but the models' identities tells the cache that its front was
+ * measured on other geometry. Some pairs share their node counts. */
+static void front_shared(const fscene *const *scenes, int ns, int rounds, int steps, fstats *fs) {
+    pg_rng rng;
+    pg_seed(&rng, 8086);
+    px_model_cache one = {0};
+    fcaches fc = {{&one}, {1}, 1, NULL};
+    fanswer ans;
+    px_pose pa = random_pose(&rng, 0.1);
+    double r[9];
+    pg_rot_random(&rng, r);
+    px_vec3 axis = pg_unit(&rng);
+    int i = 0;
+    for (int round = 0; round < rounds; ++round)
+        for (int k = 0; k < ns; ++k) {
+            const fscene *s = scenes[k];
+            char tag[96];
+            snprintf(tag, sizeof tag, "shared cache %s", s->name);
+            for (int j = 0; j < steps; ++j, ++i) {
+                double phi = 0.01 * i, rho = 0.3 + 0.15 * sin(0.03 * i);
+                px_vec3 u = {cos(phi), sin(phi), 0.3 * sin(0.7 * phi)};
+                double ul = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+                px_pose pb =
+                    pg_pose_centred(r, (px_vec3){0, 0, 0}, v_axpy(pa.t, rho * scenes[0]->size / ul, u));
+                foracle o;
+                foracle_init(&o, s, &pa, &pb);
+                front_step(&o, &fc, &rng, tag, i, fs, &ans, NULL);
+                /* The same pose as distance against B's piece 0, through the
+                 * same cache (point-set scenes). */
+                if (!s->ta && j % 2 == 1) {
+                    px_model_distance_result rc;
+                    px_status st = px_model_distance_convex(s->ma, &pa, s->qb->c[0], &pb, &one, &rc);
+                    CHECK(st == PX_OK && fabs(rc.distance - o.bf_conv) <= 1e-12 * (1.0 + o.bf_conv),
+                          "%s step %d: distance_convex %.17g brute %.17g", tag, i, rc.distance, o.bf_conv);
+                    fs->queries++;
+                }
+                foracle_free(&o);
+                pg_rot_turn(axis, 0.002, r);
+                pg_rot_orthonormalize(r);
+            }
+        }
+    px_model_cache_release(&one);
+}
+
+/* Case 6b: a model destroyed and another of the same size built in its
+ * place (the allocator may hand back the same address): caches holding a
+ * front measured on the old one must not answer from it. The old sphere
+ * is far from the torus, the new one crosses its tube. */
+static void front_replaced(const tri_mesh *ta, const px_model *ma, fstats *fs, int *reused) {
+    tri_mesh t1, t2;
+    sphere(&t1, 0.4, 8, 12, (px_vec3){3.0, 0, 0});
+    sphere(&t2, 0.4, 8, 12, (px_vec3){1.0, 0, 0.6});
+    px_model *m1 = front_tri_model(&t1);
+    if (!m1) return;
+    uintptr_t old = (uintptr_t)m1;
+    px_pose id = px_pose_identity();
+    px_model_cache dist = {0}, coll = {0};
+    px_model_distance_result r;
+    px_model_collide_result c;
+    CHECK(px_model_distance(ma, &id, m1, &id, &dist, &r) == PX_OK && r.distance > 1.0,
+          "replaced model: the old one at %.17g", r.distance);
+    CHECK(px_model_collide(ma, &id, m1, &id, &coll, &c) == PX_OK && !c.hit,
+          "replaced model: the old one hit");
+    px_model_destroy(m1);
+    px_model *m2 = front_tri_model(&t2);
+    if (m2) {
+        *reused = (uintptr_t)m2 == old;
+        fscene s2;
+        fscene_init(&s2, "torus/new sphere", ma, m2);
+        s2.ta = ta;
+        s2.tb = &t2;
+        foracle o;
+        foracle_init(&o, &s2, &id, &id);
+        const char *tag = *reused ? "replaced model (same address)" : "replaced model (another address)";
+        px_status st = px_model_distance(ma, &id, m2, &id, &dist, &r);
+        front_check_distance(&o, &r, st, o.bf, tag, 1, 0, fs);
+        st = px_model_collide(ma, &id, m2, &id, &coll, &c);
+        front_check_boolean(&o, &c, st, o.bf, -1.0, tag, 1, 1, fs);
+        CHECK(o.bf == 0.0, "replaced model: the new sphere crosses the tube (brute %.17g)", o.bf);
+        fs->poses += 2, fs->queries += 4, fs->overlaps += 1;
+        foracle_free(&o);
+    }
+    px_model_cache_release(&dist);
+    px_model_cache_release(&coll);
+    px_model_destroy(m2);
+    mesh_free(&t1);
+    mesh_free(&t2);
+}
+
+static void test_front(void) {
+    int san = tu_sanitized();
+    /* The sphere's and the small tori's inscribed radii exceed every tube's,
+     * so no model can lie inside another's solid. The primed ones share
+     * their triangle (and node) counts with the unprimed ones. */
+    tri_mesh tor, sph, tor2, tor_p, sph_p;
+    torus(&tor, 1.0, 0.3, 24, 10, (px_vec3){0, 0, 0});
+    sphere(&sph, 0.4, 8, 12, (px_vec3){0.1, 0, 0});
+    torus(&tor2, 0.5, 0.15, 16, 8, (px_vec3){0, 0, 0});
+    torus(&tor_p, 0.9, 0.25, 24, 10, (px_vec3){0, 0.05, 0});
+    sphere(&sph_p, 0.35, 8, 12, (px_vec3){-0.1, 0.05, 0});
+    px_model *m_tor = front_tri_model(&tor), *m_sph = front_tri_model(&sph), *m_tor2 = front_tri_model(&tor2);
+    px_model *m_tor_p = front_tri_model(&tor_p), *m_sph_p = front_tri_model(&sph_p);
+    pg_rng rng;
+    pg_seed(&rng, 2718);
+    pieces pa, pb;
+    make_pieces(&rng, &pa, 30, 2.0);
+    make_pieces(&rng, &pb, 12, 1.2);
+    px_model *m_pa = px_model_create_from_points(pa.xyz, pa.end, pa.n, NULL, NULL);
+    px_model *m_pb = px_model_create_from_points(pb.xyz, pb.end, pb.n, NULL, NULL);
+    int ok = m_tor && m_sph && m_tor2 && m_tor_p && m_sph_p && m_pa && m_pb;
+    CHECK(ok, "front models");
+    if (ok) {
+        fscene ts, tt, st, pp, ts_p, tp_sp, tp_s;
+        fscene_init(&ts, "torus/sphere", m_tor, m_sph);
+        ts.ta = &tor, ts.tb = &sph;
+        fscene_init(&tt, "torus/small torus", m_tor, m_tor2);
+        tt.ta = &tor, tt.tb = &tor2;
+        fscene_init(&st, "sphere/torus", m_sph, m_tor);
+        st.ta = &sph, st.tb = &tor;
+        fscene_init(&pp, "point sets", m_pa, m_pb);
+        pp.qa = &pa, pp.qb = &pb;
+        fscene_init(&ts_p, "torus/sphere'", m_tor, m_sph_p);
+        ts_p.ta = &tor, ts_p.tb = &sph_p;
+        fscene_init(&tp_sp, "torus'/sphere'", m_tor_p, m_sph_p);
+        tp_sp.ta = &tor_p, tp_sp.tb = &sph_p;
+        fscene_init(&tp_s, "torus'/sphere", m_tor_p, m_sph);
+        tp_s.ta = &tor_p, tp_s.tb = &sph;
+        int n = tu_scaled(san ? 60 : 400);
+        char extra[160];
+
+        /* 1. Coherent approach, one cache for every kind and one for distances. */
+        const fscene *approach[3] = {&ts, &tt, &st};
+        for (int k = 0; k < 3; ++k) {
+            px_model_cache mixed = {0}, dist = {0};
+            fcaches fc = {{&mixed, &dist}, {1, 0}, 2, NULL};
+            fstats fs = {0};
+            front_approach(approach[k], 100 + (uint64_t)k, n, 0.4, &fc, &fs);
+            snprintf(extra, sizeof extra, ", caches %zu and %zu bytes", mixed.memory_bytes,
+                     dist.memory_bytes);
+            front_report("coherent approach", approach[k]->name, &fs, extra);
+            px_model_cache_release(&mixed);
+            px_model_cache_release(&dist);
+        }
+
+        /* 1'. The same with the turn dominating: the big torus (B) turns
+         * 2 radians over each half while the small sphere (A) waits, so
+         * the points of B far from its centre move most. */
+        {
+            px_model_cache mixed = {0}, dist = {0};
+            fcaches fc = {{&mixed, &dist}, {1, 0}, 2, NULL};
+            fstats fs = {0};
+            front_approach(&st, 151, n, 2.0, &fc, &fs);
+            front_report("coherent approach, turning fast", st.name, &fs, "");
+            px_model_cache_release(&mixed);
+            px_model_cache_release(&dist);
+        }
+
+        /* 2. Steps of 1e-9 of the size, and exactly repeated poses. */
+        {
+            px_model_cache mixed = {0}, dist = {0};
+            fcaches fc = {{&mixed, &dist}, {1, 0}, 2, NULL};
+            fstats fs = {0};
+            front_tiny(&ts, 200, tu_scaled(san ? 4 : 12), &fc, &fs);
+            front_tiny(&tt, 201, tu_scaled(san ? 4 : 12), &fc, &fs);
+            snprintf(extra, sizeof extra, ", %d of them repeated", fs.repeats);
+            front_report("tiny steps", "torus/sphere, torus/small torus", &fs, extra);
+            px_model_cache_release(&mixed);
+            px_model_cache_release(&dist);
+        }
+
+        /* 3. Jumps every 50 steps, coherent motion or spinning between. */
+        const fscene *jumps[3] = {&ts, &tt, &st};
+        for (int k = 0; k < 3; ++k) {
+            px_model_cache mixed = {0}, dist = {0};
+            fcaches fc = {{&mixed, &dist}, {1, 0}, 2, NULL};
+            fstats fs = {0};
+            front_jumps(jumps[k], 300 + (uint64_t)k, tu_scaled(san ? 100 : 400), &fc, &fs);
+            front_report("jumps", jumps[k]->name, &fs, "");
+            px_model_cache_release(&mixed);
+            px_model_cache_release(&dist);
+        }
+
+        /* 4. Caches too small for the front (the last for distances only). */
+        {
+            static const size_t limits[5] = {2048, 8192, 24576, 65536, 2048};
+            px_model_cache small[5];
+            memset(small, 0, sizeof small);
+            fcaches fc;
+            memset(&fc, 0, sizeof fc);
+            for (int k = 0; k < 5; ++k) {
+                small[k].max_bytes = limits[k];
+                fc.c[k] = &small[k];
+                fc.mixed[k] = k < 4;
+            }
+            fc.n = 5;
+            fstats fs = {0};
+            front_approach(&tt, 400, tu_scaled(san ? 40 : 200), 0.4, &fc, &fs);
+            front_jumps(&ts, 401, tu_scaled(san ? 50 : 200), &fc, &fs);
+            /* A 2 KB cache cannot hold even the cache's own state (its ring
+             * of recent poses): it holds nothing and every query runs cold. */
+            for (int k = 0; k < 5; ++k)
+                CHECK(small[k].memory_bytes <= small[k].max_bytes &&
+                          (small[k].max_bytes < 8192 || small[k].memory_bytes > 0),
+                      "small cache %d: %zu bytes, limit %zu", k, small[k].memory_bytes, small[k].max_bytes);
+            CHECK(small[0].cold_runs > 0 && small[4].cold_runs > 0, "2 KB caches: cold runs %llu and %llu",
+                  (unsigned long long)small[0].cold_runs, (unsigned long long)small[4].cold_runs);
+            snprintf(extra, sizeof extra,
+                     ", cold runs %llu/%llu/%llu/%llu (2/8/24/64 KB), %llu (2 KB, distances)",
+                     (unsigned long long)small[0].cold_runs, (unsigned long long)small[1].cold_runs,
+                     (unsigned long long)small[2].cold_runs, (unsigned long long)small[3].cold_runs,
+                     (unsigned long long)small[4].cold_runs);
+            front_report("small caches", "torus/small torus, torus/sphere", &fs, extra);
+            for (int k = 0; k < 5; ++k) px_model_cache_release(&small[k]);
+        }
+
+        /* 5. Point-set models, and one model against one convex piece. */
+        {
+            px_model_cache mixed = {0}, dist = {0}, conv = {0};
+            fcaches fc = {{&mixed, &dist}, {1, 0}, 2, &conv};
+            fstats fs = {0};
+            front_approach(&pp, 500, n, 0.4, &fc, &fs);
+            front_jumps(&pp, 501, tu_scaled(san ? 50 : 200), &fc, &fs);
+            front_report("approach and jumps", pp.name, &fs, ", with distance_convex and collide_convex");
+            px_model_cache_release(&mixed);
+            px_model_cache_release(&dist);
+            px_model_cache_release(&conv);
+        }
+
+        /* 6. One cache for different pairs of models. */
+        {
+            const fscene *all[7] = {&ts, &ts_p, &tp_sp, &tp_s, &tt, &st, &pp};
+            fstats fs = {0};
+            int reused = 0;
+            front_shared(all, 7, tu_scaled(san ? 1 : 3), 8, &fs);
+            front_replaced(&tor, m_tor, &fs, &reused);
+            snprintf(extra, sizeof extra, "; a model rebuilt %s its predecessor's address",
+                     reused ? "at" : "not at");
+            front_report("one cache, pairs in turn", "7 pairs", &fs, extra);
+        }
+    }
+    px_model_destroy(m_tor);
+    px_model_destroy(m_sph);
+    px_model_destroy(m_tor2);
+    px_model_destroy(m_tor_p);
+    px_model_destroy(m_sph_p);
+    px_model_destroy(m_pa);
+    px_model_destroy(m_pb);
+    free_pieces(&pa);
+    free_pieces(&pb);
+    mesh_free(&tor);
+    mesh_free(&sph);
+    mesh_free(&tor2);
+    mesh_free(&tor_p);
+    mesh_free(&sph_p);
+}
+
 int main(void) {
     tu_init("test_model");
     test_arguments();
@@ -1037,5 +1734,6 @@ int main(void) {
     test_mixed();
     test_review();
     test_pxm_lies();
+    test_front();
     return tu_finish();
 }

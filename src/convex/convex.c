@@ -428,6 +428,7 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
         return NULL;
     }
     memset(c, 0, sizeof *c);
+    c->uid = pxi_next_uid();
     c->alloc = alloc;
     c->bytes = sizeof *c;
     px_status st = build_from_hull(c, hull, dim, err);

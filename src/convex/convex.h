@@ -69,6 +69,7 @@ typedef struct pxi_lut {
 } pxi_lut;
 
 struct px_convex {
+    uint64_t uid; /* pxi_next_uid(): what a model cache recognises it by */
     uint32_t nv, ne, nf;
     uint32_t dim;      /* affine dimension: 3 solid, 2 polygon, 1 segment, 0 point */
     uint32_t walk_ok;  /* 1 when Lin-Canny can walk it: always, but for a polygon that turns by less

@@ -2,6 +2,8 @@
  * library that needs them, hidden there). */
 #include "core/core.h"
 
+#include <stdatomic.h>
+
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -51,4 +53,9 @@ px_status pxi_error(px_error *err, px_status code, const char *fmt, ...) {
         va_end(ap);
     }
     return code;
+}
+
+uint64_t pxi_next_uid(void) {
+    static _Atomic uint64_t last = 0;
+    return atomic_fetch_add(&last, 1) + 1;
 }

@@ -17,6 +17,11 @@ void *pxi_alloc(const px_allocator *a, size_t size);
 void *pxi_alloc_array(const px_allocator *a, size_t count, size_t size);
 void pxi_free(const px_allocator *a, void *ptr, size_t size);
 
+/* A number never handed out before in this process (1, 2, ...): the
+ * identity of a polytope or model, which its address is not (a new one may
+ * be built where a destroyed one was). Thread-safe. */
+uint64_t pxi_next_uid(void);
+
 /* Fills err (may be NULL) with code and a printf-style message; returns code. */
 px_status pxi_error(px_error *err, px_status code, const char *fmt, ...)
 #if defined(__GNUC__)

@@ -205,6 +205,7 @@ static px_model *model_alloc(const px_model_options *options, px_error *err, px_
         return NULL;
     }
     memset(m, 0, sizeof *m);
+    m->uid = pxi_next_uid();
     m->alloc = *alloc;
     m->bytes = sizeof *m;
     return m;

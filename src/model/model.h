@@ -49,6 +49,7 @@ typedef struct pxi_mleaf {
 } pxi_mleaf;
 
 struct px_model {
+    uint64_t uid;    /* pxi_next_uid(): what a cache recognises it by */
     uint32_t pieces; /* px_pieces */
     uint32_t n_nodes, n_leaves, n_hulls, depth;
     pxi_mnode *nodes; /* root is node 0 */

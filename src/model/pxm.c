@@ -539,6 +539,7 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
         return NULL;
     }
     memset(m, 0, sizeof *m);
+    m->uid = pxi_next_uid();
     m->alloc = alloc;
     m->bytes = sizeof *m;
     m->pieces = pieces;

@@ -53,8 +53,7 @@ typedef struct mc_front {
 #define MC_RING 32
 
 typedef struct mc_impl {
-    const void *ida, *idb; /* the models (or convex polytope) the cache serves */
-    uint32_t na, nb;       /* their node counts, part of the identity */
+    uint64_t ida, idb; /* the models (or convex polytope) the cache serves: their uids */
     uint32_t best_a, best_b;
     uint32_t cap, count;
     mc_entry *table;
@@ -97,11 +96,12 @@ static size_t cache_limit(const px_model_cache *cache) {
 
 /* The cache's state for models (a, b), created or reset as needed; NULL
  * when there is no cache or no memory for it (the query runs cold). */
-static mc_impl *cache_open(px_model_cache *cache, const px_model *a, const px_model *b, const void *ida,
-                           const void *idb) {
+static mc_impl *cache_open(px_model_cache *cache, const px_model *a, const px_model *b) {
     if (!cache) return NULL;
     mc_impl *mc = cache->impl;
-    if (mc && (mc->ida != ida || mc->idb != idb || mc->na != a->n_nodes || mc->nb != b->n_nodes)) {
+    /* Identities, not addresses: a model built where a destroyed one was
+     * must not inherit its front. */
+    if (mc && (mc->ida != a->uid || mc->idb != b->uid)) {
         px_model_cache_release(cache);
         mc = NULL;
     }
@@ -115,10 +115,8 @@ static mc_impl *cache_open(px_model_cache *cache, const px_model *a, const px_mo
         }
         memset(mc, 0, sizeof *mc);
         mc->alloc = alloc;
-        mc->ida = ida;
-        mc->idb = idb;
-        mc->na = a->n_nodes;
-        mc->nb = b->n_nodes;
+        mc->ida = a->uid;
+        mc->idb = b->uid;
         mc->best_a = mc->best_b = PXI_NONE;
         mc->bytes = sizeof *mc;
         cache->impl = mc;
@@ -893,7 +891,7 @@ static int contained(const qctx *q, const px_model *in, const px_pose *pose_in, 
 /* ---- Entry points ------------------------------------------------------- */
 
 static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_model *b, const px_pose *pb,
-                       px_model_cache *cache, int kind, const void *idb) {
+                       px_model_cache *cache, int kind) {
     memset(q, 0, offsetof(qctx, dr));
     if (!a || !b || !pa || !pb) return PX_ERR_INVALID_ARGUMENT;
     px_status st = px_pose_check(pa, NULL);
@@ -908,7 +906,7 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     /* Both models in A's frame stay within the models' range. */
     if (!(pxi_max_abs(q->t_ab.t) <= PXI_MODEL_MAX_COORD)) return PX_ERR_RANGE;
     q->cache = cache;
-    q->mc = cache_open(cache, a, b, a, idb ? idb : b);
+    q->mc = cache_open(cache, a, b);
     q->kind = kind;
     /* Twice the roots' band: every node pair's band is below it (the centres
      * lie in their ancestors' spheres). */
@@ -977,12 +975,11 @@ static px_status run_boolean(qctx *q, px_model_collide_result *out) {
 }
 
 static px_status model_distance(const px_model *a, const px_pose *pose_a, const px_model *b,
-                                const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out,
-                                const void *ident) {
+                                const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out) {
     if (out) memset(out, 0, sizeof *out);
     if (!out) return PX_ERR_INVALID_ARGUMENT;
     qctx q;
-    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_DISTANCE, ident);
+    px_status st = start(&q, a, pose_a, b, pose_b, cache, Q_DISTANCE);
     if (st == PX_OK) st = run_distance(&q, out);
     if (st != PX_OK) memset(out, 0, sizeof *out);
     return st;
@@ -991,11 +988,11 @@ static px_status model_distance(const px_model *a, const px_pose *pose_a, const 
 /* Collide (kind Q_COLLIDE) and within (Q_WITHIN, `tol`): one descent. */
 static px_status model_boolean(const px_model *a, const px_pose *pose_a, const px_model *b,
                                const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out,
-                               int kind, double tol, const void *ident) {
+                               int kind, double tol) {
     if (out) memset(out, 0, sizeof *out);
     if (!out) return PX_ERR_INVALID_ARGUMENT;
     qctx q;
-    px_status st = start(&q, a, pose_a, b, pose_b, cache, kind, ident);
+    px_status st = start(&q, a, pose_a, b, pose_b, cache, kind);
     q.tol = tol;
     if (st == PX_OK) st = run_boolean(&q, out);
     if (st != PX_OK) memset(out, 0, sizeof *out);
@@ -1004,19 +1001,19 @@ static px_status model_boolean(const px_model *a, const px_pose *pose_a, const p
 
 px_status px_model_distance(const px_model *a, const px_pose *pose_a, const px_model *b,
                             const px_pose *pose_b, px_model_cache *cache, px_model_distance_result *out) {
-    return model_distance(a, pose_a, b, pose_b, cache, out, NULL);
+    return model_distance(a, pose_a, b, pose_b, cache, out);
 }
 
 px_status px_model_collide(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
                            px_model_cache *cache, px_model_collide_result *out) {
-    return model_boolean(a, pose_a, b, pose_b, cache, out, Q_COLLIDE, 0.0, NULL);
+    return model_boolean(a, pose_a, b, pose_b, cache, out, Q_COLLIDE, 0.0);
 }
 
 px_status px_model_within(const px_model *a, const px_pose *pose_a, const px_model *b, const px_pose *pose_b,
                           double tolerance, px_model_cache *cache, px_model_collide_result *out) {
     if (out) memset(out, 0, sizeof *out);
     if (!isfinite(tolerance) || tolerance < 0.0) return PX_ERR_INVALID_ARGUMENT;
-    return model_boolean(a, pose_a, b, pose_b, cache, out, Q_WITHIN, tolerance, NULL);
+    return model_boolean(a, pose_a, b, pose_b, cache, out, Q_WITHIN, tolerance);
 }
 
 /* A convex polytope seen as a model of one leaf, without allocating. */
@@ -1041,6 +1038,7 @@ static px_status view_convex(convex_view *v, const px_convex *c) {
     v->node.hull = (px_convex *)c;
     v->leaf.tri = PXI_NONE;
     px_convex_vertex(c, 0, &v->rep);
+    v->m.uid = c->uid; /* the cache knows the view by its polytope */
     v->m.pieces = PX_PIECES_POINTS;
     v->m.n_nodes = v->m.n_leaves = 1;
     v->m.nodes = &v->node;
@@ -1058,7 +1056,7 @@ px_status px_model_distance_convex(const px_model *a, const px_pose *pose_a, con
     if (out) memset(out, 0, sizeof *out);
     convex_view v;
     if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;
-    return model_distance(a, pose_a, &v.m, pose_b, cache, out, b);
+    return model_distance(a, pose_a, &v.m, pose_b, cache, out);
 }
 
 px_status px_model_collide_convex(const px_model *a, const px_pose *pose_a, const px_convex *b,
@@ -1067,5 +1065,5 @@ px_status px_model_collide_convex(const px_model *a, const px_pose *pose_a, cons
     if (out) memset(out, 0, sizeof *out);
     convex_view v;
     if (!out || view_convex(&v, b) != PX_OK) return PX_ERR_INVALID_ARGUMENT;
-    return model_boolean(a, pose_a, &v.m, pose_b, cache, out, Q_COLLIDE, 0.0, b);
+    return model_boolean(a, pose_a, &v.m, pose_b, cache, out, Q_COLLIDE, 0.0);
 }

@@ -787,6 +787,31 @@ static px_model *tri_model_of(const double *v, uint32_t nv, const uint32_t *t, u
 static void test_review(void) {
     px_error e;
     px_pose id = px_pose_identity();
+    /* R0 (front review, F2): a zero-area triangle (its third corner rounded
+     * onto the segment of the other two) piercing a triangle intersects it.
+     * The needle's own normal is rounding noise and must not excuse its
+     * edges from the crossing test against the other's plane. */
+    {
+        double va[9] = {-1, -1, 0, 2, -1, 0, -1, 2, 0};
+        uint32_t tri[3] = {0, 1, 2};
+        px_model *ma = tri_model_of(va, 3, tri, 1, PX_PIECES_TRIANGLES, &e);
+        CHECK(ma != NULL, "R0 plate: %s", e.message);
+        int missed = 0, built = 0;
+        for (int i = 1; i < 200 && ma; ++i) {
+            double lam = i / 201.0;
+            double vb[9] = {0.1, 0.2, -1, 0.3, 0.1, 1, 0.1 + lam * 0.2, 0.2 - lam * 0.1, -1 + lam * 2};
+            px_model *mb = tri_model_of(vb, 3, tri, 1, PX_PIECES_TRIANGLES, &e);
+            if (!mb) continue; /* refused as degenerate is fine; a wrong answer is not */
+            ++built;
+            px_model_distance_result dr;
+            px_model_collide_result cr;
+            if (px_model_distance(ma, &id, mb, &id, NULL, &dr) != PX_OK || dr.distance != 0.0) ++missed;
+            if (px_model_collide(ma, &id, mb, &id, NULL, &cr) != PX_OK || !cr.hit) ++missed;
+            px_model_destroy(mb);
+        }
+        CHECK(missed == 0, "R0: %d of %d needles through the plate not seen to cross it", missed, built);
+        px_model_destroy(ma);
+    }
     /* R1: sliver triangles (two corners a few ulps apart) must not be
      * pruned: their own closest pair is the answer. */
     {

@@ -163,7 +163,8 @@ PX_API px_model *px_model_load_memory(const void *data, size_t size, const px_mo
 /// `allocator` (NULL: malloc) up to `max_bytes` (0: 16 MiB); when full,
 /// further node pairs, or the whole front, run cold (counted in
 /// `cold_runs`). Release it with px_model_cache_release. A cache used with
-/// another pair of models is reset (detected by the models' identities).
+/// another pair of models is reset: every model and polytope carries an
+/// identity of its own, so one built where a destroyed one was is another.
 /// One cache may serve distance, collide and within queries of its pair.
 typedef struct px_model_cache {
     const px_allocator *allocator;

@@ -127,24 +127,28 @@ static void edge_edge(px_vec3 p0, px_vec3 d1, px_vec3 q0, px_vec3 d2, double *a,
 
 double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 *pt, px_feature *fs,
                    px_feature *ft) {
-    /* An edge of one crossing the other: they intersect. Not possible when
-     * one triangle lies strictly on one side of the other's plane (the
-     * crossing test's own first step, done once for all six edges). */
+    /* An edge of one crossing the other: they intersect. An edge of s
+     * cannot cross t when s lies strictly on one side of t's plane (the
+     * crossing test's own first step, done once for the three edges), and
+     * likewise for t's edges. Each side is decided by its own plane only:
+     * a sliver's normal is rounding noise, and its edges must still be
+     * tried against the other's plane. */
     px_vec3 ns = pxi_cross(pxi_sub(s[1], s[0]), pxi_sub(s[2], s[0]));
     px_vec3 nt = pxi_cross(pxi_sub(t[1], t[0]), pxi_sub(t[2], t[0]));
     double ds[3], dt[3];
     for (int k = 0; k < 3; ++k)
         ds[k] = pxi_dot(nt, pxi_sub(s[k], t[0])), dt[k] = pxi_dot(ns, pxi_sub(t[k], s[0]));
-    if (!one_side(ds) && !one_side(dt)) {
+    int s_apart = one_side(ds), t_apart = one_side(dt);
+    if (!s_apart || !t_apart) {
         for (int k = 0; k < 3; ++k) {
-            if (pxi_segment_crosses_tri(s[k], s[(k + 1) % 3], t)) {
+            if (!s_apart && pxi_segment_crosses_tri(s[k], s[(k + 1) % 3], t)) {
                 double dp = ds[k], dq = ds[(k + 1) % 3];
                 *ps = *pt = pxi_madd(s[k], pxi_sub(s[(k + 1) % 3], s[k]), dp / (dp - dq));
                 *fs = tri_feature(PX_FEATURE_EDGE, (uint32_t)k);
                 *ft = tri_feature(PX_FEATURE_FACE, 0);
                 return 0.0;
             }
-            if (pxi_segment_crosses_tri(t[k], t[(k + 1) % 3], s)) {
+            if (!t_apart && pxi_segment_crosses_tri(t[k], t[(k + 1) % 3], s)) {
                 double dp = dt[k], dq = dt[(k + 1) % 3];
                 *ps = *pt = pxi_madd(t[k], pxi_sub(t[(k + 1) % 3], t[k]), dp / (dp - dq));
                 *fs = tri_feature(PX_FEATURE_FACE, 0);

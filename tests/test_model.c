@@ -1817,6 +1817,60 @@ static void test_tri_pairs(void) {
                   "pair %d (mode %d): a witness off its triangle", i, mode);
         ++checked;
     }
+    /* Review regressions of the edge-pair certificate. A triangle with a
+     * repeated corner (a zero-length edge, whose closest parameter is not
+     * the projection): values from a __float128 brute force. */
+    {
+        px_vec3 s1[3] = {{3, 0, 0}, {0, 2, 2}, {1, 2, 0}}, t1[3] = {{3, 3, 0}, {3, 3, 0}, {3, 3, 0}};
+        px_vec3 t2[3] = {{3, 3, 0}, {3, 3, 0}, {4, 3, 0}};
+        px_vec3 s4[3] = {{0, 0, 3}, {4, 2, 0}, {3, 3, 4}}, t4[3] = {{0, 0, 2}, {0, 0, 2}, {4, 1, 0}};
+        px_vec3 pa, pb;
+        px_feature fa, fb;
+        double d1 = pxi_tri_tri(s1, t1, &pa, &pb, &fa, &fb), d2 = pxi_tri_tri(s1, t2, &pa, &pb, &fa, &fb);
+        double d3 = pxi_tri_tri(t1, s1, &pa, &pb, &fa, &fb), d4 = pxi_tri_tri(s4, t4, &pa, &pb, &fa, &fb);
+        CHECK(fabs(d1 - 2.1213203435596424) <= 1e-15 && fabs(d2 - 2.1213203435596424) <= 1e-15 &&
+                  fabs(d3 - 2.1213203435596424) <= 1e-15 && fabs(d4 - 0.69631062382279141) <= 1e-15,
+              "repeated corners: %.17g %.17g %.17g %.17g", d1, d2, d3, d4);
+    }
+    /* An edge of t passing just above s (gap 1e-6..1e-14, slope 1e-2..1e-10)
+     * over two of s's edges: the pair at the higher crossing looks certified
+     * on rounding noise; the distance is at the lower one. */
+    {
+        int bad = 0, m = tu_scaled(tu_sanitized() ? 2000 : 20000);
+        double worst_ee = 0.0;
+        for (int i = 0; i < m; ++i) {
+            px_vec3 s[3] = {{0, 0, 0}, {1, 0, 0}, {pg_range(&rng, 0, 0.6), pg_range(&rng, 0.4, 1.0), 0}};
+            double a = pg_range(&rng, 0.5, 1.0), b = pg_range(&rng, 0.0, 0.5);
+            px_vec3 A = {a, 0, 0}, B = {1 + b * (s[2].x - 1), b * s[2].y, 0};
+            double g = pow(10, -pg_range(&rng, 6, 14)), slope = pow(10, -pg_range(&rng, 2, 10));
+            double ext = pg_range(&rng, 0.2, 1.2), len = vlen(A, B);
+            px_vec3 P = {A.x - ext * (B.x - A.x), A.y - ext * (B.y - A.y), g + slope * len * (1 + ext)};
+            px_vec3 Q = {B.x + ext * (B.x - A.x), B.y + ext * (B.y - A.y), g - slope * len * ext};
+            if (Q.z <= 0) continue;
+            px_vec3 R = {0.5 * (P.x + Q.x) + pg_range(&rng, -0.5, 0.5),
+                         0.5 * (P.y + Q.y) + pg_range(&rng, -0.5, 0.5), 1};
+            px_vec3 t[3] = {P, Q, R};
+            px_vec3 pa, pb;
+            px_feature fa, fb;
+            double d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
+            double xs[9], xt[9];
+            for (int k = 0; k < 3; ++k) {
+                xs[3 * k] = s[k].x, xs[3 * k + 1] = s[k].y, xs[3 * k + 2] = s[k].z;
+                xt[3 * k] = t[k].x, xt[3 * k + 1] = t[k].y, xt[3 * k + 2] = t[k].z;
+            }
+            or_poly os, ot;
+            or_poly_init_raw(&os, xs, 3, first, vert, 1);
+            or_poly_init_raw(&ot, xt, 3, first, vert, 1);
+            double want = or_face_face(&os, 0, &ot, 0, NULL, NULL);
+            or_poly_free(&os);
+            or_poly_free(&ot);
+            worst_ee = fmax(worst_ee, fabs(d - want));
+            if (fabs(d - want) > 1e-12) ++bad;
+        }
+        CHECK(bad == 0, "edge just above a triangle: %d of %d off by more than 1e-12 (worst %.3g)", bad, m,
+              worst_ee);
+        printf("triangle pairs: edges grazing a triangle, worst error %.3g\n", worst_ee);
+    }
     printf("triangle pairs: %d against the oracle, worst error %.3g of the size\n", checked, worst);
 }
 

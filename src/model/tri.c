@@ -6,10 +6,13 @@
  * which is exact for disjoint triangles (the closest pair of two disjoint
  * convex polygons involves a vertex or two edges, ibid. 5.1.9), and 0 when
  * an edge of one crosses the other. */
+#include <float.h>
 #include <math.h>
 
 #include "model/model.h"
 #include "narrow/closest.h"
+
+static inline double max2(double a, double b) { return a > b ? a : b; }
 
 static px_feature tri_feature(uint32_t type, uint32_t index) {
     px_feature f = {type, index, 0};
@@ -150,6 +153,30 @@ static int vertex_face(const px_vec3 f[3], px_vec3 n, const double d[3], const p
     return 1;
 }
 
+/* Whether the pair p (on s), q (on t) is the closest pair to within
+ * rounding. With u = (q - p) / |q - p|, let hs be how far s reaches past p
+ * along u (the largest (x - p) . u over its corners) and ht how far t
+ * reaches back past q: every x in s and y in t then have (y - x) . u >=
+ * |q - p| - hs - ht, so |q - p| exceeds the distance by at most hs + ht
+ * (E. Larsen's slab argument in PQP's TriDist, which tests only the third
+ * corners with no margin). Accepted when hs + ht is within a few ulps of
+ * the coordinates: all six corners are tested, since near-parallel or
+ * degenerate edges leave p short of its edge's closest point. */
+static int edge_certified(const px_vec3 s[3], const px_vec3 t[3], px_vec3 p, px_vec3 q, px_vec3 v,
+                          double d2) {
+    double l = sqrt(d2);
+    if (!(l > 0.0)) return 0;
+    double hs = -INFINITY, ht = -INFINITY, reach = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        px_vec3 a = pxi_sub(s[k], p), b = pxi_sub(t[k], q);
+        hs = max2(hs, pxi_dot(a, v));
+        ht = max2(ht, -pxi_dot(b, v));
+        reach = max2(reach, max2(pxi_max_abs(a), pxi_max_abs(b)));
+    }
+    double size = reach + pxi_max_abs(p) + pxi_max_abs(q);
+    return (hs + ht) / l <= 16.0 * DBL_EPSILON * size;
+}
+
 double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 *pt, px_feature *fs,
                    px_feature *ft) {
     /* An edge of one crossing the other: they intersect. An edge of s
@@ -190,11 +217,9 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
      * is lost to rounding gives no certificate. */
     if (t_apart && vertex_face(s, ns, dt, t, 0, ps, pt, fs, ft)) return pxi_len(pxi_sub(*pt, *ps));
     if (s_apart && vertex_face(t, nt, ds, s, 1, ps, pt, fs, ft)) return pxi_len(pxi_sub(*pt, *ps));
-    /* Squared distances compared; one square root at the end. Every
-     * candidate is kept; a pair of edges whose direction v = q - p has s
-     * wholly on p's side (s's third vertex) and t on q's is the closest
-     * pair and ends the search early (every x in s and y in t then have
-     * (y - x) . v >= |v|^2). */
+    /* Squared distances compared; one square root at the end. An edge
+     * pair (p, q) ends the search when it is certified to within rounding:
+     * edge_certified below. */
     double best = INFINITY;
     px_vec3 es[3], et[3];
     for (int k = 0; k < 3; ++k) es[k] = pxi_sub(s[(k + 1) % 3], s[k]), et[k] = pxi_sub(t[(k + 1) % 3], t[k]);
@@ -213,9 +238,7 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
                 *pt = q;
                 *fs = fa;
                 *ft = fb;
-                if (pxi_dot(pxi_sub(s[(i + 2) % 3], p), v) <= 0.0 &&
-                    pxi_dot(pxi_sub(t[(j + 2) % 3], q), v) >= 0.0)
-                    return sqrt(best);
+                if (edge_certified(s, t, p, q, v, d)) return sqrt(best);
             }
         }
     }

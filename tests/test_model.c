@@ -17,7 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "model/model.h" /* pxi_tri_tri, tested directly below */
+#include "model/model.h"    /* pxi_tri_tri, tested directly below */
+#include "narrow/closest.h" /* pxi_segment_closest, likewise */
 #include "oracle.h"
 #include "proxima/proxima.h"
 #include "px_gen.h"
@@ -1870,6 +1871,36 @@ static void test_tri_pairs(void) {
         CHECK(bad == 0, "edge just above a triangle: %d of %d off by more than 1e-12 (worst %.3g)", bad, m,
               worst_ee);
         printf("triangle pairs: edges grazing a triangle, worst error %.3g\n", worst_ee);
+    }
+    /* Nearly parallel segments crossing at a gap g along their common
+     * normal (angles 1e-3..1e-10): the distance is g. Computing the two
+     * crossing parameters separately put the points up to 2e-9 apart. */
+    {
+        int bad = 0, m = tu_scaled(tu_sanitized() ? 2000 : 20000);
+        double worst_seg = 0.0;
+        for (int i = 0; i < m; ++i) {
+            px_vec3 u = pg_unit(&rng), w = pg_unit(&rng);
+            w = v_axpy(w, -pxi_dot(w, u), u);
+            double wl = sqrt(pxi_dot(w, w));
+            if (!(wl > 0.1)) continue;
+            w = (px_vec3){w.x / wl, w.y / wl, w.z / wl};
+            px_vec3 x = pxi_cross(u, w); /* u turned by th about w lies in (u, x) */
+            double th = pow(10, -pg_range(&rng, 3, 10)), g = pow(10, -pg_range(&rng, 0, 14));
+            px_vec3 u2 = v_axpy((px_vec3){u.x * cos(th), u.y * cos(th), u.z * cos(th)}, sin(th), x);
+            double a0 = pg_range(&rng, 0.1, 0.9), b0 = pg_range(&rng, 0.1, 0.9);
+            px_vec3 p0 = v_axpy((px_vec3){0, 0, 0}, -a0, u), p1 = v_axpy(p0, 1.0, u);
+            px_vec3 c2 = v_axpy((px_vec3){0, 0, 0}, g, w);
+            px_vec3 q0 = v_axpy(c2, -b0, u2), q1 = v_axpy(q0, 1.0, u2);
+            double sp, tq;
+            pxi_segment_closest(p0, p1, q0, q1, &sp, &tq);
+            px_vec3 pp = v_axpy(p0, sp, pxi_sub(p1, p0)), qq = v_axpy(q0, tq, pxi_sub(q1, q0));
+            double err = fabs(vlen(pp, qq) - g);
+            worst_seg = fmax(worst_seg, err);
+            if (err > 1e-12) ++bad;
+        }
+        CHECK(bad == 0, "nearly parallel crossing segments: %d of %d off by more than 1e-12 (worst %.3g)",
+              bad, m, worst_seg);
+        printf("segment pairs: nearly parallel and crossing, worst error %.3g\n", worst_seg);
     }
     printf("triangle pairs: %d against the oracle, worst error %.3g of the size\n", checked, worst);
 }

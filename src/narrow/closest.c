@@ -58,7 +58,7 @@ void pxi_segment_closest_dir(px_vec3 d1, px_vec3 d2, px_vec3 r, double *s_out, d
         return;
     }
     /* Nearly parallel. Candidates: endpoints of one against the other. */
-    double cs[5], ct[5];
+    double cs[7], ct[7];
     int n = 0;
     cs[n] = 0.0, ct[n++] = pxi_clamp01(f / e);       /* p0 on q */
     cs[n] = 1.0, ct[n++] = pxi_clamp01((b + f) / e); /* p1 on q */
@@ -71,7 +71,15 @@ void pxi_segment_closest_dir(px_vec3 d1, px_vec3 d2, px_vec3 r, double *s_out, d
     double den2 = pxi_dot(cr, cr);
     if (den2 > 0.0) {
         double si = pxi_dot(pxi_cross(qp, d2), cr) / den2, ti = pxi_dot(pxi_cross(qp, d1), cr) / den2;
-        if (si >= 0.0 && si <= 1.0 && ti >= 0.0 && ti <= 1.0) cs[n] = si, ct[n++] = ti;
+        if (si >= 0.0 && si <= 1.0 && ti >= 0.0 && ti <= 1.0) {
+            cs[n] = si, ct[n++] = ti;
+            /* si and ti each carry an error of about eps / sin along their
+             * line, and the two do not cancel: the pair is far apart by
+             * that much. The point at si projected on q (and ti's on p) is
+             * off by only that error times sin. */
+            cs[n] = si, ct[n++] = pxi_clamp01((b * si + f) / e);
+            cs[n] = pxi_clamp01((b * ti - c) / a), ct[n++] = ti;
+        }
     }
     double best = INFINITY;
     s = t = 0.0;

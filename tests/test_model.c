@@ -1353,6 +1353,17 @@ static int fline_make(const fscene *s, pg_rng *rng, fline *l) {
     return 0;
 }
 
+/* A sequence's start: its random stream, its line of approach and its tag
+ * for messages; 0 (a failed check) when no line reaches contact. */
+static int front_start(const fscene *s, uint64_t seed, const char *what, pg_rng *rng, fline *l, char *tag,
+                       size_t tag_size) {
+    pg_seed(rng, seed);
+    int ok = fline_make(s, rng, l);
+    CHECK(ok, "%s seed %llu: no line of approach", s->name, (unsigned long long)seed);
+    snprintf(tag, tag_size, "%s %s seed %llu", what, s->name, (unsigned long long)seed);
+    return ok;
+}
+
 static void front_report(const char *what, const char *name, const fstats *fs, const char *extra) {
     printf("front: %s (%s): %d poses (%d overlapping, %d within 1e-6 of the size), %d queries, %d hits, "
            "worst relative error %.3g%s\n",
@@ -1365,13 +1376,9 @@ static void front_report(const char *what, const char *name, const fstats *fs, c
  * radians over each half); A moves a little every fourth step. */
 static void front_approach(const fscene *s, uint64_t seed, int n, double turn, fcaches *fc, fstats *fs) {
     pg_rng rng;
-    pg_seed(&rng, seed);
     fline l;
-    int ok = fline_make(s, &rng, &l);
-    CHECK(ok, "%s seed %llu: no line of approach", s->name, (unsigned long long)seed);
-    if (!ok) return;
     char tag[96];
-    snprintf(tag, sizeof tag, "approach %s seed %llu", s->name, (unsigned long long)seed);
+    if (!front_start(s, seed, "approach", &rng, &l, tag, sizeof tag)) return;
     int half = n / 2 > 0 ? n / 2 : 1;
     double travel = 0.2 * s->size, h = travel / half, ang = turn / half;
     px_vec3 axis = pg_unit(&rng);
@@ -1400,13 +1407,9 @@ static void front_approach(const fscene *s, uint64_t seed, int n, double turn, f
  * every fourth. */
 static void front_tiny(const fscene *s, uint64_t seed, int steps, fcaches *fc, fstats *fs) {
     pg_rng rng;
-    pg_seed(&rng, seed);
     fline l;
-    int ok = fline_make(s, &rng, &l);
-    CHECK(ok, "%s seed %llu: no line of approach", s->name, (unsigned long long)seed);
-    if (!ok) return;
     char tag[96];
-    snprintf(tag, sizeof tag, "tiny %s seed %llu", s->name, (unsigned long long)seed);
+    if (!front_start(s, seed, "tiny", &rng, &l, tag, sizeof tag)) return;
     const double stations[5] = {-0.05, -1e-6, -4e-9, 1e-9, 0.03};
     px_vec3 axis = pg_unit(&rng);
     int step = 0, overlaps = fs->overlaps, near = fs->near;
@@ -1761,12 +1764,28 @@ static double point_tri_gap(px_vec3 p, const px_vec3 t[3]) {
     return vlen(p, q);
 }
 
+/* The oracle's distance between two triangles. */
+static double oracle_tri_tri(const px_vec3 s[3], const px_vec3 t[3]) {
+    static const uint32_t first[2] = {0, 3}, vert[3] = {0, 1, 2};
+    double xs[9], xt[9];
+    for (int k = 0; k < 3; ++k) {
+        xs[3 * k] = s[k].x, xs[3 * k + 1] = s[k].y, xs[3 * k + 2] = s[k].z;
+        xt[3 * k] = t[k].x, xt[3 * k + 1] = t[k].y, xt[3 * k + 2] = t[k].z;
+    }
+    or_poly os, ot;
+    or_poly_init_raw(&os, xs, 3, first, vert, 1);
+    or_poly_init_raw(&ot, xt, 3, first, vert, 1);
+    double d = or_face_face(&os, 0, &ot, 0, NULL, NULL);
+    or_poly_free(&os);
+    or_poly_free(&ot);
+    return d;
+}
+
 static void test_tri_pairs(void) {
     pg_rng rng;
     pg_seed(&rng, 977);
     int n = tu_scaled(tu_sanitized() ? 4000 : 40000), checked = 0;
     double worst = 0.0;
-    uint32_t first[2] = {0, 3}, vert[3] = {0, 1, 2};
     for (int i = 0; i < n; ++i) {
         int mode = i % 6;
         px_vec3 s[3], t[3];
@@ -1794,17 +1813,7 @@ static void test_tri_pairs(void) {
         px_vec3 pa, pb;
         px_feature fa, fb;
         double d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
-        double xs[9], xt[9];
-        for (int k = 0; k < 3; ++k) {
-            xs[3 * k] = s[k].x, xs[3 * k + 1] = s[k].y, xs[3 * k + 2] = s[k].z;
-            xt[3 * k] = t[k].x, xt[3 * k + 1] = t[k].y, xt[3 * k + 2] = t[k].z;
-        }
-        or_poly os, ot;
-        or_poly_init_raw(&os, xs, 3, first, vert, 1);
-        or_poly_init_raw(&ot, xt, 3, first, vert, 1);
-        double want = or_face_face(&os, 0, &ot, 0, NULL, NULL);
-        or_poly_free(&os);
-        or_poly_free(&ot);
+        double want = oracle_tri_tri(s, t);
         double size = 1.0 + pxi_max_abs(c);
         double err = fabs(d - want) / size;
         worst = fmax(worst, err);
@@ -1854,17 +1863,7 @@ static void test_tri_pairs(void) {
             px_vec3 pa, pb;
             px_feature fa, fb;
             double d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
-            double xs[9], xt[9];
-            for (int k = 0; k < 3; ++k) {
-                xs[3 * k] = s[k].x, xs[3 * k + 1] = s[k].y, xs[3 * k + 2] = s[k].z;
-                xt[3 * k] = t[k].x, xt[3 * k + 1] = t[k].y, xt[3 * k + 2] = t[k].z;
-            }
-            or_poly os, ot;
-            or_poly_init_raw(&os, xs, 3, first, vert, 1);
-            or_poly_init_raw(&ot, xt, 3, first, vert, 1);
-            double want = or_face_face(&os, 0, &ot, 0, NULL, NULL);
-            or_poly_free(&os);
-            or_poly_free(&ot);
+            double want = oracle_tri_tri(s, t);
             worst_ee = fmax(worst_ee, fabs(d - want));
             if (fabs(d - want) > 1e-12) ++bad;
         }

@@ -591,6 +591,14 @@ static int moved_bound(qctx *q, const mc_front *f, qbound *out) {
     return 1;
 }
 
+/* A leaf pair: its spheres, then, if they do not prune it, the pair
+ * itself; either way it joins the new front. */
+static void visit_leaves(qctx *q, uint32_t a, uint32_t b) {
+    qbound lb = sphere_bound(q, &q->a->nodes[a], &q->b->nodes[b]);
+    if (keep(q, lb.lb)) lb = larger(lb, leaf_pair(q, a, b));
+    emit(q, a, b, lb);
+}
+
 /* Node pair (a0, b0) measured afresh and, where its bound is within the
  * limit, descended depth first, nearest child pair first. Every pair where
  * the descent stops (pruned, or a leaf pair measured) joins the new front,
@@ -605,9 +613,7 @@ static void expand(qctx *q, uint32_t a0, uint32_t b0) {
     uint32_t top = 0;
     const px_model *a = q->a, *b = q->b;
     if (is_leaf(&a->nodes[a0]) && is_leaf(&b->nodes[b0])) {
-        qbound lb = sphere_bound(q, &a->nodes[a0], &b->nodes[b0]);
-        if (keep(q, lb.lb)) lb = larger(lb, leaf_pair(q, a0, b0));
-        emit(q, a0, b0, lb);
+        visit_leaves(q, a0, b0);
         return;
     }
     qbound lb0 = pair_bound(q, a0, b0, current_limit(q));
@@ -638,9 +644,7 @@ static void expand(qctx *q, uint32_t a0, uint32_t b0) {
                     continue;
                 }
                 if (is_leaf(&a->nodes[ca]) && is_leaf(&b->nodes[cb])) {
-                    qbound lb = sphere_bound(q, &a->nodes[ca], &b->nodes[cb]);
-                    if (keep(q, lb.lb)) lb = larger(lb, leaf_pair(q, ca, cb));
-                    emit(q, ca, cb, lb);
+                    visit_leaves(q, ca, cb);
                     continue;
                 }
                 qbound lb = pair_bound(q, ca, cb, current_limit(q));

@@ -113,21 +113,6 @@ static int one_side(const double d[3]) {
     return (d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0) || (d[0] < 0.0 && d[1] < 0.0 && d[2] < 0.0);
 }
 
-/* Closest parameters of edges p0 + s d1 and q0 + t d2 (r = p0 - q0): the
- * rescaled routine only where the fourth powers of the lengths could leave
- * the double range; elsewhere the same arithmetic without the rescaling's
- * library calls. */
-static void edge_edge(px_vec3 p0, px_vec3 d1, px_vec3 q0, px_vec3 d2, double *a, double *b) {
-    px_vec3 r = pxi_sub(p0, q0);
-    double m = pxi_max_abs(d1);
-    if (pxi_max_abs(d2) > m) m = pxi_max_abs(d2);
-    if (pxi_max_abs(r) > m) m = pxi_max_abs(r);
-    if (m >= 0x1p-100 && m <= 0x1p100)
-        pxi_segment_closest_dir(d1, d2, r, a, b);
-    else
-        pxi_segment_closest(p0, pxi_add(p0, d1), q0, pxi_add(q0, d2), a, b);
-}
-
 /* The vertex-face certificate: triangle `other` lies strictly on one side
  * of triangle f's plane (normal n = (f1 - f0) x (f2 - f0), signed distances
  * times |n| in d[]); its vertex nearest the plane, projected on it, lands
@@ -221,12 +206,10 @@ double pxi_tri_tri(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 
      * pair (p, q) ends the search when it is certified to within rounding:
      * edge_certified below. */
     double best = INFINITY;
-    px_vec3 es[3], et[3];
-    for (int k = 0; k < 3; ++k) es[k] = pxi_sub(s[(k + 1) % 3], s[k]), et[k] = pxi_sub(t[(k + 1) % 3], t[k]);
     for (uint32_t i = 0; i < 3; ++i) {
         for (uint32_t j = 0; j < 3; ++j) {
             double a, b;
-            edge_edge(s[i], es[i], t[j], et[j], &a, &b);
+            pxi_segment_closest(s[i], s[(i + 1) % 3], t[j], t[(j + 1) % 3], &a, &b);
             px_feature fa, fb;
             px_vec3 p = edge_point(s[i], s[(i + 1) % 3], a, i, &fa);
             px_vec3 q = edge_point(t[j], t[(j + 1) % 3], b, j, &fb);

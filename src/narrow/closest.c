@@ -26,14 +26,13 @@ void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double 
     double m = pxi_max_abs(d1);
     if (pxi_max_abs(d2) > m) m = pxi_max_abs(d2);
     if (pxi_max_abs(r) > m) m = pxi_max_abs(r);
-    if (m > 0.0 && isfinite(m)) {
+    /* Lengths between 2^-100 and 2^100 keep their fourth powers in range
+     * as they are (and scaling by a power of two would change no bit):
+     * only the others pay for ilogb and the scaling. */
+    if (m > 0.0 && isfinite(m) && !(m >= 0x1p-100 && m <= 0x1p100)) {
         double k = pxi_pow2_unit(m); /* clamped: 2^-ilogb(m) is inf for subnormal m */
         d1 = pxi_scale(d1, k), d2 = pxi_scale(d2, k), r = pxi_scale(r, k);
     }
-    pxi_segment_closest_dir(d1, d2, r, s_out, t_out);
-}
-
-void pxi_segment_closest_dir(px_vec3 d1, px_vec3 d2, px_vec3 r, double *s_out, double *t_out) {
     double a = pxi_dot(d1, d1), e = pxi_dot(d2, d2), f = pxi_dot(d2, r);
     double c = pxi_dot(d1, r), b = pxi_dot(d1, d2);
     double s, t;

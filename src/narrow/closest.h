@@ -11,10 +11,5 @@ static inline double pxi_clamp01(double x) { return x < 0.0 ? 0.0 : x > 1.0 ? 1.
  * well-conditioned candidates; exactly parallel overlapping ones the middle
  * of their overlap (closest.c). */
 void pxi_segment_closest(px_vec3 p0, px_vec3 p1, px_vec3 q0, px_vec3 q1, double *s, double *t);
-/* The same from d1 = p1 - p0, d2 = q1 - q0 and r = p0 - q0, without the
- * rescaling: for callers that know the fourth powers of their lengths
- * neither overflow nor underflow (the answer is then bit for bit the
- * rescaled one, since scaling by a power of two is exact). */
-void pxi_segment_closest_dir(px_vec3 d1, px_vec3 d2, px_vec3 r, double *s, double *t);
 
 #endif

@@ -63,8 +63,6 @@ typedef struct mc_impl {
     uint32_t n_front, cap_front, n_next, cap_next;
     int front_ok;
     uint32_t cold_front; /* the front's size after the last cold descent */
-    px_pose t_prev;      /* the relative pose of the previous query */
-    int has_prev;
     double drift;
     uint64_t stamp; /* queries that descended, this one included */
     px_pose ring[MC_RING];
@@ -511,34 +509,46 @@ static int keep(const qctx *q, double lb) {
 
 /* ---- The front ---------------------------------------------------------- */
 
+/* Moves front array *arr (capacity *cap, its first `used` entries kept)
+ * to a capacity of `want`, within the cache's limit; 0 when there is no
+ * room (the array is left as it was). */
+static int front_grow(qctx *q, mc_front **arr, uint32_t *cap, uint32_t used, size_t want) {
+    mc_impl *mc = q->mc;
+    size_t bytes = mc->bytes + (want - *cap) * sizeof **arr;
+    mc_front *nf = bytes <= cache_limit(q->cache) && want < ((size_t)1 << 26)
+                       ? pxi_alloc_array(&mc->alloc, want, sizeof *nf)
+                       : NULL;
+    if (!nf) return 0;
+    if (used) memcpy(nf, *arr, (size_t)used * sizeof *nf);
+    pxi_free(&mc->alloc, *arr, (size_t)*cap * sizeof **arr);
+    *arr = nf;
+    *cap = (uint32_t)want;
+    mc->bytes = bytes;
+    q->cache->memory_bytes = bytes;
+    return 1;
+}
+
+/* Pair (a, b) with bound lb, as a front entry measured at this query. */
+static mc_front front_entry(const qctx *q, uint32_t a, uint32_t b, qbound lb) {
+    return (mc_front){a, b, q->mc->stamp, lb.lb + q->drift, lb.g, lb.n};
+}
+
 /* Appends an entry to `next`, growing it within the cache's limit. */
 static void emit_entry(qctx *q, mc_front f) {
     if (!q->emit) return;
     mc_impl *mc = q->mc;
-    if (mc->n_next == mc->cap_next) {
-        uint32_t cap = mc->cap_next ? 2 * mc->cap_next : 256;
-        size_t bytes = mc->bytes + ((size_t)cap - mc->cap_next) * sizeof *mc->next;
-        mc_front *nf = bytes <= cache_limit(q->cache) && cap < (1u << 26)
-                           ? pxi_alloc_array(&mc->alloc, cap, sizeof *nf)
-                           : NULL;
-        if (!nf) {
-            q->emit = 0;
-            q->emit_failed = 1;
-            return;
-        }
-        if (mc->n_next) memcpy(nf, mc->next, (size_t)mc->n_next * sizeof *nf);
-        pxi_free(&mc->alloc, mc->next, (size_t)mc->cap_next * sizeof *mc->next);
-        mc->next = nf;
-        mc->cap_next = cap;
-        mc->bytes = bytes;
-        q->cache->memory_bytes = bytes;
+    if (mc->n_next == mc->cap_next &&
+        !front_grow(q, &mc->next, &mc->cap_next, mc->n_next, mc->cap_next ? 2 * (size_t)mc->cap_next : 256)) {
+        q->emit = 0;
+        q->emit_failed = 1;
+        return;
     }
     mc->next[mc->n_next++] = f;
 }
 
 /* A pair pruned or measured at this query with bound lb. */
 static void emit(qctx *q, uint32_t a, uint32_t b, qbound lb) {
-    if (q->emit) emit_entry(q, (mc_front){a, b, q->mc->stamp, lb.lb + q->drift, lb.g, lb.n});
+    if (q->emit) emit_entry(q, front_entry(q, a, b, lb));
 }
 
 /* What a stored key still guarantees: key - drift, less the rounding of
@@ -671,17 +681,18 @@ static void expand(qctx *q, uint32_t a0, uint32_t b0) {
     }
 }
 
-/* A bound on how far any point of B has moved in A's frame since the
- * previous query: |(R1 - R0) c + t1 - t0| + |R1 - R0| r over B's root
- * sphere (c, r), the Frobenius norm bounding the rotation's, with a
- * rounding margin. */
-static double motion_bound(const px_pose *t0, const px_pose *t1, const pxi_mnode *root) {
-    double dr[9], f2 = 0.0;
-    for (int k = 0; k < 9; ++k) dr[k] = t1->r[k] - t0->r[k], f2 += dr[k] * dr[k];
+/* A bound on how far any point of B has moved in A's frame since the query
+ * in ring slot k (the previous one): |(R1 - R0) c + t1 - t0| + |R1 - R0| r
+ * over B's root sphere (c, r), the Frobenius norm bounding the rotation's,
+ * with a rounding margin. The motion is ring_motion's, which the front's
+ * entries from that query use too. */
+static double motion_bound(qctx *q, uint32_t k) {
+    ring_motion(q, k);
+    const pxi_mnode *root = &q->b->nodes[0];
     px_vec3 c = root->center;
-    px_vec3 m = pxi_add(pxi_rot(dr, c), pxi_sub(t1->t, t0->t));
-    double size = pxi_len(c) + root->radius + pxi_len(t0->t) + pxi_len(t1->t);
-    return (pxi_len(m) + sqrt(f2) * root->radius) * (1.0 + 1e-12) + 16.0 * DBL_EPSILON * size;
+    px_vec3 m = pxi_add(pxi_rot(q->dr[k], c), q->dt[k]);
+    double size = pxi_len(c) + root->radius + pxi_len(q->mc->ring[k].t) + pxi_len(q->t_ab.t);
+    return pxi_len(m) * (1.0 + 1e-12) + q->dr_norm[k] * root->radius + 16.0 * DBL_EPSILON * size;
 }
 
 /* The descent: from the previous front when the cache holds a usable one,
@@ -693,9 +704,10 @@ static void descend(qctx *q) {
         return;
     }
     double reach = q->a->nodes[0].radius + q->b->nodes[0].radius;
-    int warm = mc->front_ok && mc->has_prev;
+    /* A front is only ever left by a descent, whose pose is in the ring. */
+    int warm = mc->front_ok;
     if (warm) {
-        mc->drift += motion_bound(&mc->t_prev, &q->t_ab, &q->b->nodes[0]);
+        mc->drift += motion_bound(q, (uint32_t)(mc->stamp % MC_RING));
         /* Cold again when the front has outgrown its last cold size by
          * half (a front only ever splits: past that, reading it costs more
          * than a fresh descent's coarser front saves; 1.5 gave the lowest
@@ -707,8 +719,6 @@ static void descend(qctx *q) {
             warm = 0;
     }
     if (!warm) mc->drift = 0.0;
-    mc->t_prev = q->t_ab;
-    mc->has_prev = 1;
     /* This query's pose joins the ring, for the entries it writes. */
     mc->stamp++;
     uint32_t slot = (uint32_t)(mc->stamp % MC_RING);
@@ -735,8 +745,7 @@ static void descend(qctx *q) {
              * they still prune, f is kept, rebased on this query. */
             qbound lb;
             if (moved_bound(q, &f, &lb) && !keep(q, lb.lb)) {
-                if (!(lb.g > -INFINITY)) lb.n = pxi_v(0, 0, 0);
-                mc->front[w++] = (mc_front){f.a, f.b, mc->stamp, lb.lb + q->drift, lb.g, lb.n};
+                mc->front[w++] = front_entry(q, f.a, f.b, lb);
                 continue;
             }
             expand(q, f.a, f.b);
@@ -744,24 +753,11 @@ static void descend(qctx *q) {
     } else {
         expand(q, 0, 0);
     }
-    if (!q->emit_failed && q->status == PX_OK && (size_t)w + mc->n_next > mc->cap_front) {
-        /* Room for the appended entries, within the cache's limit. */
-        size_t cap = (size_t)w + mc->n_next + ((size_t)w + mc->n_next) / 2 + 256;
-        size_t bytes = mc->bytes + (cap - mc->cap_front) * sizeof *mc->front;
-        mc_front *nf = bytes <= cache_limit(q->cache) && cap < ((size_t)1 << 26)
-                           ? pxi_alloc_array(&mc->alloc, cap, sizeof *nf)
-                           : NULL;
-        if (nf) {
-            if (w) memcpy(nf, mc->front, (size_t)w * sizeof *nf);
-            pxi_free(&mc->alloc, mc->front, (size_t)mc->cap_front * sizeof *mc->front);
-            mc->front = nf;
-            mc->cap_front = (uint32_t)cap;
-            mc->bytes = bytes;
-            q->cache->memory_bytes = bytes;
-        } else {
-            q->emit_failed = 1;
-        }
-    }
+    /* Room for the appended entries, within the cache's limit. */
+    size_t need = (size_t)w + mc->n_next;
+    if (!q->emit_failed && q->status == PX_OK && need > mc->cap_front &&
+        !front_grow(q, &mc->front, &mc->cap_front, w, need + need / 2 + 256))
+        q->emit_failed = 1;
     if (q->emit_failed || q->status != PX_OK) {
         if (q->emit_failed) q->cache->cold_runs++;
         mc->front_ok = 0;

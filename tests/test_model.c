@@ -1089,6 +1089,14 @@ static void fscene_init(fscene *s, const char *name, const px_model *ma, const p
     s->size = vlen(ia.max, ia.min);
 }
 
+/* A scene of two triangle models and the meshes they were built from. */
+static void fscene_tris(fscene *s, const char *name, const px_model *ma, const px_model *mb,
+                        const tri_mesh *ta, const tri_mesh *tb) {
+    fscene_init(s, name, ma, mb);
+    s->ta = ta;
+    s->tb = tb;
+}
+
 /* The brute force at one pose: the models' distance, and for point-set
  * scenes the distance of A to B's piece 0 alone (the convex queries). */
 typedef struct foracle {
@@ -1610,20 +1618,14 @@ static void test_front(void) {
     CHECK(ok, "front models");
     if (ok) {
         fscene ts, tt, st, pp, ts_p, tp_sp, tp_s;
-        fscene_init(&ts, "torus/sphere", m_tor, m_sph);
-        ts.ta = &tor, ts.tb = &sph;
-        fscene_init(&tt, "torus/small torus", m_tor, m_tor2);
-        tt.ta = &tor, tt.tb = &tor2;
-        fscene_init(&st, "sphere/torus", m_sph, m_tor);
-        st.ta = &sph, st.tb = &tor;
+        fscene_tris(&ts, "torus/sphere", m_tor, m_sph, &tor, &sph);
+        fscene_tris(&tt, "torus/small torus", m_tor, m_tor2, &tor, &tor2);
+        fscene_tris(&st, "sphere/torus", m_sph, m_tor, &sph, &tor);
         fscene_init(&pp, "point sets", m_pa, m_pb);
         pp.qa = &pa, pp.qb = &pb;
-        fscene_init(&ts_p, "torus/sphere'", m_tor, m_sph_p);
-        ts_p.ta = &tor, ts_p.tb = &sph_p;
-        fscene_init(&tp_sp, "torus'/sphere'", m_tor_p, m_sph_p);
-        tp_sp.ta = &tor_p, tp_sp.tb = &sph_p;
-        fscene_init(&tp_s, "torus'/sphere", m_tor_p, m_sph);
-        tp_s.ta = &tor_p, tp_s.tb = &sph;
+        fscene_tris(&ts_p, "torus/sphere'", m_tor, m_sph_p, &tor, &sph_p);
+        fscene_tris(&tp_sp, "torus'/sphere'", m_tor_p, m_sph_p, &tor_p, &sph_p);
+        fscene_tris(&tp_s, "torus'/sphere", m_tor_p, m_sph, &tor_p, &sph);
         int n = tu_scaled(san ? 60 : 400);
         char extra[160];
 

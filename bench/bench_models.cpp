@@ -28,9 +28,10 @@
 // with edges split, still closed). Writes models.csv, models_poses.csv and
 // models.md into --out; plot_models.gp draws models_approach.png.
 //
-//   bench_models --meshes DIR --models DIR --out DIR [--passes N] [--quick]
+//   bench_models --meshes DIR --models DIR --out DIR [--passes N] [--quick] [--only NAME]
 // --quick: the Puma pair only, 40 poses, one pass, no 100k build (the smoke
-// test).
+// test). --only NAME: the pairs whose name contains NAME (bunny00-elephant,
+// armadillo-bunny00, puma-link2-link4), no 100k build.
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/detail/traversal/collision/mesh_collision_traversal_node.h>
 #include <fcl/narrowphase/detail/traversal/collision_node.h>
@@ -412,6 +413,7 @@ int main(int argc, char **argv) {
     std::string meshes = "build/meshdata", models = "models", out_dir = "docs/bench";
     int passes = 5, n = 200;
     bool quick = false;
+    std::string only; // --only NAME: the pairs whose name contains NAME, no 100k build
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--meshes" && i + 1 < argc)
@@ -424,9 +426,11 @@ int main(int argc, char **argv) {
             passes = std::max(1, atoi(argv[++i]));
         else if (a == "--quick")
             quick = true;
+        else if (a == "--only" && i + 1 < argc)
+            only = argv[++i];
         else {
-            fprintf(stderr,
-                    "usage: bench_models [--meshes DIR] [--models DIR] [--out DIR] [--passes N] [--quick]\n");
+            fprintf(stderr, "usage: bench_models [--meshes DIR] [--models DIR] [--out DIR] [--passes N] "
+                            "[--quick] [--only NAME]\n");
             return 2;
         }
     }
@@ -448,21 +452,28 @@ int main(int argc, char **argv) {
         rm::normalize(&b->mesh, 1.0);
         return true;
     };
-    if (!quick) {
+    auto want = [&](const char *pair) {
+        return only.empty() || std::string(pair).find(only) != std::string::npos;
+    };
+    if (!quick && (want("bunny00-elephant") || want("armadillo-bunny00"))) {
         Body bunny, elephant, armadillo;
         fprintf(stderr, "building the CGAL meshes\n");
         if (load_cgal("bunny00.off", &bunny) && load_cgal("elephant.off", &elephant) &&
             load_cgal("armadillo.off", &armadillo) && build_body(&bunny) && build_body(&elephant) &&
             build_body(&armadillo)) {
-            fprintf(stderr, "bunny00 vs elephant\n");
-            results.push_back(run_pair("bunny00-elephant", bunny, elephant, n, passes, 11));
-            fprintf(stderr, "armadillo vs bunny00\n");
-            results.push_back(run_pair("armadillo-bunny00", armadillo, bunny, n, passes, 12));
+            if (want("bunny00-elephant")) {
+                fprintf(stderr, "bunny00 vs elephant\n");
+                results.push_back(run_pair("bunny00-elephant", bunny, elephant, n, passes, 11));
+            }
+            if (want("armadillo-bunny00")) {
+                fprintf(stderr, "armadillo vs bunny00\n");
+                results.push_back(run_pair("armadillo-bunny00", armadillo, bunny, n, passes, 12));
+            }
         } else {
             notes.push_back("The CGAL meshes were not found (run `make deps`): their pairs are missing.");
         }
     }
-    {
+    if (want("puma-link2-link4")) {
         Body l2, l4;
         const std::string dir = models + "/puma560/nimasarli_puma560_description/meshes/";
         std::string err;
@@ -481,7 +492,7 @@ int main(int argc, char **argv) {
     Row big;
     double big_bytes_per_tri = NAN, big_fcl_s = NAN;
     size_t big_nt = 0, big_fcl_bytes = 0;
-    if (!quick) {
+    if (!quick && only.empty()) {
         Mesh bunny;
         std::string err;
         if (rm::load_cgal_mesh("bunny00.off", &bunny, &err, meshes)) {

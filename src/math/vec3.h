@@ -24,6 +24,10 @@ static inline double pxi_len(px_vec3 a) { return sqrt(pxi_dot(a, a)); }
 static inline px_vec3 pxi_madd(px_vec3 a, px_vec3 b, double s) {
     return pxi_v(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z);
 }
+/* min and max of two finite values (libm's fmin and fmax are calls on x86-64
+ * without -ffinite-math-only; these compile to minsd and maxsd). */
+static inline double pxi_min2(double a, double b) { return a < b ? a : b; }
+static inline double pxi_max2(double a, double b) { return a > b ? a : b; }
 static inline double pxi_max_abs(px_vec3 a) {
     double m = fabs(a.x);
     if (fabs(a.y) > m) m = fabs(a.y);

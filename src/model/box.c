@@ -12,7 +12,6 @@
 
 /* max without libm's NaN rules (the call is not inlined); the bounds are
  * finite. */
-static inline double max2(double a, double b) { return a > b ? a : b; }
 
 /* Eigenvectors of a symmetric 3x3 matrix by cyclic Jacobi rotations (rows
  * of v). */
@@ -229,9 +228,10 @@ double pxi_tri_box_gap(const px_vec3 t[3], const pxi_box *b, const px_pose *t_bo
 #define PXI_TRI_AXIS(u, unit_len)                                                                            \
     do {                                                                                                     \
         double p0 = pxi_dot(d0, u), p1 = p0 + pxi_dot(e1, u), p2 = p0 + pxi_dot(e2, u);                      \
-        double lo = fmin(p0, fmin(p1, p2)), hi = max2(p0, max2(p1, p2)), rr = box_radius(ax, h, u);          \
+        double lo = pxi_min2(p0, pxi_min2(p1, p2)), hi = pxi_max2(p0, pxi_max2(p1, p2)),                     \
+               rr = box_radius(ax, h, u);                                                                    \
         double above = lo - rr, below = -rr - hi;                                                            \
-        double g = (max2(above, below) - margin) / (unit_len);                                               \
+        double g = (pxi_max2(above, below) - margin) / (unit_len);                                           \
         if (g > best) best = g, axis = (u), axis_len = (unit_len), sign = above >= below ? 1.0 : -1.0;       \
         if (best > limit) goto out;                                                                          \
     } while (0)

@@ -280,20 +280,17 @@ static void record(qctx *q, double d, uint32_t ia, uint32_t ib, px_vec3 pa, px_v
     q->fb = fb;
 }
 
-/* max of a and b without libm's call. */
-static inline double max2(double a, double b) { return a > b ? a : b; }
-
 /* Gap between the projections of s and t on u (any length: divided by it),
  * kept in *best with its axis (unit, from s to t) when larger. */
 static void axis_gap(const px_vec3 s[3], const px_vec3 t[3], px_vec3 u, qbound *best) {
     double s0 = pxi_dot(u, s[0]), s1 = pxi_dot(u, s[1]), s2 = pxi_dot(u, s[2]);
     double t0 = pxi_dot(u, t[0]), t1 = pxi_dot(u, t[1]), t2 = pxi_dot(u, t[2]);
-    double slo = fmin(s0, fmin(s1, s2)), shi = max2(s0, max2(s1, s2));
-    double tlo = fmin(t0, fmin(t1, t2)), thi = max2(t0, max2(t1, t2));
+    double slo = pxi_min2(s0, pxi_min2(s1, s2)), shi = pxi_max2(s0, pxi_max2(s1, s2));
+    double tlo = pxi_min2(t0, pxi_min2(t1, t2)), thi = pxi_max2(t0, pxi_max2(t1, t2));
     double up = tlo - shi, down = slo - thi;
     double len = pxi_len(u);
     if (!(len > 0.0)) return;
-    double gap = max2(up, down) / len;
+    double gap = pxi_max2(up, down) / len;
     if (gap > best->lb) {
         best->lb = gap;
         best->n = pxi_scale(u, (up >= down ? 1.0 : -1.0) / len);
@@ -488,7 +485,7 @@ static qbound pair_bound(qctx *q, uint32_t ia, uint32_t ib, double limit) {
     if (!na->hull || !nb->hull) return lb;
     px_distance_result r;
     if (!hull_distance(q, ia, ib, &r)) return no_axis(INFINITY);
-    lb.lb = r.intersecting ? 0.0 : fmax(lb.lb, r.distance);
+    lb.lb = r.intersecting ? 0.0 : pxi_max2(lb.lb, r.distance);
     return lb;
 }
 
@@ -597,7 +594,7 @@ static int moved_bound(qctx *q, const mc_front *f, qbound *out) {
         out->lb = out->g;
         if (!keep(q, out->lb)) return 1;
     }
-    out->lb = max2(out->lb, lb_then - pxi_len(m) - turn - slack);
+    out->lb = pxi_max2(out->lb, lb_then - pxi_len(m) - turn - slack);
     return 1;
 }
 

@@ -9,6 +9,8 @@
  *   2. pxcd_exact_distance: exact Euclidean distance between the convex hulls
  *      of two point sets (CGAL Polytope_distance_d with Homogeneous<Gmpzf>),
  *      used as ground truth by tests and benchmarks.
+ *   3. pxcd_decompose: approximate convex decomposition of a triangle mesh
+ *      (declared in pxcd_decomp.h, included at the end of this header).
  * No function throws or aborts: CGAL exceptions are caught and reported;
  * running out of memory (std::bad_alloc, recognised by its type) has its own
  * status.
@@ -25,8 +27,10 @@ extern "C" {
 
 typedef enum pxcd_status {
     PXCD_OK = 0,
-    PXCD_ERROR = 2,        /* bad argument, CGAL threw, or an internal check failed: see msg */
-    PXCD_OUT_OF_MEMORY = 3 /* an allocation failed (std::bad_alloc) */
+    PXCD_ERROR = 2,         /* bad argument, CGAL threw, or an internal check failed: see msg */
+    PXCD_OUT_OF_MEMORY = 3, /* an allocation failed (std::bad_alloc) */
+    PXCD_INVALID_INPUT = 4, /* pxcd_decompose only: bad argument or input, see msg */
+    PXCD_CANCELLED = 5      /* pxcd_decompose only: the progress callback asked to stop */
 } pxcd_status;
 
 /* The hull, as polygons. Vertex ids index `vertices`; each face is a convex
@@ -101,5 +105,7 @@ pxcd_status pxcd_exact_distance(const double *p_xyz, size_t np, const double *q_
 #ifdef __cplusplus
 }
 #endif
+
+#include "pxcd_decomp.h"
 
 #endif /* PROXIMA_PXCD_H */

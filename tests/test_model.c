@@ -767,6 +767,234 @@ static void test_pxm(void) {
 
 /* ---- The review's cases (tests/data in the issue-9 notes) ------------------ */
 
+/* ---- Approximate decomposition (PX_PIECES_APPROXIMATE) ------------------ */
+
+/* Generalised winding number of a closed mesh about p (solid angles, Van
+ * Oosterom and Strackee 1983): about 1 inside, 0 outside. */
+static double winding(const tri_mesh *t, px_vec3 p) {
+    double total = 0.0;
+    for (uint32_t k = 0; k < t->nt; ++k) {
+        px_vec3 v[3];
+        for (int c = 0; c < 3; ++c) {
+            const double *s = t->xyz + 3 * t->tri[3 * k + c];
+            v[c] = (px_vec3){s[0] - p.x, s[1] - p.y, s[2] - p.z};
+        }
+        double la = sqrt(v[0].x * v[0].x + v[0].y * v[0].y + v[0].z * v[0].z);
+        double lb = sqrt(v[1].x * v[1].x + v[1].y * v[1].y + v[1].z * v[1].z);
+        double lc = sqrt(v[2].x * v[2].x + v[2].y * v[2].y + v[2].z * v[2].z);
+        px_vec3 bc = {v[1].y * v[2].z - v[1].z * v[2].y, v[1].z * v[2].x - v[1].x * v[2].z,
+                      v[1].x * v[2].y - v[1].y * v[2].x};
+        double num = v[0].x * bc.x + v[0].y * bc.y + v[0].z * bc.z;
+        double ab = v[0].x * v[1].x + v[0].y * v[1].y + v[0].z * v[1].z;
+        double bcd = v[1].x * v[2].x + v[1].y * v[2].y + v[1].z * v[2].z;
+        double ca = v[2].x * v[0].x + v[2].y * v[0].y + v[2].z * v[0].z;
+        total += 2.0 * atan2(num, la * lb * lc + ab * lc + bcd * la + ca * lb);
+    }
+    return total / (4.0 * M_PI);
+}
+
+/* Brute-force distance from p to a mesh: to its solid (0 inside) when
+ * `solid`, else to its triangles. */
+static double brute_point_mesh(const tri_mesh *t, px_vec3 p, int solid) {
+    if (solid && winding(t, p) > 0.5) return 0.0;
+    double best = INFINITY;
+    for (uint32_t k = 0; k < t->nt; ++k) {
+        px_vec3 v[3];
+        for (int c = 0; c < 3; ++c) {
+            const double *s = t->xyz + 3 * t->tri[3 * k + c];
+            v[c] = (px_vec3){s[0], s[1], s[2]};
+        }
+        px_feature f;
+        best = fmin(best, vlen(p, pxi_tri_closest(p, v, &f)));
+    }
+    return best;
+}
+
+static int stop_at_half(void *user, double fraction) {
+    int *calls = user;
+    ++*calls;
+    return fraction >= 0.5;
+}
+
+/* One piece's hull sampled (vertices, edge points, points inside faces):
+ * the largest brute-force distance to its part. */
+static double sampled_reach(const px_model *m, uint32_t node, const tri_mesh *part, int solid, pg_rng *rng) {
+    const px_convex *c = m->nodes[node].hull;
+    double worst = 0.0;
+    uint32_t nf = px_convex_face_count(c);
+    for (uint32_t f = 0; f < nf; ++f) {
+        uint32_t count;
+        px_convex_face(c, f, NULL, NULL, &count);
+        for (uint32_t k = 1; k + 1 < count; ++k) {
+            uint32_t i0, i1, i2;
+            px_convex_face_vertex(c, f, 0, &i0);
+            px_convex_face_vertex(c, f, k, &i1);
+            px_convex_face_vertex(c, f, k + 1, &i2);
+            px_vec3 a, b, d;
+            px_convex_vertex(c, i0, &a);
+            px_convex_vertex(c, i1, &b);
+            px_convex_vertex(c, i2, &d);
+            for (int s = 0; s < 6; ++s) {
+                double u = pg_uniform(rng), v = pg_uniform(rng);
+                if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+                if (s == 0) u = v = 0.0;
+                if (s == 1) u = 0.5, v = 0.0;
+                px_vec3 p = {a.x + u * (b.x - a.x) + v * (d.x - a.x), a.y + u * (b.y - a.y) + v * (d.y - a.y),
+                             a.z + u * (b.z - a.z) + v * (d.z - a.z)};
+                worst = fmax(worst, brute_point_mesh(part, p, solid));
+            }
+        }
+    }
+    return worst;
+}
+
+static void test_approximate(void) {
+    pg_rng rng;
+    pg_seed(&rng, 4242);
+    /* A: a torus and a sphere (closed); B: a torus; C: an open sheet (a
+     * half cylinder). */
+    tri_mesh pa[2], pb[1], pc[1];
+    torus(&pa[0], 0.8, 0.2, 24, 10, (px_vec3){0, 0, 0});
+    sphere(&pa[1], 0.3, 8, 12, (px_vec3){1.8, 0, 0});
+    torus(&pb[0], 0.6, 0.25, 20, 10, (px_vec3){0, 0, 0});
+    {
+        int n = 16, m = 4;
+        pc[0].nv = (uint32_t)((n + 1) * (m + 1));
+        pc[0].nt = (uint32_t)(2 * n * m);
+        pc[0].xyz = malloc(3 * sizeof(double) * pc[0].nv);
+        pc[0].tri = malloc(3 * sizeof(uint32_t) * pc[0].nt);
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; j <= m; ++j) {
+                double *q = pc[0].xyz + 3 * (i * (m + 1) + j);
+                q[0] = 0.7 * cos(M_PI * i / n), q[1] = 0.7 * sin(M_PI * i / n), q[2] = -0.5 + 1.0 * j / m;
+            }
+        uint32_t k = 0;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < m; ++j) {
+                uint32_t a = (uint32_t)(i * (m + 1) + j), b = a + (uint32_t)(m + 1);
+                uint32_t *q = pc[0].tri + 3 * k;
+                q[0] = a, q[1] = b, q[2] = b + 1, q[3] = a, q[4] = b + 1, q[5] = a + 1;
+                k += 2;
+            }
+    }
+    px_mesh *ma = make_mesh(pa, 2), *mb = make_mesh(pb, 1), *mc = make_mesh(pc, 1);
+    px_model_options ao, to;
+    memset(&ao, 0, sizeof ao);
+    memset(&to, 0, sizeof to);
+    ao.pieces = PX_PIECES_APPROXIMATE;
+    ao.tolerance = 0.04;
+    to.pieces = PX_PIECES_TRIANGLES;
+    px_error e;
+    double t0 = tu_now();
+    px_model *xa = px_model_create_from_mesh(ma, &ao, &e);
+    CHECK(xa != NULL, "approximate A: %s", e.message);
+    px_model *xb = px_model_create_from_mesh(mb, &ao, &e);
+    CHECK(xb != NULL, "approximate B: %s", e.message);
+    px_model *xc = px_model_create_from_mesh(mc, &ao, &e);
+    CHECK(xc != NULL, "approximate C (open): %s", e.message);
+    double build_s = tu_now() - t0;
+    px_model *ta = px_model_create_from_mesh(ma, &to, &e), *tb = px_model_create_from_mesh(mb, &to, &e),
+             *tc = px_model_create_from_mesh(mc, &to, &e);
+    CHECK(ta && tb && tc, "triangle models");
+    if (!xa || !xb || !xc || !ta || !tb || !tc) return;
+    px_model_info ia, ib, ic;
+    px_model_get_info(xa, &ia);
+    px_model_get_info(xb, &ib);
+    px_model_get_info(xc, &ic);
+    CHECK(ia.pieces == PX_PIECES_APPROXIMATE && ia.leaves > 2 && ib.leaves > 1,
+          "a torus is cut into pieces: %u and %u leaves", ia.leaves, ib.leaves);
+    printf("approximate: tolerance %.2g: %u + %u + %u pieces (open sheet last), largest h %.4g %.4g %.4g, "
+           "built in %.2f s\n",
+           ao.tolerance, ia.leaves, ib.leaves, ic.leaves, ia.max_h, ib.max_h, ic.max_h, build_s);
+    /* The recorded h bounds every sampled point of every piece's hull. */
+    const px_model *xm[3] = {xa, xb, xc};
+    const tri_mesh *parts[3][2] = {{&pa[0], &pa[1]}, {&pb[0], NULL}, {&pc[0], NULL}};
+    int sampled = 0;
+    double worst_ratio = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const px_model *m = xm[k];
+        for (uint32_t node = 0; node < m->n_nodes; ++node) {
+            if (m->nodes[node].child[1] != PXI_NONE) continue;
+            const pxi_mleaf *leaf = &m->leaves[m->nodes[node].child[0]];
+            const tri_mesh *part = parts[k][leaf->part];
+            double seen = sampled_reach(m, node, part, k < 2, &rng);
+            ++sampled;
+            CHECK(seen <= leaf->h + 1e-12, "model %d leaf %u: sampled reach %.9g above h %.9g", k,
+                  m->nodes[node].child[0], seen, leaf->h);
+            if (leaf->h > 0.0) worst_ratio = fmax(worst_ratio, seen / leaf->h);
+        }
+    }
+    printf("approximate: %d pieces sampled, reach/h at most %.3f\n", sampled, worst_ratio);
+    /* Coverage: every vertex of each part lies in some piece of its model. */
+    int uncovered = 0;
+    for (int k = 0; k < 3; ++k) {
+        const px_model *m = xm[k];
+        for (int q = 0; q < 2 && parts[k][q]; ++q) {
+            const tri_mesh *t = parts[k][q];
+            for (uint32_t v = 0; v < t->nv; ++v) {
+                double xyz[3] = {t->xyz[3 * v], t->xyz[3 * v + 1], t->xyz[3 * v + 2]};
+                px_convex *pt = px_convex_create(xyz, 1, NULL, &e);
+                px_model_distance_result r;
+                px_pose id = px_pose_identity();
+                int in = pt && px_model_distance_convex(m, &id, pt, &id, NULL, &r) == PX_OK &&
+                         r.distance <= 1e-12 * (1.0 + ia.max_h);
+                uncovered += !in;
+                px_convex_destroy(pt);
+            }
+        }
+    }
+    CHECK(uncovered == 0, "approximate: %d mesh vertices outside every piece", uncovered);
+    /* Brackets: the exact triangle distance lies in [distance, upper_bound]. */
+    int n = tu_scaled(tu_sanitized() ? 20 : 200), in = 0;
+    const px_model *xs[3][2] = {{xa, xb}, {xb, xc}, {xa, xc}}, *ts[3][2] = {{ta, tb}, {tb, tc}, {ta, tc}};
+    px_model_cache cache = {0};
+    for (int i = 0; i < n; ++i) {
+        int k = i % 3;
+        px_pose p0 = random_pose(&rng, 0.5), p1 = random_pose(&rng, 2.5);
+        px_model_distance_result rx, rt;
+        CHECK(px_model_distance(xs[k][0], &p0, xs[k][1], &p1, k == 0 ? &cache : NULL, &rx) == PX_OK,
+              "approximate distance");
+        CHECK(px_model_distance(ts[k][0], &p0, ts[k][1], &p1, NULL, &rt) == PX_OK, "triangle distance");
+        int ok = rx.distance <= rt.distance + 1e-12 && rt.distance <= rx.upper_bound + 1e-12;
+        CHECK(ok, "pose %d (pair %d): exact %.9g outside [%.9g, %.9g]", i, k, rt.distance, rx.distance,
+              rx.upper_bound);
+        in += ok;
+    }
+    px_model_cache_release(&cache);
+    printf("approximate: %d of %d poses bracket the exact triangle distance\n", in, n);
+    /* Saved and loaded, it answers the same. */
+    roundtrip("approximate", xb, xa, 0);
+    /* Cancelling stops the build; bad tolerances are refused. */
+    int calls = 0;
+    ao.progress = stop_at_half;
+    ao.progress_user = &calls;
+    px_model *none = px_model_create_from_mesh(ma, &ao, &e);
+    CHECK(none == NULL && e.code == PX_ERR_CANCELLED && calls > 0, "cancel: %s after %d calls", e.message,
+          calls);
+    px_model_destroy(none);
+    ao.progress = NULL;
+    const double bad[4] = {-0.1, 1.5, NAN, INFINITY};
+    for (int k = 0; k < 4; ++k) {
+        ao.tolerance = bad[k];
+        none = px_model_create_from_mesh(mb, &ao, &e);
+        CHECK(none == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "tolerance %g: %s", bad[k], e.message);
+        px_model_destroy(none);
+    }
+    to.tolerance = 0.1;
+    none = px_model_create_from_mesh(mb, &to, &e);
+    CHECK(none == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "tolerance with triangles: %s", e.message);
+    px_model_destroy(none);
+    px_model *objs[6] = {xa, xb, xc, ta, tb, tc};
+    for (int k = 0; k < 6; ++k) px_model_destroy(objs[k]);
+    px_mesh_destroy(ma);
+    px_mesh_destroy(mb);
+    px_mesh_destroy(mc);
+    mesh_free(&pa[0]);
+    mesh_free(&pa[1]);
+    mesh_free(&pb[0]);
+    mesh_free(&pc[0]);
+}
+
 /* One-part mesh from arrays. */
 static px_model *tri_model_of(const double *v, uint32_t nv, const uint32_t *t, uint32_t nt, uint32_t kind,
                               px_error *e) {
@@ -1913,6 +2141,7 @@ int main(void) {
     test_triangles();
     test_containment();
     test_bracket();
+    test_approximate();
     test_pxm();
     test_mixed();
     test_review();

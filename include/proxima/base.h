@@ -50,7 +50,8 @@ typedef enum px_status {
     PX_ERR_OUT_OF_MEMORY = 5,    ///< the allocator returned NULL, or a size overflowed
     PX_ERR_IO = 6,               ///< a file could not be read or is malformed
     PX_ERR_RANGE = 7,            ///< a number outside the supported range (see proxima/convex.h)
-    PX_ERR_INTERNAL = 8          ///< an invariant failed: a bug, please report it
+    PX_ERR_INTERNAL = 8,         ///< an invariant failed: a bug, please report it
+    PX_ERR_CANCELLED = 9         ///< a progress callback asked to stop (long builds)
 } px_status;
 
 /// Filled by functions that can fail. On success `code` is PX_OK and

@@ -74,7 +74,11 @@ typedef struct px_convex_options {
 ///   hold its planes (thinner than rounding, such as a slab 2^-1060 thick
 ///   at unit size, or a sliver tetrahedron); the message says which. Flat,
 ///   collinear and single-point input, sliver polygons included, is
-///   accepted (above);
+///   accepted (above). Before refusing a solid, points closer than 2^-40 of
+///   the points' extent (per coordinate, on a grid) are welded and the
+///   hull is tried once more: near-duplicates a few ulps apart (cut points
+///   computed twice, scans) make tiny faces whose normals are noise. The
+///   hull then differs from the exact one by at most that distance;
 /// - PX_ERR_OUT_OF_MEMORY.
 /// On success `err->code` is PX_OK. `options` may be NULL.
 PX_API px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,

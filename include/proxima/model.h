@@ -58,16 +58,34 @@ typedef enum px_pieces {
     /// One leaf per triangle (exact leaves, h = 0).
     PX_PIECES_TRIANGLES = 1,
     /// Pieces given as point sets (px_model_create_from_points), h = 0.
-    PX_PIECES_POINTS = 2
+    PX_PIECES_POINTS = 2,
+    /// Approximate convex decomposition: each part cut by planes into
+    /// convex pieces whose hulls stay within `tolerance` of it (CGAL, in
+    /// convexdecomp/), one leaf per piece with a certified bound h.
+    PX_PIECES_APPROXIMATE = 3
 } px_pieces;
+
+/// Default tolerance of PX_PIECES_APPROXIMATE (relative to a part's
+/// bounding-box diagonal).
+#define PX_MODEL_DEFAULT_TOLERANCE 0.02
 
 /// Options of model creation; zero-initialise, zero means default.
 typedef struct px_model_options {
     /// Allocator for everything the model owns (NULL: malloc/free).
     const px_allocator *allocator;
-    /// px_model_create_from_mesh: a px_pieces value (PARTS or TRIANGLES).
+    /// px_model_create_from_mesh: a px_pieces value (PARTS, TRIANGLES or
+    /// APPROXIMATE).
     uint32_t pieces;
     uint32_t reserved[5]; ///< must be zero
+    /// PX_PIECES_APPROXIMATE: the largest distance a piece's hull may reach
+    /// outside its part, relative to the part's bounding-box diagonal, in
+    /// (0, 1] (0: PX_MODEL_DEFAULT_TOLERANCE). Must be 0 otherwise.
+    double tolerance;
+    /// PX_PIECES_APPROXIMATE: called from the building thread now and then
+    /// with the fraction done, in [0, 1]; a nonzero return stops the build
+    /// (PX_ERR_CANCELLED). May be NULL; must be NULL for other pieces.
+    int (*progress)(void *user, double fraction);
+    void *progress_user; ///< passed to `progress`
 } px_model_options;
 
 /// A model from convex pieces given as point sets, the seed's "union of

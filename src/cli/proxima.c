@@ -1,10 +1,11 @@
 /* proxima: the command line.
  *   proxima info FILE
- *   proxima build IN -o OUT.pxm [--pieces parts|triangles] [--scale S]
- *   proxima distance A B [--pose-a P] [--pose-b P] [--pieces parts|triangles] [--scale S]
+ *   proxima build IN -o OUT.pxm [--pieces parts|triangles|approximate] [--tolerance T] [--scale S]
+ *   proxima distance A B [--pose-a P] [--pose-b P] [--pieces ...] [--tolerance T] [--scale S]
  * FILE, IN, A, B: mesh files (any format proxima-io reads) or .pxm models
  * (recognised by their content, not their name). Uses the public API only. */
 #include <errno.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -19,16 +20,23 @@ static const char *usage_text =
     "  proxima info FILE\n"
     "      parts, triangles, closed or open, bounding box, units of a mesh file;\n"
     "      leaves, nodes, memory and bound h of a .pxm model\n"
-    "  proxima build IN -o OUT.pxm [--pieces parts|triangles] [--scale S]\n"
+    "  proxima build IN -o OUT.pxm [--pieces parts|triangles|approximate] [--tolerance T]\n"
+    "                [--scale S]\n"
     "      builds the sub-part hierarchy tree of a mesh file and saves it\n"
-    "  proxima distance A B [--pose-a P] [--pose-b P] [--pieces parts|triangles] [--scale S]\n"
+    "  proxima distance A B [--pose-a P] [--pose-b P] [--pieces ...] [--tolerance T]\n"
+    "                [--scale S]\n"
     "      distance, closest points, bracket and collision of two models\n"
     "\n"
     "FILE, IN, A, B are mesh files (OBJ, STL, PLY, OFF, COLLADA, glTF, ... through\n"
     "Assimp) or .pxm files written by `proxima build`.\n"
     "  --pieces   leaves of a model built from a mesh: `triangles` (exact, the\n"
     "             default for distance) or `parts` (one convex hull per part,\n"
-    "             with a certified bound h; the default for build)\n"
+    "             with a certified bound h; the default for build) or\n"
+    "             `approximate` (each part cut into convex pieces that stay within\n"
+    "             --tolerance of it, each with a certified bound h)\n"
+    "  --tolerance T  for approximate pieces: how far a piece may reach outside\n"
+    "             its part, relative to the part's bounding-box diagonal, in (0, 1]\n"
+    "             (default 0.02)\n"
     "  --scale S  multiplies the mesh files' coordinates (e.g. 0.0254: inches to\n"
     "             metres); a .pxm model keeps the scale it was built with\n"
     "  --pose-a, --pose-b P   the model's pose: tx,ty,tz or tx,ty,tz,qw,qx,qy,qz\n"
@@ -57,6 +65,7 @@ typedef struct opts {
     const char *out;
     int pieces; /* -1: command default */
     double scale;
+    double tolerance; /* 0: the library's default */
     px_pose pose[2];
 } opts;
 
@@ -92,14 +101,23 @@ static int parse(int argc, char **argv, int first, opts *o) {
             if (!has_value) return usage_error("%s needs a file name", a);
             o->out = argv[++i];
         } else if (!strcmp(a, "--pieces")) {
-            if (!has_value) return usage_error("%s needs parts or triangles", a);
+            if (!has_value) return usage_error("%s needs parts, triangles or approximate", a);
             const char *v = argv[++i];
             if (!strcmp(v, "parts"))
                 o->pieces = PX_PIECES_PARTS;
             else if (!strcmp(v, "triangles"))
                 o->pieces = PX_PIECES_TRIANGLES;
+            else if (!strcmp(v, "approximate"))
+                o->pieces = PX_PIECES_APPROXIMATE;
             else
-                return usage_error("--pieces takes parts or triangles, not '%s'", v);
+                return usage_error("--pieces takes parts, triangles or approximate, not '%s'", v);
+        } else if (!strcmp(a, "--tolerance")) {
+            if (!has_value) return usage_error("%s needs a number", a);
+            char *end;
+            const char *v = argv[++i];
+            o->tolerance = strtod(v, &end);
+            if (end == v || *end || !(o->tolerance > 0.0 && o->tolerance <= 1.0))
+                return usage_error("--tolerance takes a number in (0, 1], not '%s'", v);
         } else if (!strcmp(a, "--scale")) {
             if (!has_value) return usage_error("%s needs a number", a);
             char *end;
@@ -120,6 +138,8 @@ static int parse(int argc, char **argv, int first, opts *o) {
             o->files[o->nfiles++] = a;
         }
     }
+    if (o->tolerance != 0.0 && o->pieces != PX_PIECES_APPROXIMATE)
+        return usage_error("--tolerance needs --pieces approximate");
     return 0;
 }
 
@@ -143,8 +163,28 @@ static px_mesh *load_mesh(const char *path, double scale) {
     return m;
 }
 
+/* A progress bar on standard error while a decomposition runs (only when
+ * it is a terminal). */
+typedef struct bar {
+    const char *name;
+    int shown; /* last percentage drawn, -1 for none */
+} bar;
+
+static int draw_bar(void *user, double fraction) {
+    bar *b = user;
+    int pct = (int)(fraction * 100.0 + 0.5);
+    if (pct == b->shown) return 0;
+    b->shown = pct;
+    int width = 30, fill = pct * width / 100;
+    fprintf(stderr, "\r%s: decomposing [%.*s%*s] %3d%%", b->name, fill, "##############################",
+            width - fill, "", pct);
+    if (pct >= 100) fprintf(stderr, "\n");
+    fflush(stderr);
+    return 0;
+}
+
 /* A model from a .pxm file or a mesh file. */
-static px_model *load_model(const char *path, int pieces, double scale) {
+static px_model *load_model(const char *path, int pieces, double scale, double tolerance) {
     px_error e;
     if (is_pxm(path)) {
         if (scale != 0.0)
@@ -158,14 +198,26 @@ static px_model *load_model(const char *path, int pieces, double scale) {
     px_model_options o;
     memset(&o, 0, sizeof o);
     o.pieces = (uint32_t)pieces;
+    bar b = {path, -1};
+    if (pieces == PX_PIECES_APPROXIMATE) {
+        o.tolerance = tolerance;
+        if (isatty(STDERR_FILENO)) {
+            o.progress = draw_bar;
+            o.progress_user = &b;
+        }
+    }
     px_model *m = px_model_create_from_mesh(mesh, &o, &e);
+    if (b.shown >= 0 && b.shown < 100) fprintf(stderr, "\n");
     if (!m) fprintf(stderr, "proxima: '%s': %s\n", path, e.message);
     px_mesh_destroy(mesh);
     return m;
 }
 
 static const char *pieces_name(uint32_t p) {
-    return p == PX_PIECES_PARTS ? "parts" : p == PX_PIECES_TRIANGLES ? "triangles" : "points";
+    return p == PX_PIECES_PARTS         ? "parts"
+           : p == PX_PIECES_TRIANGLES   ? "triangles"
+           : p == PX_PIECES_APPROXIMATE ? "approximate convex pieces"
+                                        : "points";
 }
 
 static int cmd_info(const opts *o) {
@@ -231,7 +283,8 @@ static int cmd_build(const opts *o) {
     if (o->nfiles != 1) return usage_error("build takes one input file");
     if (!o->out) return usage_error("build needs -o OUT.pxm");
     if (is_pxm(o->files[0])) return usage_error("'%s' is already a .pxm model", o->files[0]);
-    px_model *m = load_model(o->files[0], o->pieces < 0 ? PX_PIECES_PARTS : o->pieces, o->scale);
+    px_model *m =
+        load_model(o->files[0], o->pieces < 0 ? PX_PIECES_PARTS : o->pieces, o->scale, o->tolerance);
     if (!m) return 1;
     px_error e;
     int rc = 0;
@@ -251,9 +304,9 @@ static int cmd_build(const opts *o) {
 static int cmd_distance(const opts *o) {
     if (o->nfiles != 2) return usage_error("distance takes two files");
     int pieces = o->pieces < 0 ? PX_PIECES_TRIANGLES : o->pieces;
-    px_model *a = load_model(o->files[0], pieces, o->scale);
+    px_model *a = load_model(o->files[0], pieces, o->scale, o->tolerance);
     if (!a) return 1;
-    px_model *b = load_model(o->files[1], pieces, o->scale);
+    px_model *b = load_model(o->files[1], pieces, o->scale, o->tolerance);
     if (!b) {
         px_model_destroy(a);
         return 1;

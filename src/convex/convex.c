@@ -387,8 +387,57 @@ static px_status check_options(const px_convex_options *o, px_allocator *alloc, 
     return pxi_allocator_resolve(o->allocator, alloc, err);
 }
 
+/* Points welded on a grid of cell w: points in one cell are kept once (the
+ * first). Returns the count kept in out (3 doubles each, allocated). */
+typedef struct weld_key {
+    int64_t k[3];
+    size_t i;
+} weld_key;
+
+static int weld_cmp(const void *pa, const void *pb) {
+    const weld_key *a = pa, *b = pb;
+    for (int j = 0; j < 3; ++j)
+        if (a->k[j] != b->k[j]) return a->k[j] < b->k[j] ? -1 : 1;
+    return a->i < b->i ? -1 : a->i > b->i;
+}
+
+static size_t weld_points(const px_allocator *alloc, const double *xyz, size_t count, double w,
+                          double **out) {
+    *out = NULL;
+    weld_key *keys = pxi_alloc_array(alloc, count, sizeof *keys);
+    double *kept = pxi_alloc_array(alloc, count, 3 * sizeof *kept);
+    if (!keys || !kept) {
+        pxi_free(alloc, keys, count * sizeof *keys);
+        pxi_free(alloc, kept, count * 3 * sizeof *kept);
+        return 0;
+    }
+    for (size_t i = 0; i < count; ++i) {
+        for (int j = 0; j < 3; ++j) keys[i].k[j] = (int64_t)floor(xyz[3 * i + j] / w);
+        keys[i].i = i;
+    }
+    qsort(keys, count, sizeof *keys, weld_cmp);
+    size_t n = 0;
+    for (size_t i = 0; i < count; ++i) {
+        if (i > 0 && !weld_cmp(&(weld_key){{keys[i].k[0], keys[i].k[1], keys[i].k[2]}, 0},
+                               &(weld_key){{keys[i - 1].k[0], keys[i - 1].k[1], keys[i - 1].k[2]}, 0}))
+            continue;
+        memcpy(kept + 3 * n++, xyz + 3 * keys[i].i, 3 * sizeof *kept);
+    }
+    pxi_free(alloc, keys, count * sizeof *keys);
+    *out = kept;
+    return n;
+}
+
+static px_convex *convex_create(const double *xyz, size_t count, const px_convex_options *options, int weld,
+                                px_error *err);
+
 px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,
                             px_error *err) {
+    return convex_create(xyz, count, options, 1, err);
+}
+
+static px_convex *convex_create(const double *xyz, size_t count, const px_convex_options *options, int weld,
+                                px_error *err) {
     pxi_error_clear(err);
     px_allocator alloc;
     if (check_options(options, &alloc, err) != PX_OK) return NULL;
@@ -451,6 +500,35 @@ px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_opt
         static const char *what[] = {"a point", "a segment", "a polygon", "a solid"};
         px_error why;
         validate_local(c, &why);
+        if (weld && c->dim == 3) {
+            /* Often the cause is points a few ulps apart (cut points
+             * computed twice, scans): their tiny faces have normals of
+             * noise. Welded within 2^-40 of the points' extent (the hull
+             * moves by at most that), the set is tried once more. */
+            double lo[3], hi[3], ext = 0.0;
+            for (int j = 0; j < 3; ++j) lo[j] = hi[j] = xyz[j];
+            for (size_t i = 1; i < count; ++i)
+                for (int j = 0; j < 3; ++j) {
+                    lo[j] = fmin(lo[j], xyz[3 * i + j]);
+                    hi[j] = fmax(hi[j], xyz[3 * i + j]);
+                }
+            for (int j = 0; j < 3; ++j) ext = fmax(ext, hi[j] - lo[j]);
+            double w = ldexp(ext, -40);
+            double *kept = NULL;
+            size_t n = isfinite(w) && w > 0.0 &&
+                               fmax(fabs(lo[0]), fmax(fabs(lo[1]), fabs(lo[2]))) / w < 0x1p60 &&
+                               fmax(fabs(hi[0]), fmax(fabs(hi[1]), fabs(hi[2]))) / w < 0x1p60
+                           ? weld_points(&alloc, xyz, count, w, &kept)
+                           : 0;
+            if (kept && n < count) {
+                px_convex_destroy(c);
+                px_convex *again = convex_create(kept, n, options, 0, err);
+                pxi_free(&alloc, kept, count * 3 * sizeof *kept);
+                if (again) return again;
+                return NULL;
+            }
+            pxi_free(&alloc, kept, count * 3 * sizeof *kept);
+        }
         st = pxi_error(err, PX_ERR_DEGENERATE,
                        "px_convex_create: the hull is %s but too thin for double precision (%s)",
                        what[c->dim <= 3 ? c->dim : 3], why.message);

@@ -24,3 +24,4 @@ _Static_assert(sizeof(px_mesh_node) == 2 * sizeof(void *), "px_mesh_node");
 _Static_assert(sizeof(px_mesh_info) == 72, "px_mesh_info");
 /* pointers, sizes and a double: fixed where pointers are 64-bit */
 _Static_assert(sizeof(px_mesh_desc) == 88 || sizeof(void *) != 8, "px_mesh_desc");
+_Static_assert(sizeof(px_model_options) == 56 || sizeof(void *) != 8, "px_model_options");

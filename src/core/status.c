@@ -12,6 +12,7 @@ const char *px_status_string(px_status status) {
     case PX_ERR_IO: return "PX_ERR_IO";
     case PX_ERR_RANGE: return "PX_ERR_RANGE";
     case PX_ERR_INTERNAL: return "PX_ERR_INTERNAL";
+    case PX_ERR_CANCELLED: return "PX_ERR_CANCELLED";
     }
     return "PX_ERR_UNKNOWN";
 }

@@ -189,13 +189,18 @@ static uint32_t build_node(builder *b, uint32_t lo, uint32_t hi, uint32_t depth)
 
 /* ---- Construction ------------------------------------------------------- */
 
-static px_model *model_alloc(const px_model_options *options, px_error *err, px_allocator *alloc) {
+px_model *pxi_model_alloc(const px_model_options *options, px_error *err, px_allocator *alloc) {
     if (options) {
         for (size_t i = 0; i < sizeof options->reserved / sizeof options->reserved[0]; ++i) {
             if (options->reserved[i]) {
                 pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model: options.reserved[%zu] is not zero", i);
                 return NULL;
             }
+        }
+        if (options->pieces != PX_PIECES_APPROXIMATE && (options->tolerance != 0.0 || options->progress)) {
+            pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                      "px_model: options.tolerance and progress are for PX_PIECES_APPROXIMATE only");
+            return NULL;
         }
     }
     if (pxi_allocator_resolve(options ? options->allocator : NULL, alloc, err) != PX_OK) return NULL;
@@ -229,7 +234,7 @@ void px_model_destroy(px_model *m) {
 
 /* Builds the tree over m->n_leaves leaves (convex: the pieces of a convex
  * tree, NULL for triangles); takes ownership of the pieces. */
-static px_status build_tree(px_model *m, px_convex **convex, int hulls, px_error *err) {
+px_status pxi_model_build_tree(px_model *m, px_convex **convex, int hulls, px_error *err) {
     builder b;
     memset(&b, 0, sizeof b);
     b.m = m;
@@ -367,7 +372,7 @@ px_status pxi_model_convex_reps(px_model *m, px_convex **convex, px_error *err) 
     return PX_OK;
 }
 
-static px_model *finish(px_model *m, px_status st, px_error *err) {
+px_model *pxi_model_finish(px_model *m, px_status st, px_error *err) {
     if (st != PX_OK) {
         px_model_destroy(m);
         return NULL;
@@ -394,7 +399,7 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
     }
     if (pxi_model_check_range(xyz, piece_end[piece_count - 1], 0, err) != PX_OK) return NULL;
     px_allocator alloc;
-    px_model *m = model_alloc(options, err, &alloc);
+    px_model *m = pxi_model_alloc(options, err, &alloc);
     if (!m) return NULL;
     m->pieces = PX_PIECES_POINTS;
     m->n_leaves = piece_count;
@@ -428,13 +433,13 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
         }
         if (st == PX_OK) st = pxi_model_convex_reps(m, convex, err);
         if (st == PX_OK) {
-            st = build_tree(m, convex, 1, err);
+            st = pxi_model_build_tree(m, convex, 1, err);
         } else {
             for (uint32_t i = 0; i < piece_count; ++i) px_convex_destroy(convex[i]);
         }
     }
     pxi_free(&alloc, convex, (size_t)piece_count * sizeof *convex);
-    return finish(m, st, err);
+    return pxi_model_finish(m, st, err);
 }
 
 px_status pxi_model_check_range(const double *xyz, size_t n, int triangles, px_error *err) {
@@ -488,7 +493,7 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
     memset(&o, 0, sizeof o);
     o.allocator = alloc_in;
     px_allocator alloc;
-    px_model *m = model_alloc(&o, err, &alloc);
+    px_model *m = pxi_model_alloc(&o, err, &alloc);
     if (!m) return NULL;
     m->pieces = PX_PIECES_TRIANGLES;
     px_status st = pxi_model_check_range(xyz, nv, 1, err);
@@ -509,143 +514,8 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
         for (uint32_t p = 0; closed && p < n_parts; ++p) m->solid_parts += closed[p] != 0;
         st = pxi_model_triangle_reps(m, err);
     }
-    if (st == PX_OK) st = build_tree(m, NULL, hulls, err);
-    return finish(m, st, err);
-}
-
-/* h and h_overlap of a part's hull: a scratch triangle tree of the part
- * (indices made local to its vertex range), measured by reach.c. */
-static px_status part_bounds(const px_allocator *alloc, const px_convex *hull, const double *xyz,
-                             const uint32_t *tri, const px_mesh_part *mp, double *h, double *h_overlap,
-                             px_error *err) {
-    *h = *h_overlap = 0.0;
-    if (mp->triangle_count == 0) return PX_OK;
-    size_t n = (size_t)mp->triangle_count * 3;
-    uint32_t *local = pxi_alloc_array(alloc, n, sizeof *local);
-    if (!local) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
-    for (size_t i = 0; i < n; ++i) local[i] = tri[3 * (size_t)mp->first_triangle + i] - mp->first_vertex;
-    px_model *tree = pxi_model_from_triangles(xyz + 3 * (size_t)mp->first_vertex, mp->vertex_count, local,
-                                              mp->triangle_count, NULL, NULL, 0, 0, alloc, err);
-    pxi_free(alloc, local, n * sizeof *local);
-    if (!tree) return err ? err->code : PX_ERR_OUT_OF_MEMORY;
-    px_status st = pxi_part_reach(alloc, hull, tree, h, h_overlap, err);
-    px_model_destroy(tree);
-    return st;
-}
-
-px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options *options, px_error *err) {
-    if (!mesh) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_mesh: mesh is NULL");
-        return NULL;
-    }
-    for (size_t i = 0; options && i < sizeof options->reserved / sizeof options->reserved[0]; ++i) {
-        if (options->reserved[i]) {
-            pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                      "px_model_create_from_mesh: options.reserved[%zu] is not zero", i);
-            return NULL;
-        }
-    }
-    uint32_t pieces = options ? options->pieces : PX_PIECES_PARTS;
-    if (pieces != PX_PIECES_PARTS && pieces != PX_PIECES_TRIANGLES) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                  "px_model_create_from_mesh: options.pieces %u is not PARTS or TRIANGLES", pieces);
-        return NULL;
-    }
-    uint32_t np = px_mesh_part_count(mesh), nv = px_mesh_vertex_count(mesh),
-             nt = px_mesh_triangle_count(mesh);
-    const double *xyz = px_mesh_vertices(mesh);
-    const uint32_t *tri = px_mesh_triangles(mesh);
-    if (np == 0 || nv == 0) {
-        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_model_create_from_mesh: the mesh is empty");
-        return NULL;
-    }
-    px_allocator alloc;
-    if (pxi_allocator_resolve(options ? options->allocator : NULL, &alloc, err) != PX_OK) return NULL;
-    if (pieces == PX_PIECES_TRIANGLES) {
-        uint32_t *part = pxi_alloc_array(&alloc, nt ? nt : 1, sizeof *part);
-        uint8_t *closed = pxi_alloc_array(&alloc, np, 1);
-        px_model *m = NULL;
-        if (!part || !closed) {
-            pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
-        } else {
-            int ok = 1;
-            /* Triangles outside every part (px_mesh_create allows them) are
-             * leaves of no part: surfaces, never solid. */
-            for (uint32_t t = 0; t < nt; ++t) part[t] = PXI_NONE;
-            for (uint32_t p = 0; p < np && ok; ++p) {
-                px_mesh_part mp;
-                px_mesh_get_part(mesh, p, &mp);
-                closed[p] = (uint8_t)(mp.closed != 0);
-                if (mp.triangle_count == 0) {
-                    pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                              "px_model_create_from_mesh: part %u ('%s') has no triangles; build it with "
-                              "PX_PIECES_PARTS",
-                              p, mp.name);
-                    ok = 0;
-                }
-                for (uint32_t t = 0; t < mp.triangle_count; ++t) part[mp.first_triangle + t] = p;
-            }
-            if (ok) m = pxi_model_from_triangles(xyz, nv, tri, nt, part, closed, np, 1, &alloc, err);
-        }
-        pxi_free(&alloc, part, (size_t)(nt ? nt : 1) * sizeof *part);
-        pxi_free(&alloc, closed, np);
-        return m;
-    }
-    /* One hull per part: every triangle must belong to a part, or the
-     * model would not stand for it. */
-    uint64_t covered = 0;
-    for (uint32_t p = 0; p < np; ++p) {
-        px_mesh_part mp;
-        px_mesh_get_part(mesh, p, &mp);
-        covered += mp.triangle_count;
-    }
-    if (covered != nt) {
-        pxi_error(
-            err, PX_ERR_INVALID_ARGUMENT,
-            "px_model_create_from_mesh: %llu of the mesh's %u triangles belong to no part; PX_PIECES_PARTS "
-            "needs every triangle in a part",
-            (unsigned long long)(nt - covered), nt);
-        return NULL;
-    }
-    px_model *m = model_alloc(options, err, &alloc);
-    if (!m) return NULL;
-    m->pieces = PX_PIECES_PARTS;
-    m->n_leaves = np;
-    m->leaves = pxi_alloc_array(&alloc, np, sizeof *m->leaves);
-    px_convex **convex = pxi_alloc_array(&alloc, np, sizeof *convex);
-    px_status st = PX_OK;
-    if (!m->leaves || !convex) {
-        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
-    } else {
-        m->bytes += (size_t)np * sizeof *m->leaves;
-        memset(convex, 0, (size_t)np * sizeof *convex);
-        px_convex_options co;
-        memset(&co, 0, sizeof co);
-        co.allocator = &m->alloc;
-        for (uint32_t p = 0; p < np && st == PX_OK; ++p) {
-            px_mesh_part mp;
-            px_mesh_get_part(mesh, p, &mp);
-            px_error e;
-            convex[p] = px_convex_create(xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count, &co, &e);
-            if (!convex[p]) {
-                st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'): %s", p, mp.name,
-                               e.message);
-                break;
-            }
-            m->leaves[p].part = p;
-            m->leaves[p].tri = PXI_NONE;
-            st = part_bounds(&alloc, convex[p], xyz, tri, &mp, &m->leaves[p].h, &m->leaves[p].h_overlap, err);
-            m->max_h = fmax(m->max_h, m->leaves[p].h_overlap);
-        }
-        if (st == PX_OK) st = pxi_model_convex_reps(m, convex, err);
-        if (st == PX_OK) {
-            st = build_tree(m, convex, 1, err);
-        } else {
-            for (uint32_t i = 0; i < np; ++i) px_convex_destroy(convex[i]);
-        }
-    }
-    pxi_free(&alloc, convex, (size_t)np * sizeof *convex);
-    return finish(m, st, err);
+    if (st == PX_OK) st = pxi_model_build_tree(m, NULL, hulls, err);
+    return pxi_model_finish(m, st, err);
 }
 
 /* ---- Accessors ---------------------------------------------------------- */

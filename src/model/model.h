@@ -87,11 +87,29 @@ px_model *pxi_model_from_triangles(const double *xyz, uint32_t nv, const uint32_
                                    const uint32_t *part, const uint8_t *closed, uint32_t n_parts, int hulls,
                                    const px_allocator *alloc, px_error *err);
 
-/* Certified bounds of a part hull (reach.c): h over the hull's boundary,
- * h_overlap over the whole hull, of the distance to the part's triangles,
- * given as a triangle tree (built without hulls). */
-px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, double *h,
-                         double *h_overlap, px_error *err);
+/* Certified bounds of a part hull or piece (reach.c): h over the hull's
+ * boundary, h_overlap over the whole hull, of the distance to the part,
+ * given as a triangle tree (built without hulls): to its triangles, or with
+ * `solid` to the solid its closed triangles bound (0 inside; the tree needs
+ * its solid flags). Refinement stops below `floor` (absolute; 0: refine to
+ * 1 % of the largest distance seen). */
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, int solid,
+                         double floor, double *h, double *h_overlap, px_error *err);
+
+/* The builder's steps (build.c), shared with from_mesh.c and approx.c: a
+ * model with its options checked; the tree over m->n_leaves leaves
+ * (`convex`: their hulls, taken over, or NULL for triangles); the model or
+ * NULL (freed) by status. */
+px_model *pxi_model_alloc(const px_model_options *options, px_error *err, px_allocator *alloc);
+px_status pxi_model_build_tree(px_model *m, px_convex **convex, int hulls, px_error *err);
+px_model *pxi_model_finish(px_model *m, px_status st, px_error *err);
+
+/* Approximate decomposition (approx.c): the leaves, hulls and bounds of a
+ * PX_PIECES_APPROXIMATE model of `mesh`, into m (m->leaves, m->n_leaves)
+ * and *convex (one hull per leaf, owned by the caller until the tree takes
+ * them). */
+px_status pxi_model_approximate(px_model *m, const px_mesh *mesh, const px_model_options *options,
+                                px_convex ***convex, px_error *err);
 
 /* Distance from p (body frame) to the nearest triangle of a triangle tree,
  * at most `limit` (returns `limit` when none is nearer); *tri gets the

@@ -498,7 +498,7 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
             BAD(r, "px_model_load: '%s': reserved header field %d is not zero", r->name, i);
             return NULL;
         }
-    if (pieces > PX_PIECES_POINTS || nl == 0 || nl > (1u << 30) || !(max_h >= 0.0) || !isfinite(max_h)) {
+    if (pieces > PX_PIECES_APPROXIMATE || nl == 0 || nl > (1u << 30) || !(max_h >= 0.0) || !isfinite(max_h)) {
         BAD(r, "px_model_load: '%s': bad header (pieces %u, leaves %u)", r->name, pieces, nl);
         return NULL;
     }
@@ -525,9 +525,9 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     px_allocator alloc;
     if (options) {
         for (size_t i = 0; i < sizeof options->reserved / sizeof options->reserved[0]; ++i)
-            if (options->reserved[i] || options->pieces) {
+            if (options->reserved[i] || options->pieces || options->tolerance != 0.0 || options->progress) {
                 r->st = pxi_error(r->err, PX_ERR_INVALID_ARGUMENT,
-                                  "px_model_load: options.reserved or pieces set");
+                                  "px_model_load: options.reserved, pieces, tolerance or progress set");
                 return NULL;
             }
     }

@@ -16,7 +16,16 @@
  *
  * h_overlap bounds the same over the whole hull (inside too, used when two
  * pieces overlap), by cells of space refined the same way: a cell of
- * half-diagonal r whose centre is at distance f bounds f + r. */
+ * half-diagonal r whose centre is at distance f bounds f + r.
+ *
+ * Pieces of a closed part (approximate decomposition) are measured against
+ * the part's solid instead: the distance is 0 inside it. That distance is
+ * 1-Lipschitz too and at most the distance to the triangles, so the same
+ * bounds hold with it (the same-triangle rule with the distances to the
+ * triangles); a triangle or cell whose centre is inside and farther from
+ * the triangles than its radius lies wholly inside (bound 0). Refinement
+ * also stops once a bound is below `floor`, an absolute precision the
+ * caller asks for (0 for part hulls). */
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
@@ -68,8 +77,10 @@ enum { R_BUDGET = 200000, R_FACE_BUDGET = 20000, R_VOLUME_BUDGET = 40000, R_HEAP
 
 typedef struct rpoint {
     px_vec3 p;
-    double d;
+    double d;  /* distance to the part (its solid, in solid mode) */
+    double ds; /* distance to its triangles */
     uint32_t tri;
+    int inside; /* solid mode: p lies inside the solid */
 } rpoint;
 
 typedef struct rtri {
@@ -132,30 +143,48 @@ static void rh_pop(rheap *h, void *rec) {
 
 typedef struct reach {
     const px_model *tree;
+    int solid;    /* distances to the tree's solid (0 inside), not its triangles */
+    double floor; /* bounds below this need no refinement */
     double known; /* largest distance seen at a point of the set */
     double bound; /* largest bound of the parts refined so far */
     uint32_t evals;
 } reach;
 
+/* Refinement goes on while a bound exceeds this. */
+static double enough(const reach *r) { return fmax(r->known * 1.01, r->floor); }
+
 static rpoint eval(reach *r, px_vec3 p) {
     rpoint out;
     out.p = p;
-    out.d = pxi_model_nearest(r->tree, p, INFINITY, &out.tri);
+    out.ds = out.d = pxi_model_nearest(r->tree, p, INFINITY, &out.tri);
+    out.inside = 0;
+    /* Near the triangles the distance to them is bound enough: the ray
+     * cast is spent only where being inside matters. */
+    if (r->solid && out.ds > 0.5 * r->floor && pxi_model_point_inside(r->tree, p)) {
+        out.d = 0.0;
+        out.inside = 1;
+    }
     r->evals++;
     return out;
 }
 
 static void tri_bound(reach *r, rtri *t) {
+    double same = INFINITY;
     if (t->c[0].tri == t->c[1].tri && t->c[1].tri == t->c[2].tri) {
-        t->ub = fmax(t->c[0].d, fmax(t->c[1].d, t->c[2].d));
-        return;
+        same = fmax(t->c[0].ds, fmax(t->c[1].ds, t->c[2].ds));
+        if (!r->solid) {
+            t->ub = same;
+            return;
+        }
     }
     px_vec3 g = pxi_scale(pxi_add(pxi_add(t->c[0].p, t->c[1].p), t->c[2].p), 1.0 / 3.0);
     double rad = 0.0;
     for (int k = 0; k < 3; ++k) rad = fmax(rad, pxi_len(pxi_sub(t->c[k].p, g)));
     rpoint pg = eval(r, g);
     r->known = fmax(r->known, pg.d);
-    t->ub = pg.d + rad;
+    /* Inside, and the ball around g that holds the triangle misses the
+     * surface: the whole triangle is inside. */
+    t->ub = pg.inside && pg.ds > rad ? 0.0 : fmin(same, pg.d + rad);
 }
 
 /* Refines one triangle of the boundary best first; returns its bound. */
@@ -166,7 +195,7 @@ static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budge
     while (h->n > 0) {
         rtri t;
         rh_pop(h, &t);
-        if (t.ub <= r->known * 1.01 || r->evals - start + 7 > budget || h->n + 4 > h->cap) return t.ub;
+        if (t.ub <= enough(r) || r->evals - start + 7 > budget || h->n + 4 > h->cap) return t.ub;
         rpoint m01 = eval(r, pxi_scale(pxi_add(t.c[0].p, t.c[1].p), 0.5));
         rpoint m12 = eval(r, pxi_scale(pxi_add(t.c[1].p, t.c[2].p), 0.5));
         rpoint m20 = eval(r, pxi_scale(pxi_add(t.c[2].p, t.c[0].p), 0.5));
@@ -193,7 +222,7 @@ static double boundary_reach(reach *r, const px_convex *hull, rheap *h) {
             px_convex_face_vertex(hull, f, 0, &v0);
             px_vec3 p0;
             px_convex_vertex(hull, v0, &p0);
-            rpoint c0 = {p0, 0.0, PXI_NONE};
+            rpoint c0 = {p0, 0.0, 0.0, PXI_NONE, 0};
             if (pass == 1) {
                 c0 = eval(r, p0);
                 r->known = fmax(r->known, c0.d);
@@ -242,7 +271,7 @@ static int push_cell(reach *r, const px_convex *hull, rheap *h, px_vec3 c, px_ve
     if (pm > rad) return 1; /* the cell misses the hull */
     rpoint e = eval(r, c);
     if (pm <= 0.0) r->known = fmax(r->known, e.d);
-    rcell cell = {c, half, e.d + rad};
+    rcell cell = {c, half, e.inside && e.ds > rad ? 0.0 : e.d + rad};
     return rh_push(h, &cell);
 }
 
@@ -269,7 +298,7 @@ static double volume_reach(reach *r, const px_convex *hull, rheap *h) {
     while (h->n > 0) {
         rcell cell;
         rh_pop(h, &cell);
-        if (cell.ub <= r->known * 1.01 || r->evals + 8 > R_VOLUME_BUDGET || h->n + 8 > h->cap)
+        if (cell.ub <= enough(r) || r->evals + 8 > R_VOLUME_BUDGET || h->n + 8 > h->cap)
             return fmax(cell.ub, r->known);
         px_vec3 hh = pxi_scale(cell.half, 0.5);
         for (int s = 0; s < 8; ++s) {
@@ -281,8 +310,8 @@ static double volume_reach(reach *r, const px_convex *hull, rheap *h) {
     return r->known;
 }
 
-px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, double *h,
-                         double *h_overlap, px_error *err) {
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, int solid,
+                         double floor, double *h, double *h_overlap, px_error *err) {
     *h = *h_overlap = 0.0;
     size_t rec = sizeof(rtri) > sizeof(rcell) ? sizeof(rtri) : sizeof(rcell);
     rheap heap = {NULL, sizeof(rtri), offsetof(rtri, ub), 0, R_HEAP};
@@ -292,7 +321,7 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
     px_bounds bd;
     px_convex_bounds(hull, NULL, &bd);
     double slack = 16.0 * DBL_EPSILON * (bd.radius + pxi_len(bd.center));
-    reach r = {tree, 0.0, 0.0, 0};
+    reach r = {tree, solid && tree->solid_parts > 0, floor > 0.0 ? floor : 0.0, 0.0, 0.0, 0};
     *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
     heap.n = 0;
     heap.size = sizeof(rcell);

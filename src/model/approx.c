@@ -1,0 +1,228 @@
+/* PX_PIECES_APPROXIMATE: each part of a mesh is cut into convex pieces
+ * whose hulls stay within a tolerance of it (convexdecomp's pxcd_decompose:
+ * recursive plane cuts chosen to lower the worst concavity, then a merge
+ * pass; after CoACD, Wei et al., SIGGRAPH 2022), and every piece becomes a
+ * leaf with a certified bound h.
+ *
+ * The decomposer's concavity is sampled, so it is not trusted: h is
+ * measured again here by reach.c, against the part's solid when the part is
+ * closed (cut caps lie inside it: distance 0) and against its triangles
+ * when it is open. A piece whose certified h exceeds the tolerance is kept
+ * (the bracket stays true, only wider) and counted in the model's max_h. */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "convex/convex.h"
+#include "core/core.h"
+#include "model/model.h"
+#include "pxcd.h"
+
+/* Progress over the whole mesh: parts weighted by their triangles. */
+typedef struct progress {
+    const px_model_options *o;
+    double done, share; /* fraction finished before this part, this part's share */
+    int cancelled;
+} progress;
+
+static int part_progress(void *user, int stage, double fraction) {
+    progress *p = user;
+    /* Cutting is most of the work; merging and hulls share the rest. */
+    double f = stage == PXCD_STAGE_CUT     ? 0.8 * fraction
+               : stage == PXCD_STAGE_MERGE ? 0.8 + 0.15 * fraction
+                                           : 0.95 + 0.05 * fraction;
+    if (p->o->progress && p->o->progress(p->o->progress_user, p->done + p->share * f)) p->cancelled = 1;
+    return p->cancelled;
+}
+
+/* The part's triangle tree for measuring h, with its solid when closed. */
+static px_model *part_tree(const px_allocator *alloc, const double *xyz, const uint32_t *tri,
+                           const px_mesh_part *mp, px_error *err) {
+    size_t n = (size_t)mp->triangle_count * 3;
+    uint32_t *local = pxi_alloc_array(alloc, n, sizeof *local);
+    uint32_t *part = pxi_alloc_array(alloc, mp->triangle_count, sizeof *part);
+    px_model *tree = NULL;
+    if (!local || !part) {
+        pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    } else {
+        for (size_t i = 0; i < n; ++i) local[i] = tri[3 * (size_t)mp->first_triangle + i] - mp->first_vertex;
+        memset(part, 0, (size_t)mp->triangle_count * sizeof *part);
+        uint8_t closed = (uint8_t)(mp->closed != 0);
+        tree = pxi_model_from_triangles(xyz + 3 * (size_t)mp->first_vertex, mp->vertex_count, local,
+                                        mp->triangle_count, part, &closed, 1, 0, alloc, err);
+    }
+    pxi_free(alloc, local, n * sizeof *local);
+    pxi_free(alloc, part, (size_t)mp->triangle_count * sizeof *part);
+    return tree;
+}
+
+static px_status pxcd_to_status(pxcd_status s) {
+    switch (s) {
+    case PXCD_OK: return PX_OK;
+    case PXCD_OUT_OF_MEMORY: return PX_ERR_OUT_OF_MEMORY;
+    case PXCD_CANCELLED: return PX_ERR_CANCELLED;
+    case PXCD_INVALID_INPUT: return PX_ERR_INVALID_ARGUMENT;
+    default: return PX_ERR_INTERNAL;
+    }
+}
+
+/* Appends leaf `i` (piece of part p) to the arrays, growing them. */
+static int grow(px_model *m, px_convex ***convex, uint32_t *cap, uint32_t need) {
+    if (need <= *cap) return 1;
+    uint32_t nc = *cap ? *cap : 16;
+    while (nc < need) nc *= 2;
+    pxi_mleaf *l = pxi_alloc_array(&m->alloc, nc, sizeof *l);
+    px_convex **c = pxi_alloc_array(&m->alloc, nc, sizeof *c);
+    if (!l || !c) {
+        pxi_free(&m->alloc, l, (size_t)nc * sizeof *l);
+        pxi_free(&m->alloc, c, (size_t)nc * sizeof *c);
+        return 0;
+    }
+    if (m->n_leaves) {
+        memcpy(l, m->leaves, (size_t)m->n_leaves * sizeof *l);
+        memcpy(c, *convex, (size_t)m->n_leaves * sizeof *c);
+    }
+    pxi_free(&m->alloc, m->leaves, (size_t)*cap * sizeof *l);
+    pxi_free(&m->alloc, *convex, (size_t)*cap * sizeof *c);
+    m->leaves = l;
+    *convex = c;
+    *cap = nc;
+    return 1;
+}
+
+/* Decomposes part p into leaves appended to m. */
+static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, double tolerance,
+                                  progress *pr, px_convex ***convex, uint32_t *cap, px_error *err) {
+    px_mesh_part mp;
+    px_mesh_get_part(mesh, p, &mp);
+    const double *xyz = px_mesh_vertices(mesh);
+    const uint32_t *tri = px_mesh_triangles(mesh);
+    px_convex_options co;
+    memset(&co, 0, sizeof co);
+    co.allocator = &m->alloc;
+    px_error e;
+    if (mp.triangle_count == 0) {
+        /* A point set stands for its hull, as with PX_PIECES_PARTS. */
+        if (!grow(m, convex, cap, m->n_leaves + 1))
+            return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+        px_convex *c = px_convex_create(xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count, &co, &e);
+        if (!c)
+            return pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'): %s", p, mp.name,
+                             e.message);
+        (*convex)[m->n_leaves] = c;
+        m->leaves[m->n_leaves++] = (pxi_mleaf){p, PXI_NONE, 0.0, 0.0};
+        return PX_OK;
+    }
+    /* The decomposer takes the part's own vertices and local indices. */
+    size_t n = (size_t)mp.triangle_count * 3;
+    uint32_t *local = pxi_alloc_array(&m->alloc, n, sizeof *local);
+    if (!local) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    for (size_t i = 0; i < n; ++i) local[i] = tri[3 * (size_t)mp.first_triangle + i] - mp.first_vertex;
+    pxcd_decomp_options dopt;
+    memset(&dopt, 0, sizeof dopt);
+    dopt.tolerance = tolerance;
+    dopt.progress = part_progress;
+    dopt.user = pr;
+    pxcd_decomp_result *res = NULL;
+    char msg[256] = "";
+    pxcd_status ds = pxcd_decompose(xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count, local,
+                                    mp.triangle_count, &dopt, &res, msg, sizeof msg);
+    pxi_free(&m->alloc, local, n * sizeof *local);
+    if (ds != PXCD_OK) {
+        px_status st = pxcd_to_status(ds);
+        if (st == PX_ERR_CANCELLED)
+            return pxi_error(err, st, "px_model_create_from_mesh: cancelled by the progress callback");
+        return pxi_error(err, st, "px_model_create_from_mesh: part %u ('%s'): decomposition failed: %s", p,
+                         mp.name, msg);
+    }
+    px_status st = PX_OK;
+    px_model *tree = part_tree(&m->alloc, xyz, tri, &mp, err);
+    if (!tree) st = err ? err->code : PX_ERR_OUT_OF_MEMORY;
+    /* Bounds are refined to 5 % of the tolerance (absolute, in the part's
+     * units), finer where a piece reaches farther. */
+    double floor = 0.05 * tolerance * res->diagonal;
+    for (size_t i = 0; st == PX_OK && i < res->piece_count; ++i) {
+        const pxcd_decomp_piece *pc = &res->pieces[i];
+        if (!grow(m, convex, cap, m->n_leaves + 1)) {
+            st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+            break;
+        }
+        px_convex *c = px_convex_create(pc->vertices, pc->vertex_count, &co, &e);
+        if (!c) {
+            st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'), piece %zu: %s", p,
+                           mp.name, i, e.message);
+            break;
+        }
+        pxi_mleaf leaf = {p, PXI_NONE, 0.0, 0.0};
+        st = pxi_part_reach(&m->alloc, c, tree, mp.closed != 0, floor, &leaf.h, &leaf.h_overlap, err);
+        if (st != PX_OK) {
+            px_convex_destroy(c);
+            break;
+        }
+        (*convex)[m->n_leaves] = c;
+        m->leaves[m->n_leaves++] = leaf;
+        m->max_h = fmax(m->max_h, leaf.h_overlap);
+    }
+    px_model_destroy(tree);
+    pxcd_decomp_free(res);
+    return st;
+}
+
+px_status pxi_model_approximate(px_model *m, const px_mesh *mesh, const px_model_options *options,
+                                px_convex ***convex, px_error *err) {
+    double tolerance = options->tolerance != 0.0 ? options->tolerance : PX_MODEL_DEFAULT_TOLERANCE;
+    if (!isfinite(tolerance) || !(tolerance > 0.0 && tolerance <= 1.0))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_model_create_from_mesh: options.tolerance %g is not in (0, 1]",
+                         options->tolerance);
+    uint32_t np = px_mesh_part_count(mesh), cap = 0;
+    double total = 0.0;
+    for (uint32_t p = 0; p < np; ++p) {
+        px_mesh_part mp;
+        px_mesh_get_part(mesh, p, &mp);
+        total += (double)mp.triangle_count + 1.0;
+    }
+    *convex = NULL;
+    m->n_leaves = 0;
+    progress pr = {options, 0.0, 0.0, 0};
+    px_status st = PX_OK;
+    for (uint32_t p = 0; p < np && st == PX_OK; ++p) {
+        px_mesh_part mp;
+        px_mesh_get_part(mesh, p, &mp);
+        pr.share = ((double)mp.triangle_count + 1.0) / total;
+        st = approximate_part(m, mesh, p, tolerance, &pr, convex, &cap, err);
+        pr.done += pr.share;
+    }
+    if (st == PX_OK && options->progress && options->progress(options->progress_user, 1.0))
+        st =
+            pxi_error(err, PX_ERR_CANCELLED, "px_model_create_from_mesh: cancelled by the progress callback");
+    /* The model keeps exactly n_leaves leaves and hulls (its byte count and
+     * the destroy call know no capacity). */
+    uint32_t n = m->n_leaves;
+    if (st == PX_OK && n == 0) st = pxi_error(err, PX_ERR_INTERNAL, "px_model_create_from_mesh: no pieces");
+    pxi_mleaf *l = NULL;
+    px_convex **c = NULL;
+    if (st == PX_OK) {
+        l = pxi_alloc_array(&m->alloc, n, sizeof *l);
+        c = pxi_alloc_array(&m->alloc, n, sizeof *c);
+        if (!l || !c) st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    }
+    if (st == PX_OK) {
+        memcpy(l, m->leaves, (size_t)n * sizeof *l);
+        memcpy(c, *convex, (size_t)n * sizeof *c);
+    } else {
+        for (uint32_t i = 0; i < n; ++i) px_convex_destroy((*convex)[i]);
+        pxi_free(&m->alloc, l, (size_t)n * sizeof *l);
+        pxi_free(&m->alloc, c, (size_t)n * sizeof *c);
+        l = NULL;
+        c = NULL;
+        n = 0;
+    }
+    pxi_free(&m->alloc, m->leaves, (size_t)cap * sizeof *m->leaves);
+    pxi_free(&m->alloc, *convex, (size_t)cap * sizeof **convex);
+    m->leaves = l;
+    m->n_leaves = n;
+    *convex = c;
+    m->bytes += (size_t)n * sizeof *l;
+    return st;
+}

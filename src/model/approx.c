@@ -90,6 +90,42 @@ static int grow(px_model *m, px_convex ***convex, uint32_t *cap, uint32_t need) 
     return 1;
 }
 
+/* The hull of a piece's points. Points a few ulps off a cut plane can make
+ * faces double precision cannot hold (px_convex_create refuses them as too
+ * thin); the piece is then replaced by the hull of the corners of the grid
+ * cells (side s, a power of two) that hold its points: it contains the
+ * piece, grows it by at most s sqrt 3 (which the certified h then counts),
+ * and its corners are exact multiples of s, so its faces are not slivers.
+ * s grows from 2^-30 of the piece's extent up to `max_s`. */
+static px_convex *piece_hull(const double *xyz, size_t n, double max_s, const px_convex_options *co,
+                             const px_allocator *alloc, px_error *e) {
+    px_convex *c = px_convex_create(xyz, n, co, e);
+    if (c || e->code != PX_ERR_DEGENERATE || n > ((size_t)1 << 22)) return c;
+    double ext = 0.0, big = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        double lo = xyz[j], hi = xyz[j];
+        for (size_t i = 1; i < n; ++i) lo = fmin(lo, xyz[3 * i + j]), hi = fmax(hi, xyz[3 * i + j]);
+        ext = fmax(ext, hi - lo);
+        big = fmax(big, fmax(fabs(lo), fabs(hi)));
+    }
+    double *corners = pxi_alloc_array(alloc, 8 * n, 3 * sizeof *corners);
+    if (!corners) return NULL;
+    px_error first = *e;
+    for (double s = ldexp(1.0, ilogb(ext) - 30); s <= max_s && !c; s *= 16.0) {
+        if (!(big / s < 0x1p50)) break; /* cells must stay exact */
+        for (size_t i = 0; i < n; ++i)
+            for (int k = 0; k < 8; ++k)
+                for (int j = 0; j < 3; ++j) {
+                    double lo = floor(xyz[3 * i + j] / s) * s;
+                    corners[3 * (8 * i + (size_t)k) + (size_t)j] = (k >> j) & 1 ? lo + s : lo;
+                }
+        c = px_convex_create(corners, 8 * n, co, e);
+    }
+    pxi_free(alloc, corners, 8 * n * 3 * sizeof *corners);
+    if (!c) *e = first;
+    return c;
+}
+
 /* Decomposes part p into leaves appended to m. */
 static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, double tolerance,
                                   progress *pr, px_convex ***convex, uint32_t *cap, px_error *err) {
@@ -147,7 +183,8 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
             st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
             break;
         }
-        px_convex *c = px_convex_create(pc->vertices, pc->vertex_count, &co, &e);
+        px_convex *c =
+            piece_hull(pc->vertices, pc->vertex_count, 0.125 * tolerance * res->diagonal, &co, &m->alloc, &e);
         if (!c) {
             st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'), piece %zu: %s", p,
                            mp.name, i, e.message);

@@ -9,10 +9,10 @@
  * max d_k of the point sum l_k q_k, which lies on that part triangle
  * (convex). Otherwise the distance being 1-Lipschitz, T is bounded by
  * dist(g) + max |v_k - g| at its centroid g. Faces of the hull that are
- * triangles of the part get bound 0 at once; others are split in four until
- * the largest bound left is within 1 % of the largest distance seen (a
- * lower bound of h) or a budget of evaluations is spent; h is the largest
- * bound left, certified either way.
+ * triangles of the part get bound 0 at once; others are split at the
+ * midpoint of their longest edge until the largest bound left is within
+ * 1 % of the largest distance seen (a lower bound of h) or a budget of
+ * evaluations is spent; h is the largest bound left, certified either way.
  *
  * h_overlap bounds the same over the whole hull (inside too, used when two
  * pieces overlap), by cells of space refined the same way: a cell of
@@ -187,7 +187,10 @@ static void tri_bound(reach *r, rtri *t) {
     t->ub = pg.inside && pg.ds > rad ? 0.0 : fmin(same, pg.d + rad);
 }
 
-/* Refines one triangle of the boundary best first; returns its bound. */
+/* Refines one triangle of the boundary best first, splitting the longest
+ * edge at its midpoint (the two halves' diameters shrink even for the
+ * slivers a fanned face is made of, where splitting in four keeps their
+ * length); returns its bound. */
 static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budget) {
     h->n = 0;
     rh_push(h, t0);
@@ -195,14 +198,18 @@ static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budge
     while (h->n > 0) {
         rtri t;
         rh_pop(h, &t);
-        if (t.ub <= enough(r) || r->evals - start + 7 > budget || h->n + 4 > h->cap) return t.ub;
-        rpoint m01 = eval(r, pxi_scale(pxi_add(t.c[0].p, t.c[1].p), 0.5));
-        rpoint m12 = eval(r, pxi_scale(pxi_add(t.c[1].p, t.c[2].p), 0.5));
-        rpoint m20 = eval(r, pxi_scale(pxi_add(t.c[2].p, t.c[0].p), 0.5));
-        r->known = fmax(r->known, fmax(m01.d, fmax(m12.d, m20.d)));
-        rtri kids[4] = {
-            {{t.c[0], m01, m20}, 0}, {{m01, t.c[1], m12}, 0}, {{m20, m12, t.c[2]}, 0}, {{m01, m12, m20}, 0}};
-        for (int k = 0; k < 4; ++k) {
+        if (t.ub <= enough(r) || r->evals - start + 3 > budget || h->n + 2 > h->cap) return t.ub;
+        int e = 0;
+        double longest = -1.0;
+        for (int k = 0; k < 3; ++k) {
+            double l = pxi_len2(pxi_sub(t.c[(k + 1) % 3].p, t.c[k].p));
+            if (l > longest) longest = l, e = k;
+        }
+        const rpoint a = t.c[e], b = t.c[(e + 1) % 3], c = t.c[(e + 2) % 3];
+        rpoint m = eval(r, pxi_scale(pxi_add(a.p, b.p), 0.5));
+        r->known = fmax(r->known, m.d);
+        rtri kids[2] = {{{a, m, c}, 0}, {{m, b, c}, 0}};
+        for (int k = 0; k < 2; ++k) {
             tri_bound(r, &kids[k]);
             rh_push(h, &kids[k]);
         }
@@ -211,10 +218,15 @@ static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budge
 }
 
 /* The hull's faces fanned into triangles, each refined with a share of the
- * budget proportional to its area. */
+ * budget proportional to what it needs at a resolution of 1 % of the
+ * hull's size: its area, plus its longest edge times that resolution (a
+ * sliver needs as many steps as its length, whatever its area). */
 static double boundary_reach(reach *r, const px_convex *hull, rheap *h) {
     uint32_t nf = px_convex_face_count(hull);
     double total_area = 0.0;
+    px_bounds bd;
+    px_convex_bounds(hull, NULL, &bd);
+    const double res = 0.01 * bd.radius;
     for (int pass = 0; pass < 2; ++pass) {
         for (uint32_t f = 0; f < nf; ++f) {
             uint32_t count, v0;
@@ -235,6 +247,9 @@ static double boundary_reach(reach *r, const px_convex *hull, rheap *h) {
                 px_convex_vertex(hull, v1, &p1);
                 px_convex_vertex(hull, v2, &p2);
                 double area = 0.5 * pxi_len(pxi_cross(pxi_sub(p1, p0), pxi_sub(p2, p0)));
+                double edge = sqrt(fmax(pxi_len2(pxi_sub(p1, p0)),
+                                        fmax(pxi_len2(pxi_sub(p2, p1)), pxi_len2(pxi_sub(p0, p2)))));
+                area += edge * res;
                 if (pass == 0) {
                     total_area += area;
                     continue;
@@ -322,6 +337,18 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
     px_convex_bounds(hull, NULL, &bd);
     double slack = 16.0 * DBL_EPSILON * (bd.radius + pxi_len(bd.center));
     reach r = {tree, solid && tree->solid_parts > 0, floor > 0.0 ? floor : 0.0, 0.0, 0.0, 0};
+    if (r.solid) {
+        /* Against a solid the cells of space bound the boundary too (it
+         * lies in the hull), and they stay fat where the fanned faces of a
+         * large cut cap are slivers that refinement cannot shrink within
+         * its budget; cells inside the solid cost one evaluation. */
+        heap.size = sizeof(rcell);
+        heap.off = offsetof(rcell, ub);
+        *h = *h_overlap = volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
+        pxi_free(alloc, heap.data, R_HEAP * rec);
+        if (!isfinite(*h)) return pxi_error(err, PX_ERR_INTERNAL, "px_model: piece bound h did not converge");
+        return PX_OK;
+    }
     *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
     heap.n = 0;
     heap.size = sizeof(rcell);

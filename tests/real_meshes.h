@@ -398,9 +398,11 @@ inline MeshPtr make_px_mesh(const Mesh &m, std::string *err) {
     return MeshPtr(mesh);
 }
 
-inline ModelPtr make_model(const px_mesh *mesh, uint32_t pieces, std::string *err) {
+// tolerance: PX_PIECES_APPROXIMATE's (0: the default).
+inline ModelPtr make_model(const px_mesh *mesh, uint32_t pieces, std::string *err, double tolerance = 0.0) {
     px_model_options o{};
     o.pieces = pieces;
+    o.tolerance = tolerance;
     px_error e{};
     px_model *mo = px_model_create_from_mesh(mesh, &o, &e);
     if (!mo) *err = std::string("px_model_create_from_mesh: ") + e.message;

@@ -14,7 +14,8 @@
 //   small bunny inside the elephant is checked on purpose.
 // - Part hulls (PX_PIECES_PARTS: the loader's parts for the Puma links,
 //   OBJ groups or connected components for the teapots) bracket the triangle distance: distance <= exact <=
-//   upper_bound, on the Puma links and the two teapots.
+//   upper_bound, on the Puma links and the two teapots; so do approximate
+//   pieces (PX_PIECES_APPROXIMATE at tolerance 0.02) on the Puma links.
 // Every mesh is scaled to a bounding-box diagonal of 1 (the bunny against
 // the elephant to 0.5). The CGAL meshes come from PROXIMA_MESH_DATA (filled
 // by `make deps`); when they are truly unavailable those cases print SKIP.
@@ -67,13 +68,14 @@ struct FclFpGuard {
 struct Body {
     Mesh mesh;
     rm::MeshPtr px_mesh;
-    rm::ModelPtr tri;   // PX_PIECES_TRIANGLES
-    rm::ModelPtr parts; // PX_PIECES_PARTS (bracket cases only)
+    rm::ModelPtr tri;    // PX_PIECES_TRIANGLES
+    rm::ModelPtr parts;  // PX_PIECES_PARTS (bracket cases only)
+    rm::ModelPtr approx; // PX_PIECES_APPROXIMATE (when asked for)
     std::shared_ptr<rm::FclModel> fcl;
     double radius = 0;
 };
 
-bool make_body(Body *b, bool parts) {
+bool make_body(Body *b, bool parts, double approx_tolerance = 0.0) {
     std::string err;
     b->px_mesh = rm::make_px_mesh(b->mesh, &err);
     CHECK(b->px_mesh != nullptr, "%s: %s", b->mesh.name.c_str(), err.c_str());
@@ -84,6 +86,11 @@ bool make_body(Body *b, bool parts) {
         b->parts = rm::make_model(b->px_mesh.get(), PX_PIECES_PARTS, &err);
         CHECK(b->parts != nullptr, "%s (parts): %s", b->mesh.name.c_str(), err.c_str());
         if (!b->parts) return false;
+    }
+    if (approx_tolerance > 0.0) {
+        b->approx = rm::make_model(b->px_mesh.get(), PX_PIECES_APPROXIMATE, &err, approx_tolerance);
+        CHECK(b->approx != nullptr, "%s (approximate): %s", b->mesh.name.c_str(), err.c_str());
+        if (!b->approx) return false;
     }
     {
         FclFpGuard guard;
@@ -354,14 +361,17 @@ void containment(const Body &elephant, const Mesh &bunny_src) {
     CHECK(done, "containment: no interior point with room for the bunny");
 }
 
-// Part hulls bracket the triangles' distance: parts.distance <= exact <=
-// parts.upper_bound (exact from the triangle models, FCL-checked above).
-void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t seed) {
+// Part hulls (or approximate pieces, `approx`) bracket the triangles'
+// distance: parts.distance <= exact <= parts.upper_bound (exact from the
+// triangle models, FCL-checked above).
+void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t seed, bool approx = false) {
     const double t0 = tu_now();
     Rng rng{seed};
+    const px_model *ma = approx ? a.approx.get() : a.parts.get(),
+                   *mb = approx ? b.approx.get() : b.parts.get();
     px_model_info ia, ib;
-    px_model_get_info(a.parts.get(), &ia);
-    px_model_get_info(b.parts.get(), &ib);
+    px_model_get_info(ma, &ia);
+    px_model_get_info(mb, &ib);
     const px_pose pa = px_pose_identity();
     const double R = 1.1 * (a.radius + b.radius);
     px_model_cache pc{}, tc{};
@@ -376,7 +386,7 @@ void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t see
         for (int k = 0; k < 3; ++k) t[k] = rad * d[k];
         const px_pose pb = rm::to_px(r, t);
         px_model_distance_result rp, rt;
-        px_status s1 = px_model_distance(a.parts.get(), &pa, b.parts.get(), &pb, &pc, &rp);
+        px_status s1 = px_model_distance(ma, &pa, mb, &pb, &pc, &rp);
         px_status s2 = px_model_distance(a.tri.get(), &pa, b.tri.get(), &pb, &tc, &rt);
         CHECK(s1 == PX_OK && s2 == PX_OK, "%s pose %d: %s / %s", what, i, px_status_string(s1),
               px_status_string(s2));
@@ -391,10 +401,10 @@ void bracket(const char *what, const Body &a, const Body &b, int n, uint64_t see
     }
     px_model_cache_release(&pc);
     px_model_cache_release(&tc);
-    printf(
-        "%s: %d parts (max h %.4f) vs %d parts (max h %.4f): %d/%d poses bracketed, widest bracket %.4f, %d "
-        "within 0.05 (%.2f s)\n",
-        what, ia.leaves, ia.max_h, ib.leaves, ib.max_h, ok_count, n, max_width, tight, tu_now() - t0);
+    printf("%s: %d pieces (max h %.4f) vs %d pieces (max h %.4f): %d/%d poses bracketed, widest bracket "
+           "%.4f, %d "
+           "within 0.05 (%.2f s)\n",
+           what, ia.leaves, ia.max_h, ib.leaves, ib.max_h, ok_count, n, max_width, tight, tu_now() - t0);
 }
 
 // components: parts become the connected components (own readers); with
@@ -427,11 +437,12 @@ int main() {
     {
         Body l2, l4;
         if (load(puma + "puma_link2.stl", &l2.mesh, 1.0, false, true) &&
-            load(puma + "puma_link4.stl", &l4.mesh, 1.0, false, true) && make_body(&l2, true) &&
-            make_body(&l4, true)) {
+            load(puma + "puma_link4.stl", &l4.mesh, 1.0, false, true) && make_body(&l2, true, 0.02) &&
+            make_body(&l4, true, 0.02)) {
             random_poses("puma link2 vs link4, random", l2, l4, n_random, 1);
             approach("puma link2 vs link4, approach", l2, l4, n_approach, 2);
             bracket("puma link2 vs link4, part hulls", l2, l4, n_bracket, 3);
+            bracket("puma link2 vs link4, approximate pieces (0.02)", l2, l4, n_bracket, 6, true);
         }
     }
     // The teapots: the closed OBJ (two groups) and the open STL.

@@ -73,7 +73,8 @@ expect 2 "bad pose" -- "$B" distance a b --pose-a 1,2,3,0,0,0,0
 expect 2 "positive number" -- "$B" info x --scale -1
 expect 2 "parts, triangles or approximate" -- "$B" info x --pieces hulls
 expect 2 "needs --pieces approximate" -- "$B" build x -o y --tolerance 0.1
-expect 2 "in \(0, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 0
+expect 2 "in \[0.0001, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 0
+expect 2 "in \[0.0001, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 1e-5
 expect 1 "cannot create" -- "$B" build "$P/puma560_link2.dae" -o /nonexistent/dir/x.pxm
 echo "check_cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

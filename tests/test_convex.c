@@ -463,8 +463,45 @@ static void test_out_of_memory(void) {
     free(xyz);
 }
 
+/* Points whose extent overflows are refused as out of range before any
+ * plane is computed (FE_INVALID is trapped here); near-duplicates a few ulps
+ * apart, which make faces of noise, are welded and accepted. */
+static void test_extent_and_weld(void) {
+    const double huge[12] = {-1e308, -1e308, -1e308, 1e308,  -1e308, -1e308,
+                             -1e308, 1e308,  -1e308, -1e308, -1e308, 1e308};
+    px_error e;
+    px_convex *c = px_convex_create(huge, 4, NULL, &e);
+    CHECK(c == NULL && e.code == PX_ERR_RANGE, "extent 2e308: %s", e.message);
+    /* A torus piece cut out of a mesh: 59 points, nine pairs 1e-16 apart
+     * (tests/data/near_duplicates.txt). */
+    FILE *f = fopen(PX_TEST_DATA "/../near_duplicates.txt", "r");
+    CHECK(f != NULL, "near_duplicates.txt");
+    if (!f) return;
+    double xyz[3 * 64];
+    size_t n = 0;
+    while (n < 64 && fscanf(f, "%lf %lf %lf", &xyz[3 * n], &xyz[3 * n + 1], &xyz[3 * n + 2]) == 3) ++n;
+    fclose(f);
+    c = px_convex_create(xyz, n, NULL, &e);
+    CHECK(n == 59 && c != NULL, "near-duplicates: %zu points: %s", n, e.message);
+    if (c) {
+        /* Every input point lies within the weld distance of the hull. */
+        double worst = 0.0;
+        for (size_t i = 0; i < n; ++i) {
+            px_convex *p = px_convex_create(xyz + 3 * i, 1, NULL, &e);
+            px_distance_result r;
+            px_pose id = px_pose_identity();
+            if (p && px_distance(p, &id, c, &id, NULL, NULL, &r) == PX_OK && !r.intersecting)
+                worst = r.distance > worst ? r.distance : worst;
+            px_convex_destroy(p);
+        }
+        CHECK(worst <= 0x1p-39, "near-duplicates: a point %.3g outside the welded hull", worst);
+    }
+    px_convex_destroy(c);
+}
+
 int main(void) {
     tu_init("test_convex");
+    test_extent_and_weld();
     double t0 = tu_now();
     test_coplanar_merging();
     test_degenerate_inputs();

@@ -973,12 +973,78 @@ static void test_approximate(void) {
           calls);
     px_model_destroy(none);
     ao.progress = NULL;
-    const double bad[4] = {-0.1, 1.5, NAN, INFINITY};
-    for (int k = 0; k < 4; ++k) {
+    const double bad[6] = {-0.1, 1.5, NAN, INFINITY, 1e-5, 4.9e-324};
+    for (int k = 0; k < 6; ++k) {
         ao.tolerance = bad[k];
         none = px_model_create_from_mesh(mb, &ao, &e);
         CHECK(none == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "tolerance %g: %s", bad[k], e.message);
         px_model_destroy(none);
+    }
+    /* Coordinates beyond the models' range are refused before any cutting. */
+    {
+        tri_mesh huge;
+        torus(&huge, 0.6e260, 0.25e260, 8, 6, (px_vec3){0, 0, 0});
+        px_mesh *mh = make_mesh(&huge, 1);
+        ao.tolerance = 0.05;
+        double th = tu_now();
+        none = mh ? px_model_create_from_mesh(mh, &ao, &e) : NULL;
+        CHECK(mh && none == NULL && e.code == PX_ERR_RANGE && tu_now() - th < 5.0, "1e260 torus: %s (%.1f s)",
+              mh ? e.message : "no mesh", tu_now() - th);
+        px_model_destroy(none);
+        px_mesh_destroy(mh);
+        mesh_free(&huge);
+    }
+    /* A part far from the origin is cut near its centre: it builds, and its
+     * bracket holds. */
+    {
+        tri_mesh far;
+        torus(&far, 0.6, 0.25, 16, 8, (px_vec3){1e6, -2e6, 3e6});
+        px_mesh *mf = make_mesh(&far, 1);
+        double tf = tu_now();
+        px_model *xf = mf ? px_model_create_from_mesh(mf, &ao, &e) : NULL;
+        px_model *tfm = mf ? px_model_create_from_mesh(mf, &to, &e) : NULL;
+        CHECK(xf && tfm, "torus at 1e6: %s", e.message);
+        int okf = 0;
+        for (int i = 0; xf && tfm && i < 20; ++i) {
+            px_pose p0 = px_pose_identity(), p1 = random_pose(&rng, 1.5);
+            p1.t.x += 1e6, p1.t.y -= 2e6, p1.t.z += 3e6;
+            px_model_distance_result rx, rt;
+            px_model_distance(xf, &p0, xb, &p1, NULL, &rx);
+            px_model_distance(tfm, &p0, tb, &p1, NULL, &rt);
+            double slack = 1e-9 * 4e6;
+            okf += rx.distance <= rt.distance + slack && rt.distance <= rx.upper_bound + slack;
+        }
+        CHECK(okf == 20, "torus at 1e6: %d of 20 poses bracketed", okf);
+        printf("approximate: torus at offset 1e6 built in %.2f s, %d of 20 poses bracketed\n", tu_now() - tf,
+               okf);
+        px_model_destroy(xf);
+        px_model_destroy(tfm);
+        px_mesh_destroy(mf);
+        mesh_free(&far);
+    }
+    /* A flat part's hull is its own boundary: h_overlap = h. */
+    {
+        tri_mesh one = {0};
+        one.nv = 3, one.nt = 1;
+        one.xyz = malloc(9 * sizeof(double));
+        one.tri = malloc(3 * sizeof(uint32_t));
+        const double v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        memcpy(one.xyz, v, sizeof v);
+        one.tri[0] = 0, one.tri[1] = 1, one.tri[2] = 2;
+        px_mesh *m1 = make_mesh(&one, 1);
+        px_model_options po;
+        memset(&po, 0, sizeof po);
+        px_model *h1 = m1 ? px_model_create_from_mesh(m1, &po, &e) : NULL;
+        px_model *a1 = m1 ? px_model_create_from_mesh(m1, &ao, &e) : NULL;
+        px_model_leaf l1, l2;
+        CHECK(h1 && a1 && px_model_get_leaf(h1, 0, &l1) == PX_OK && px_model_get_leaf(a1, 0, &l2) == PX_OK &&
+                  l1.h_overlap == l1.h && l1.h < 1e-12 && l2.h_overlap == l2.h && l2.h < 1e-12,
+              "one triangle: h %.3g/%.3g (parts), %.3g/%.3g (approximate)", h1 ? l1.h : -1.0,
+              h1 ? l1.h_overlap : -1.0, a1 ? l2.h : -1.0, a1 ? l2.h_overlap : -1.0);
+        px_model_destroy(h1);
+        px_model_destroy(a1);
+        px_mesh_destroy(m1);
+        mesh_free(&one);
     }
     to.tolerance = 0.1;
     none = px_model_create_from_mesh(mb, &to, &e);

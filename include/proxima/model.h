@@ -65,9 +65,11 @@ typedef enum px_pieces {
     PX_PIECES_APPROXIMATE = 3
 } px_pieces;
 
-/// Default tolerance of PX_PIECES_APPROXIMATE (relative to a part's
-/// bounding-box diagonal).
+/// Default and smallest tolerance of PX_PIECES_APPROXIMATE (relative to a
+/// part's bounding-box diagonal; finer than the smallest, triangle leaves
+/// are exact and cheaper).
 #define PX_MODEL_DEFAULT_TOLERANCE 0.02
+#define PX_MODEL_MIN_TOLERANCE 1e-4
 
 /// Options of model creation; zero-initialise, zero means default.
 typedef struct px_model_options {
@@ -79,7 +81,8 @@ typedef struct px_model_options {
     uint32_t reserved[5]; ///< must be zero
     /// PX_PIECES_APPROXIMATE: the largest distance a piece's hull may reach
     /// outside its part, relative to the part's bounding-box diagonal, in
-    /// (0, 1] (0: PX_MODEL_DEFAULT_TOLERANCE). Must be 0 otherwise.
+    /// [PX_MODEL_MIN_TOLERANCE, 1] (0: PX_MODEL_DEFAULT_TOLERANCE). Must be
+    /// 0 otherwise.
     double tolerance;
     /// PX_PIECES_APPROXIMATE: called from the building thread now and then
     /// with the fraction done, in [0, 1]; a nonzero return stops the build

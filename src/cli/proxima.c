@@ -35,7 +35,8 @@ static const char *usage_text =
     "             `approximate` (each part cut into convex pieces that stay within\n"
     "             --tolerance of it, each with a certified bound h)\n"
     "  --tolerance T  for approximate pieces: how far a piece may reach outside\n"
-    "             its part, relative to the part's bounding-box diagonal, in (0, 1]\n"
+    "             its part, relative to the part's bounding-box diagonal, in\n"
+    "             [0.0001, 1]\n"
     "             (default 0.02)\n"
     "  --scale S  multiplies the mesh files' coordinates (e.g. 0.0254: inches to\n"
     "             metres); a .pxm model keeps the scale it was built with\n"
@@ -116,8 +117,9 @@ static int parse(int argc, char **argv, int first, opts *o) {
             char *end;
             const char *v = argv[++i];
             o->tolerance = strtod(v, &end);
-            if (end == v || *end || !(o->tolerance > 0.0 && o->tolerance <= 1.0))
-                return usage_error("--tolerance takes a number in (0, 1], not '%s'", v);
+            if (end == v || *end || !(o->tolerance >= PX_MODEL_MIN_TOLERANCE && o->tolerance <= 1.0))
+                return usage_error("--tolerance takes a number in [%g, 1], not '%s'", PX_MODEL_MIN_TOLERANCE,
+                                   v);
         } else if (!strcmp(a, "--scale")) {
             if (!has_value) return usage_error("%s needs a number", a);
             char *end;

@@ -456,6 +456,19 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
                       i / 3, "xyz"[i % 3]);
             return NULL;
         }
+    /* An extent that overflows is out of range before any plane is
+     * computed from it (the hull's own size check comes later). */
+    for (int j = 0; j < 3; ++j) {
+        double lo = xyz[j], hi = xyz[j];
+        for (size_t i = 1; i < count; ++i) lo = fmin(lo, xyz[3 * i + j]), hi = fmax(hi, xyz[3 * i + j]);
+        if (!isfinite(hi - lo)) {
+            pxi_error(err, PX_ERR_RANGE,
+                      "px_convex_create: the points span more than the doubles hold along %c (the supported "
+                      "size is 2^-1000 .. 2^1000)",
+                      "xyz"[j]);
+            return NULL;
+        }
+    }
     pxcd_hull *hull = NULL;
     int dim = 3;
     char msg[200] = {0};

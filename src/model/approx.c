@@ -22,6 +22,7 @@
 typedef struct progress {
     const px_model_options *o;
     double done, share; /* fraction finished before this part, this part's share */
+    double last;        /* the last fraction reported: never goes back */
     int cancelled;
 } progress;
 
@@ -31,7 +32,8 @@ static int part_progress(void *user, int stage, double fraction) {
     double f = stage == PXCD_STAGE_CUT     ? 0.8 * fraction
                : stage == PXCD_STAGE_MERGE ? 0.8 + 0.15 * fraction
                                            : 0.95 + 0.05 * fraction;
-    if (p->o->progress && p->o->progress(p->o->progress_user, p->done + p->share * f)) p->cancelled = 1;
+    p->last = fmax(p->last, fmin(1.0, p->done + p->share * f));
+    if (p->o->progress && p->o->progress(p->o->progress_user, p->last)) p->cancelled = 1;
     return p->cancelled;
 }
 
@@ -149,11 +151,29 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
         m->leaves[m->n_leaves++] = (pxi_mleaf){p, PXI_NONE, 0.0, 0.0};
         return PX_OK;
     }
-    /* The decomposer takes the part's own vertices and local indices. */
+    /* The decomposer takes the part's own vertices, moved to the centre of
+     * their box (a part far from the origin would cut with lengths small
+     * against its coordinates; near the centre the subtraction is exact),
+     * and local indices; its pieces are moved back. */
     size_t n = (size_t)mp.triangle_count * 3;
     uint32_t *local = pxi_alloc_array(&m->alloc, n, sizeof *local);
-    if (!local) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    double *moved = pxi_alloc_array(&m->alloc, mp.vertex_count, 3 * sizeof *moved);
+    if (!local || !moved) {
+        pxi_free(&m->alloc, local, n * sizeof *local);
+        pxi_free(&m->alloc, moved, (size_t)mp.vertex_count * 3 * sizeof *moved);
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    }
     for (size_t i = 0; i < n; ++i) local[i] = tri[3 * (size_t)mp.first_triangle + i] - mp.first_vertex;
+    const double *pv = xyz + 3 * (size_t)mp.first_vertex;
+    double centre[3];
+    for (int j = 0; j < 3; ++j) {
+        double lo = pv[j], hi = pv[j];
+        for (uint32_t i = 1; i < mp.vertex_count; ++i)
+            lo = fmin(lo, pv[3 * i + j]), hi = fmax(hi, pv[3 * i + j]);
+        centre[j] = 0.5 * lo + 0.5 * hi;
+    }
+    for (uint32_t i = 0; i < mp.vertex_count; ++i)
+        for (int j = 0; j < 3; ++j) moved[3 * i + j] = pv[3 * i + j] - centre[j];
     pxcd_decomp_options dopt;
     memset(&dopt, 0, sizeof dopt);
     dopt.tolerance = tolerance;
@@ -161,9 +181,13 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
     dopt.user = pr;
     pxcd_decomp_result *res = NULL;
     char msg[256] = "";
-    pxcd_status ds = pxcd_decompose(xyz + 3 * (size_t)mp.first_vertex, mp.vertex_count, local,
-                                    mp.triangle_count, &dopt, &res, msg, sizeof msg);
+    pxcd_status ds =
+        pxcd_decompose(moved, mp.vertex_count, local, mp.triangle_count, &dopt, &res, msg, sizeof msg);
     pxi_free(&m->alloc, local, n * sizeof *local);
+    pxi_free(&m->alloc, moved, (size_t)mp.vertex_count * 3 * sizeof *moved);
+    for (size_t i = 0; ds == PXCD_OK && i < res->piece_count; ++i)
+        for (size_t k = 0; k < 3 * res->pieces[i].vertex_count; ++k)
+            res->pieces[i].vertices[k] += centre[k % 3];
     if (ds != PXCD_OK) {
         px_status st = pxcd_to_status(ds);
         if (st == PX_ERR_CANCELLED)
@@ -208,10 +232,16 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
 px_status pxi_model_approximate(px_model *m, const px_mesh *mesh, const px_model_options *options,
                                 px_convex ***convex, px_error *err) {
     double tolerance = options->tolerance != 0.0 ? options->tolerance : PX_MODEL_DEFAULT_TOLERANCE;
-    if (!isfinite(tolerance) || !(tolerance > 0.0 && tolerance <= 1.0))
-        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                         "px_model_create_from_mesh: options.tolerance %g is not in (0, 1]",
-                         options->tolerance);
+    if (!isfinite(tolerance) || !(tolerance >= PX_MODEL_MIN_TOLERANCE && tolerance <= 1.0))
+        return pxi_error(
+            err, PX_ERR_INVALID_ARGUMENT,
+            "px_model_create_from_mesh: options.tolerance %.17g is not in [%g, 1] (finer than %g of "
+            "the diagonal: use PX_PIECES_TRIANGLES, which is exact)",
+            options->tolerance, PX_MODEL_MIN_TOLERANCE, PX_MODEL_MIN_TOLERANCE);
+    /* The models' range first: the decomposition would compute with
+     * overflowing or vanishing lengths before the tree refused them. */
+    px_status rs = pxi_model_check_range(px_mesh_vertices(mesh), px_mesh_vertex_count(mesh), 1, err);
+    if (rs != PX_OK) return rs;
     uint32_t np = px_mesh_part_count(mesh), cap = 0;
     double total = 0.0;
     for (uint32_t p = 0; p < np; ++p) {
@@ -221,7 +251,7 @@ px_status pxi_model_approximate(px_model *m, const px_mesh *mesh, const px_model
     }
     *convex = NULL;
     m->n_leaves = 0;
-    progress pr = {options, 0.0, 0.0, 0};
+    progress pr = {options, 0.0, 0.0, 0.0, 0};
     px_status st = PX_OK;
     for (uint32_t p = 0; p < np && st == PX_OK; ++p) {
         px_mesh_part mp;

@@ -350,6 +350,13 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
         return PX_OK;
     }
     *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
+    if (px_convex_dimension(hull) < 3) {
+        /* A polygon, segment or point is its own boundary. */
+        *h_overlap = *h;
+        pxi_free(alloc, heap.data, R_HEAP * rec);
+        if (!isfinite(*h)) return pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
+        return PX_OK;
+    }
     heap.n = 0;
     heap.size = sizeof(rcell);
     heap.off = offsetof(rcell, ub);

@@ -11,9 +11,10 @@ ABS_BUILD = $(abspath $(BUILD))
 
 # Debian packages the build needs: compiler and CMake, CGAL (hulls, exact
 # ground truth), GMP/MPFR, Assimp (files), FCL/libccd/Bullet (peers in
-# benchmarks and second opinions), gnuplot (benchmark plots).
+# benchmarks and second opinions; the extras hold its convex decomposers),
+# gnuplot (benchmark plots).
 DEB_PACKAGES := build-essential cmake pkg-config clang-format libcgal-dev libgmp-dev libmpfr-dev \
-  libboost-dev libassimp-dev libfcl-dev libccd-dev libbullet-dev gnuplot-nox
+  libboost-dev libassimp-dev libfcl-dev libccd-dev libbullet-dev libbullet-extras-dev gnuplot-nox
 
 .PHONY: all deps configure build demo test test-release test-asan test-install test-embed format format-check bench clean
 
@@ -150,6 +151,20 @@ bench-models: deps
 bench-models-run:
 	./$(BUILD)/bench/bench_models --meshes $(MESH_DATA) --models models --out docs/bench
 	gnuplot docs/bench/plot_models.gp
+
+# Issue 10 section 3 (about 20 minutes on the 2-core machine; not part of
+# CI): PX_PIECES_APPROXIMATE against Bullet's ConvexDecomposition and HACD
+# and one hull per part; writes docs/bench/decomposition.csv,
+# decomposition.md, decomposition_curves.dat and decomposition.png.
+.PHONY: bench-decomp bench-decomp-run
+bench-decomp: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPROXIMA_WERROR=ON
+	cmake --build $(BUILD) -j $(JOBS) --target bench_decomp
+	$(MAKE) bench-decomp-run
+
+bench-decomp-run:
+	./$(BUILD)/bench/bench_decomp --meshes $(MESH_DATA) --models models --out docs/bench
+	gnuplot docs/bench/plot_decomposition.gp
 
 clean:
 	rm -rf $(BUILD) $(BUILD_ASAN)

@@ -64,6 +64,13 @@
 //     coordinate set to c: both triangles of an edge, and both halves, get
 //     bit-identical points, so sections close up and halves touch exactly.
 //     Rounding moves a cut point off the original edge by ~1 ulp.
+//   - Rounding (REFERENCES.md 5.2 warns that Epick constructions drift
+//     along chains of cuts and suggests Epeck): we keep doubles. A cut
+//     point is within ~1 ulp of the segment it was computed from, and a
+//     chain of k cuts moves points by ~k ulps (k <= kMaxDepth); nothing
+//     topological depends on it (no manifoldness is required), every vertex
+//     of the input stays bit-exact in the piece it lands in, and coverage
+//     is off by at most that drift. The builder re-certifies h anyway.
 //   - Caps: the section segments, with pairs of identical segments removed
 //     (even-odd), are inserted as constraints into a 2D constrained Delaunay
 //     triangulation (CGAL, exact predicates; crossing constraints from
@@ -123,8 +130,8 @@ using Point_3 = K::Point_3;
 using Vec3 = std::array<double, 3>;
 using Tri = std::array<uint32_t, 3>;
 
-constexpr int kOffsets = 7;     // candidate offsets per axis (interior, evenly spaced)
-constexpr int kRefineSteps = 3; // halving steps of the offset refinement
+constexpr int kOffsets = 5;     // candidate offsets per axis (interior, evenly spaced)
+constexpr int kRefineSteps = 2; // halving steps of the offset refinement
 constexpr int kMaxDepth = 24;   // cut depth cap
 constexpr unsigned kDefaultMaxPieces = 4096;
 constexpr size_t kRankSamples = 300;    // hull samples per half when ranking candidate planes
@@ -297,6 +304,19 @@ std::vector<Point_3> sample_hull(const Hull &h, size_t target) {
 
 // ---- Distance to a soup -----------------------------------------------------
 
+double seg_dist2(const Vec3 &p, const Vec3 &a, const Vec3 &b) {
+    const Vec3 ab{{b[0] - a[0], b[1] - a[1], b[2] - a[2]}}, ap{{p[0] - a[0], p[1] - a[1], p[2] - a[2]}};
+    const double l = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    double t = l > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / l : 0.0;
+    t = std::min(1.0, std::max(0.0, t));
+    double s = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = ap[k] - t * ab[k];
+        s += d * d;
+    }
+    return s;
+}
+
 // Squared distance from p to triangle abc (Ericson, "Real-Time Collision
 // Detection", 2005, section 5.1.5, closest point by Voronoi regions).
 double tri_dist2(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c) {
@@ -330,22 +350,12 @@ double tri_dist2(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c) {
         const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
         return dist2(Vec3{{b[0] + w * (c[0] - b[0]), b[1] + w * (c[1] - b[1]), b[2] + w * (c[2] - b[2])}});
     }
-    const double denom = 1.0 / (va + vb + vc), v = vb * denom, w = vc * denom;
+    const double sum = va + vb + vc;
+    if (!(sum > 0)) // degenerate after all: its edges
+        return std::min(seg_dist2(p, a, b), std::min(seg_dist2(p, b, c), seg_dist2(p, c, a)));
+    const double denom = 1.0 / sum, v = vb * denom, w = vc * denom;
     return dist2(
         Vec3{{a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w}});
-}
-
-double seg_dist2(const Vec3 &p, const Vec3 &a, const Vec3 &b) {
-    const Vec3 ab{{b[0] - a[0], b[1] - a[1], b[2] - a[2]}}, ap{{p[0] - a[0], p[1] - a[1], p[2] - a[2]}};
-    const double l = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
-    double t = l > 0 ? (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / l : 0.0;
-    t = std::min(1.0, std::max(0.0, t));
-    double s = 0;
-    for (int k = 0; k < 3; ++k) {
-        const double d = ap[k] - t * ab[k];
-        s += d * d;
-    }
-    return s;
 }
 
 // A bounding-volume hierarchy of triangles (axis-aligned boxes, median
@@ -354,9 +364,9 @@ double seg_dist2(const Vec3 &p, const Vec3 &a, const Vec3 &b) {
 // within the current worst distance of the surface?", which ends most
 // queries after the first leaf; CGAL's traversal has no such early exit
 // and its filtered sphere-box predicate dominated the profile (the torus
-// test ran ~3x slower with it). Degenerate (exactly collinear, CGAL
-// predicate) triangles are measured as their three edges, since Ericson's
-// formula divides by their zero area.
+// test ran ~3x slower with it). Degenerate triangles and slivers are
+// measured as their three edges, since Ericson's formula divides by their
+// area.
 struct Bvh {
     struct Prim {
         Vec3 a, b, c;
@@ -374,7 +384,16 @@ struct Bvh {
         for (size_t s = 0; s < n_soups; ++s)
             for (const Tri &t : soups[s]->t) {
                 const Vec3 &a = soups[s]->v[t[0]], &b = soups[s]->v[t[1]], &c = soups[s]->v[t[2]];
-                prims.push_back(Prim{a, b, c, CGAL::collinear(to_point(a), to_point(b), to_point(c))});
+                // Slivers (|ab x ac| ~ 1e-12 |ab| |ac| or less) are measured
+                // by their edges: same distances up to ~1e-12 relative, and
+                // Ericson's formula divides by their area.
+                const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+                const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                const double x = u[1] * w[2] - u[2] * w[1], y = u[2] * w[0] - u[0] * w[2],
+                             z = u[0] * w[1] - u[1] * w[0];
+                const double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+                const double ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+                prims.push_back(Prim{a, b, c, !(x * x + y * y + z * z > 1e-24 * uu * ww)});
             }
         if (prims.empty()) return;
         std::vector<Vec3> centre(prims.size());
@@ -831,16 +850,46 @@ void evaluate_batch(const Context &ctx, const Soup &s, int axis, const std::vect
         if (better(c, best)) best = c;
 }
 
+// Sorted coordinates of the soup's vertices along `axis`.
+std::vector<double> sorted_coordinates(const Soup &s, int axis) {
+    std::vector<double> x(s.v.size());
+    for (size_t i = 0; i < s.v.size(); ++i) x[i] = s.v[i][axis];
+    std::sort(x.begin(), x.end());
+    return x;
+}
+
+// A plane within a hair (1e-9 of the extent) of a vertex would make cut
+// points a few ulps from that vertex, hence sliver hull faces and
+// near-duplicate hull points (CAD meshes have vertices at round fractions of
+// their box, like our offsets): move the plane onto the vertex instead; the
+// cut then passes exactly through it (on-plane rule above).
+double snap_offset(const std::vector<double> &sorted, double c, double extent) {
+    const double hair = 1e-9 * extent;
+    auto it = std::lower_bound(sorted.begin(), sorted.end(), c);
+    double best = c, gap = HUGE_VAL;
+    if (it != sorted.end() && *it - c < gap) {
+        gap = *it - c;
+        best = *it;
+    }
+    if (it != sorted.begin() && c - *(it - 1) < gap) {
+        gap = c - *(it - 1);
+        best = *(it - 1);
+    }
+    return gap <= hair ? best : c;
+}
+
 Cut best_cut(const Context &ctx, const Piece &p, double fraction) {
     Cut best;
     double step[3];
+    std::vector<double> sorted[3];
     for (int axis = 0; axis < 3; ++axis) {
         const double lo = p.box.lo[axis], hi = p.box.hi[axis];
         step[axis] = (hi - lo) / (kOffsets + 1);
         if (!(hi - lo > 0)) continue;
+        sorted[axis] = sorted_coordinates(p.soup, axis);
         std::vector<double> offsets;
         for (int i = 1; i <= kOffsets; ++i) {
-            const double c = lo + (hi - lo) * i / (kOffsets + 1);
+            const double c = snap_offset(sorted[axis], lo + (hi - lo) * i / (kOffsets + 1), hi - lo);
             if (c > lo && c < hi) offsets.push_back(c);
         }
         evaluate_batch(ctx, p.soup, axis, offsets, best);
@@ -853,7 +902,7 @@ Cut best_cut(const Context &ctx, const Piece &p, double fraction) {
     for (int it = 0; it < kRefineSteps; ++it, h *= 0.5) {
         std::vector<double> offsets;
         for (int sgn = -1; sgn <= 1; sgn += 2) {
-            const double c = best.offset + sgn * h;
+            const double c = snap_offset(sorted[best.axis], best.offset + sgn * h, hi - lo);
             if (c > lo && c < hi) offsets.push_back(c);
         }
         evaluate_batch(ctx, p.soup, best.axis, offsets, best);

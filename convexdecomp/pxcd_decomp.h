@@ -35,7 +35,7 @@
  * environment variable; safe to call from several threads at once.
  * The coordinates are not transformed: the tolerance is scaled by the
  * diagonal instead, so hull vertices that are input vertices are bit-equal
- * to them.
+ * to them (except that -0.0 becomes +0.0).
  */
 #ifndef PROXIMA_PXCD_DECOMP_H
 #define PROXIMA_PXCD_DECOMP_H
@@ -66,7 +66,9 @@ typedef struct pxcd_decomp_options {
     double tolerance;
     /* Safety cap on the number of pieces during cutting (0 = 4096). When it
      * is reached, pieces still above the tolerance are kept as they are
-     * (their concavity then exceeds the tolerance; see `pieces_over`). */
+     * (their concavity then exceeds the tolerance; see `pieces_over`). The
+     * count can exceed it when the input has more connected components, or
+     * by a few when the last cut splits a piece into several components. */
     unsigned max_pieces;
     /* 0 or 1 = the calling thread only; n > 1 = up to n threads (capped at
      * 64) for candidate evaluation. Any value gives the same output. */

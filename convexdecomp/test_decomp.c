@@ -965,6 +965,31 @@ int main(int argc, char **argv) {
         mesh_free(&P);
     }
 
+    if (!quick) {
+        /* The open teapot (binary STL) and the CGAL sample meshes elephant
+         * and armadillo (skipped when absent). */
+        char path[1024];
+        mesh M = {0};
+        snprintf(path, sizeof path, "%s/models/teapot/trimesh_mit/teapot.stl", PXCD_TEST_SOURCE_DIR);
+        M.name = "teapot (open)";
+        if (read_stl(path, &M))
+            run_case(&M, 0.1, 1, 400, 60, 0);
+        else
+            printf("skip teapot (cannot read %s)\n", path);
+        mesh_free(&M);
+        const char *names[2] = {"elephant", "armadillo"};
+        for (int k = 0; k < 2; ++k) {
+            mesh E = {0};
+            E.name = names[k];
+            snprintf(path, sizeof path, "%s/build/meshdata/%s.off", PXCD_TEST_SOURCE_DIR, names[k]);
+            if (read_off(path, &E))
+                run_case(&E, 0.1, 1, 400, 40, 0);
+            else
+                printf("skip %s (cannot read %s)\n", names[k], path);
+            mesh_free(&E);
+        }
+    }
+
     char bunny_path[1024];
     snprintf(bunny_path, sizeof bunny_path, "%s/build/meshdata/bunny00.off", PXCD_TEST_SOURCE_DIR);
     mesh B = {0};

@@ -44,7 +44,7 @@ fi
 expect 0 "collide: +no" -- "$B" distance "$T/l3.pxm" "$T/l3.pxm" --pose-b 0,0.5,0
 expect 0 "collide: +yes" -- "$B" distance "$T/l3.pxm" "$T/l3.pxm" --pose-b 0.01,0,0,1,0.1,0,0
 expect 0 "bracket" -- "$B" distance "$T/l2.pxm" "$P/puma560_link3.dae" --pieces parts --pose-b 0,0.6,0
-expect 0 "approximate convex pieces" -- "$B" build "$P/puma560_link2.dae" -o "$T/a2.pxm" --pieces approximate --tolerance 0.1
+expect 0 "approximate convex pieces" -- "$B" build "$P/puma560_link2.dae" -o "$T/a2.pxm" --pieces approximate --tolerance 0.1 --threads 2
 expect 0 "leaves: +[0-9]+ \(approximate convex pieces\)" -- "$B" info "$T/a2.pxm"
 expect 0 "bracket" -- "$B" distance "$T/a2.pxm" "$T/l2.pxm" --pose-b 0,0.6,0
 # --scale: half the size at half the offset is half the distance.
@@ -72,7 +72,9 @@ expect 2 "bad pose" -- "$B" distance a b --pose-a 1,2
 expect 2 "bad pose" -- "$B" distance a b --pose-a 1,2,3,0,0,0,0
 expect 2 "positive number" -- "$B" info x --scale -1
 expect 2 "parts, triangles or approximate" -- "$B" info x --pieces hulls
-expect 2 "needs --pieces approximate" -- "$B" build x -o y --tolerance 0.1
+expect 2 "need --pieces approximate" -- "$B" build x -o y --tolerance 0.1
+expect 2 "need --pieces approximate" -- "$B" build x -o y --threads 2
+expect 2 "from 1 to 256" -- "$B" build x -o y --pieces approximate --threads 0
 expect 2 "in \[0.0001, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 0
 expect 2 "in \[0.0001, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 1e-5
 expect 1 "cannot create" -- "$B" build "$P/puma560_link2.dae" -o /nonexistent/dir/x.pxm

@@ -962,6 +962,26 @@ static void test_approximate(void) {
     }
     px_model_cache_release(&cache);
     printf("approximate: %d of %d poses bracket the exact triangle distance\n", in, n);
+    /* Two threads give the same model bit for bit. */
+    {
+        px_model_options o2 = ao;
+        o2.threads = 2;
+        px_model *x2 = px_model_create_from_mesh(ma, &o2, &e);
+        int same = x2 && x2->n_leaves == xa->n_leaves && x2->n_nodes == xa->n_nodes;
+        for (uint32_t i = 0; same && i < xa->n_leaves; ++i)
+            same = x2->leaves[i].h == xa->leaves[i].h && x2->leaves[i].h_overlap == xa->leaves[i].h_overlap;
+        for (uint32_t i = 0; same && i < xa->n_nodes; ++i) {
+            const px_convex *c1 = xa->nodes[i].hull, *c2 = x2->nodes[i].hull;
+            same = (c1 == NULL) == (c2 == NULL);
+            for (uint32_t v = 0; same && c1 && v < px_convex_vertex_count(c1); ++v) {
+                px_vec3 p1, p2;
+                px_convex_vertex(c1, v, &p1);
+                same = px_convex_vertex(c2, v, &p2) == PX_OK && p1.x == p2.x && p1.y == p2.y && p1.z == p2.z;
+            }
+        }
+        CHECK(same, "approximate: threads 2 gives another model: %s", x2 ? "" : e.message);
+        px_model_destroy(x2);
+    }
     /* Saved and loaded, it answers the same. */
     roundtrip("approximate", xb, xa, 0);
     /* Cancelling stops the build; bad tolerances are refused. */
@@ -1046,6 +1066,11 @@ static void test_approximate(void) {
         px_mesh_destroy(m1);
         mesh_free(&one);
     }
+    to.threads = 2;
+    none = px_model_create_from_mesh(mb, &to, &e);
+    CHECK(none == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "threads with triangles: %s", e.message);
+    px_model_destroy(none);
+    to.threads = 0;
     to.tolerance = 0.1;
     none = px_model_create_from_mesh(mb, &to, &e);
     CHECK(none == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "tolerance with triangles: %s", e.message);

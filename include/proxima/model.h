@@ -78,7 +78,11 @@ typedef struct px_model_options {
     /// px_model_create_from_mesh: a px_pieces value (PARTS, TRIANGLES or
     /// APPROXIMATE).
     uint32_t pieces;
-    uint32_t reserved[5]; ///< must be zero
+    /// PX_PIECES_APPROXIMATE: threads the decomposition may use (0 or 1:
+    /// the calling thread only). The model is the same bit for bit for any
+    /// value. Must be 0 otherwise.
+    uint32_t threads;
+    uint32_t reserved[4]; ///< must be zero
     /// PX_PIECES_APPROXIMATE: the largest distance a piece's hull may reach
     /// outside its part, relative to the part's bounding-box diagonal, in
     /// [PX_MODEL_MIN_TOLERANCE, 1] (0: PX_MODEL_DEFAULT_TOLERANCE). Must be

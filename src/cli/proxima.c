@@ -21,7 +21,7 @@ static const char *usage_text =
     "      parts, triangles, closed or open, bounding box, units of a mesh file;\n"
     "      leaves, nodes, memory and bound h of a .pxm model\n"
     "  proxima build IN -o OUT.pxm [--pieces parts|triangles|approximate] [--tolerance T]\n"
-    "                [--scale S]\n"
+    "                [--threads N] [--scale S]\n"
     "      builds the sub-part hierarchy tree of a mesh file and saves it\n"
     "  proxima distance A B [--pose-a P] [--pose-b P] [--pieces ...] [--tolerance T]\n"
     "                [--scale S]\n"
@@ -38,6 +38,8 @@ static const char *usage_text =
     "             its part, relative to the part's bounding-box diagonal, in\n"
     "             [0.0001, 1]\n"
     "             (default 0.02)\n"
+    "  --threads N  for approximate pieces: threads the decomposition may use\n"
+    "             (default 1; the model is the same for any N)\n"
     "  --scale S  multiplies the mesh files' coordinates (e.g. 0.0254: inches to\n"
     "             metres); a .pxm model keeps the scale it was built with\n"
     "  --pose-a, --pose-b P   the model's pose: tx,ty,tz or tx,ty,tz,qw,qx,qy,qz\n"
@@ -67,6 +69,7 @@ typedef struct opts {
     int pieces; /* -1: command default */
     double scale;
     double tolerance; /* 0: the library's default */
+    unsigned threads; /* 0: one */
     px_pose pose[2];
 } opts;
 
@@ -112,6 +115,14 @@ static int parse(int argc, char **argv, int first, opts *o) {
                 o->pieces = PX_PIECES_APPROXIMATE;
             else
                 return usage_error("--pieces takes parts, triangles or approximate, not '%s'", v);
+        } else if (!strcmp(a, "--threads")) {
+            if (!has_value) return usage_error("%s needs a number", a);
+            char *end;
+            const char *v = argv[++i];
+            long t = strtol(v, &end, 10);
+            if (end == v || *end || t < 1 || t > 256)
+                return usage_error("--threads takes a whole number from 1 to 256, not '%s'", v);
+            o->threads = (unsigned)t;
         } else if (!strcmp(a, "--tolerance")) {
             if (!has_value) return usage_error("%s needs a number", a);
             char *end;
@@ -140,8 +151,8 @@ static int parse(int argc, char **argv, int first, opts *o) {
             o->files[o->nfiles++] = a;
         }
     }
-    if (o->tolerance != 0.0 && o->pieces != PX_PIECES_APPROXIMATE)
-        return usage_error("--tolerance needs --pieces approximate");
+    if ((o->tolerance != 0.0 || o->threads) && o->pieces != PX_PIECES_APPROXIMATE)
+        return usage_error("--tolerance and --threads need --pieces approximate");
     return 0;
 }
 
@@ -186,7 +197,7 @@ static int draw_bar(void *user, double fraction) {
 }
 
 /* A model from a .pxm file or a mesh file. */
-static px_model *load_model(const char *path, int pieces, double scale, double tolerance) {
+static px_model *load_model(const char *path, int pieces, double scale, double tolerance, unsigned threads) {
     px_error e;
     if (is_pxm(path)) {
         if (scale != 0.0)
@@ -203,6 +214,7 @@ static px_model *load_model(const char *path, int pieces, double scale, double t
     bar b = {path, -1};
     if (pieces == PX_PIECES_APPROXIMATE) {
         o.tolerance = tolerance;
+        o.threads = threads;
         if (isatty(STDERR_FILENO)) {
             o.progress = draw_bar;
             o.progress_user = &b;
@@ -285,8 +297,8 @@ static int cmd_build(const opts *o) {
     if (o->nfiles != 1) return usage_error("build takes one input file");
     if (!o->out) return usage_error("build needs -o OUT.pxm");
     if (is_pxm(o->files[0])) return usage_error("'%s' is already a .pxm model", o->files[0]);
-    px_model *m =
-        load_model(o->files[0], o->pieces < 0 ? PX_PIECES_PARTS : o->pieces, o->scale, o->tolerance);
+    px_model *m = load_model(o->files[0], o->pieces < 0 ? PX_PIECES_PARTS : o->pieces, o->scale, o->tolerance,
+                             o->threads);
     if (!m) return 1;
     px_error e;
     int rc = 0;
@@ -306,9 +318,9 @@ static int cmd_build(const opts *o) {
 static int cmd_distance(const opts *o) {
     if (o->nfiles != 2) return usage_error("distance takes two files");
     int pieces = o->pieces < 0 ? PX_PIECES_TRIANGLES : o->pieces;
-    px_model *a = load_model(o->files[0], pieces, o->scale, o->tolerance);
+    px_model *a = load_model(o->files[0], pieces, o->scale, o->tolerance, o->threads);
     if (!a) return 1;
-    px_model *b = load_model(o->files[1], pieces, o->scale, o->tolerance);
+    px_model *b = load_model(o->files[1], pieces, o->scale, o->tolerance, o->threads);
     if (!b) {
         px_model_destroy(a);
         return 1;

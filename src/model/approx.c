@@ -130,7 +130,8 @@ static px_convex *piece_hull(const double *xyz, size_t n, double max_s, const px
 
 /* Decomposes part p into leaves appended to m. */
 static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, double tolerance,
-                                  progress *pr, px_convex ***convex, uint32_t *cap, px_error *err) {
+                                  unsigned threads, progress *pr, px_convex ***convex, uint32_t *cap,
+                                  px_error *err) {
     px_mesh_part mp;
     px_mesh_get_part(mesh, p, &mp);
     const double *xyz = px_mesh_vertices(mesh);
@@ -177,6 +178,7 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
     pxcd_decomp_options dopt;
     memset(&dopt, 0, sizeof dopt);
     dopt.tolerance = tolerance;
+    dopt.threads = threads;
     dopt.progress = part_progress;
     dopt.user = pr;
     pxcd_decomp_result *res = NULL;
@@ -257,7 +259,7 @@ px_status pxi_model_approximate(px_model *m, const px_mesh *mesh, const px_model
         px_mesh_part mp;
         px_mesh_get_part(mesh, p, &mp);
         pr.share = ((double)mp.triangle_count + 1.0) / total;
-        st = approximate_part(m, mesh, p, tolerance, &pr, convex, &cap, err);
+        st = approximate_part(m, mesh, p, tolerance, options->threads, &pr, convex, &cap, err);
         pr.done += pr.share;
     }
     if (st == PX_OK && options->progress && options->progress(options->progress_user, 1.0))

@@ -197,9 +197,10 @@ px_model *pxi_model_alloc(const px_model_options *options, px_error *err, px_all
                 return NULL;
             }
         }
-        if (options->pieces != PX_PIECES_APPROXIMATE && (options->tolerance != 0.0 || options->progress)) {
+        if (options->pieces != PX_PIECES_APPROXIMATE &&
+            (options->tolerance != 0.0 || options->progress || options->threads)) {
             pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                      "px_model: options.tolerance and progress are for PX_PIECES_APPROXIMATE only");
+                      "px_model: options.tolerance, threads and progress are for PX_PIECES_APPROXIMATE only");
             return NULL;
         }
     }

@@ -48,10 +48,11 @@ px_model *px_model_create_from_mesh(const px_mesh *mesh, const px_model_options 
                   pieces);
         return NULL;
     }
-    if (options && pieces != PX_PIECES_APPROXIMATE && (options->tolerance != 0.0 || options->progress)) {
-        pxi_error(
-            err, PX_ERR_INVALID_ARGUMENT,
-            "px_model_create_from_mesh: options.tolerance and progress are for PX_PIECES_APPROXIMATE only");
+    if (options && pieces != PX_PIECES_APPROXIMATE &&
+        (options->tolerance != 0.0 || options->progress || options->threads)) {
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                  "px_model_create_from_mesh: options.tolerance, threads and "
+                  "progress are for PX_PIECES_APPROXIMATE only");
         return NULL;
     }
     uint32_t np = px_mesh_part_count(mesh), nv = px_mesh_vertex_count(mesh),

@@ -525,9 +525,11 @@ static px_model *load_memory(const unsigned char *d, size_t size, const px_model
     px_allocator alloc;
     if (options) {
         for (size_t i = 0; i < sizeof options->reserved / sizeof options->reserved[0]; ++i)
-            if (options->reserved[i] || options->pieces || options->tolerance != 0.0 || options->progress) {
-                r->st = pxi_error(r->err, PX_ERR_INVALID_ARGUMENT,
-                                  "px_model_load: options.reserved, pieces, tolerance or progress set");
+            if (options->reserved[i] || options->pieces || options->tolerance != 0.0 || options->progress ||
+                options->threads) {
+                r->st =
+                    pxi_error(r->err, PX_ERR_INVALID_ARGUMENT,
+                              "px_model_load: options.reserved, pieces, tolerance, threads or progress set");
                 return NULL;
             }
     }

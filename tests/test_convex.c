@@ -499,8 +499,50 @@ static void test_extent_and_weld(void) {
     px_convex_destroy(c);
 }
 
+/* A point 5.08e-5 inside a thin piece whose faces are coplanar within
+ * rounding at the edge nearest to it (tests/data/lin_canny_inside_point.txt,
+ * from a decomposed 1e-4-thick shell): every method finds it inside, from
+ * either side and warm. Lin-Canny used to end at that flat edge and answer
+ * 5.08e-5. */
+static void test_inside_flat_edge(void) {
+    FILE *f = fopen(PX_TEST_DATA "/../lin_canny_inside_point.txt", "r");
+    CHECK(f != NULL, "lin_canny_inside_point.txt");
+    if (!f) return;
+    double xyz[3 * 32];
+    int n = 0;
+    char line[512];
+    while (n < 32 && fgets(line, sizeof line, f))
+        if (line[0] != '#' && sscanf(line, "%la %la %la", &xyz[3 * n], &xyz[3 * n + 1], &xyz[3 * n + 2]) == 3)
+            ++n;
+    fclose(f);
+    px_error e;
+    px_convex *c = n == 24 ? px_convex_create(xyz, 23, NULL, &e) : NULL;
+    px_convex *p = n == 24 ? px_convex_create(xyz + 69, 1, NULL, &e) : NULL;
+    CHECK(c && p, "inside point: %d rows: %s", n, e.message);
+    const px_method methods[3] = {PX_METHOD_LIN_CANNY, PX_METHOD_GJK, PX_METHOD_HYBRID};
+    for (int m = 0; c && p && m < 3; ++m) {
+        px_query_options o;
+        memset(&o, 0, sizeof o);
+        o.method = methods[m];
+        px_pose id = px_pose_identity();
+        px_pair_cache cache = {0};
+        for (int k = 0; k < 4; ++k) {
+            px_distance_result r;
+            int ok = (k & 1 ? px_distance(p, &id, c, &id, &o, &cache, &r)
+                            : px_distance(c, &id, p, &id, &o, &cache, &r)) == PX_OK &&
+                     r.intersecting && r.distance == 0.0;
+            CHECK(ok, "inside point, method %d, call %d: distance %.3g, intersecting %d", m, k, r.distance,
+                  r.intersecting);
+            if (k == 1) memset(&cache, 0, sizeof cache);
+        }
+    }
+    px_convex_destroy(c);
+    px_convex_destroy(p);
+}
+
 int main(void) {
     tu_init("test_convex");
+    test_inside_flat_edge();
     test_extent_and_weld();
     double t0 = tu_now();
     test_coplanar_merging();

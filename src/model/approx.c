@@ -114,7 +114,7 @@ static px_convex *piece_hull(const double *xyz, size_t n, double max_s, const px
     if (!corners) return NULL;
     px_error first = *e;
     for (double s = ldexp(1.0, ilogb(ext) - 30); s <= max_s && !c; s *= 16.0) {
-        if (!(big / s < 0x1p50)) break; /* cells must stay exact */
+        if (!(big / s < 0x1p50)) continue; /* cells must stay exact: try larger ones */
         for (size_t i = 0; i < n; ++i)
             for (int k = 0; k < 8; ++k)
                 for (int j = 0; j < 3; ++j) {

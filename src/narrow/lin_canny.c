@@ -150,6 +150,52 @@ static inline px_vec3 edge_head_in_other(const lc_ctx *x, int i, const pxi_edge 
 
 /* ---- State handlers. i is the body of the first feature, j = 1 - i. ---- */
 
+/* The thesis' "linear-time routine" (blocks (5), (6)): p (in j's frame) lies
+ * beneath a face of j. The face of j with the greatest height of p is the
+ * next candidate; if p is on or beneath every face plane, p is inside j. */
+static uint32_t highest_face(const px_convex *c, px_vec3 p, double *height) {
+    uint32_t best = 0;
+    double hb = -INFINITY;
+    for (uint32_t f = 0; f < c->nf; ++f) {
+        double h = pxi_dot(c->f[f].n, p) - c->f[f].d;
+        if (h > hb) {
+            hb = h;
+            best = f;
+        }
+    }
+    *height = hb;
+    return best;
+}
+
+/* A feature's Voronoi region lies outside its body, so a vertex q of body i
+ * (in j's frame) beneath every face of j at the feature (the two faces of an
+ * edge, those around a vertex) is not in it. The region's planes say so for
+ * every feature but a flat one, whose faces are coplanar within rounding:
+ * its side planes coincide and let through points on either side (a point
+ * 5e-5 inside a thin piece was reported 5e-5 away). Then the thesis'
+ * linear-time routine decides, as at a vertex-face local minimum. Returns
+ * -1 when q is not beneath every face. */
+static int beneath_faces(lc_ctx *x, int i, px_vec3 q, const uint32_t *fs,
+                         uint32_t n) { /* x->p[i]: set by the caller */
+    int j = 1 - i;
+    const px_convex *cj = x->c[j];
+    const double lim = PXI_LC_CONTACT * (pxi_max_abs(q) + cj->scale);
+    for (uint32_t k = 0; k < n; ++k) {
+        const pxi_face *F = &cj->f[fs[k]];
+        if (!(pxi_dot(F->n, pxi_sub(q, cj->v[cj->f_verts[F->first]])) < -lim)) return -1;
+    }
+    double hb;
+    uint32_t g = highest_face(cj, q, &hb);
+    if (!(hb > lim)) {
+        x->p[j] = q;
+        x->dist = 0.0;
+        x->band = !(hb < -lim);
+        return LC_PENETRATION;
+    }
+    x->f[j] = feat(PX_FEATURE_FACE, g);
+    return LC_CONTINUE;
+}
+
 static int vertex_vertex(lc_ctx *x, int i) {
     int j = 1 - i;
     const px_convex *ci = x->c[i], *cj = x->c[j];
@@ -163,6 +209,21 @@ static int vertex_vertex(lc_ctx *x, int i) {
     if (vertex_violation(x->tie, ci, vi, r, &e)) {
         x->f[i] = feat(PX_FEATURE_EDGE, e);
         return LC_CONTINUE;
+    }
+    /* Beneath every face around the other's vertex (a flat vertex): inside. */
+    for (int side = 0; side < 2; ++side) {
+        int a = side ? j : i, b = side ? i : j;
+        const px_convex *cb = x->c[b];
+        uint32_t vb = x->f[b].index, fs[64], n = 0;
+        for (uint32_t k = cb->v_first[vb]; k < cb->v_first[vb + 1] && n + 2 <= 64; ++k) {
+            const pxi_edge *E = &cb->e[cb->v_edges[k]];
+            if (E->left < cb->nf) fs[n++] = E->left;
+            if (E->right < cb->nf) fs[n++] = E->right;
+        }
+        if (n == 0 || cb->v_first[vb + 1] - cb->v_first[vb] > 32) continue;
+        x->p[a] = x->c[a]->v[x->f[a].index];
+        int st = beneath_faces(x, a, side ? to_other(x, j, cj->v[vj]) : q, fs, n);
+        if (st >= 0) return st;
     }
     x->p[i] = ci->v[vi];
     x->p[j] = cj->v[vj];
@@ -262,27 +323,16 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
             return LC_CONTINUE;
         }
     }
+    if (cj->nf > 0 && E->left < cj->nf && E->right < cj->nf) {
+        const uint32_t fs[2] = {E->left, E->right};
+        x->p[i] = ci->v[v];
+        int r = beneath_faces(x, i, q, fs, 2);
+        if (r >= 0) return r;
+    }
     x->p[i] = ci->v[v];
     x->p[j] = y;
     x->dist = pxi_len_safe(pxi_sub(q, y));
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
-}
-
-/* The thesis' "linear-time routine" (blocks (5), (6)): p (in j's frame) lies
- * beneath a face of j. The face of j with the greatest height of p is the
- * next candidate; if p is on or beneath every face plane, p is inside j. */
-static uint32_t highest_face(const px_convex *c, px_vec3 p, double *height) {
-    uint32_t best = 0;
-    double hb = -INFINITY;
-    for (uint32_t f = 0; f < c->nf; ++f) {
-        double h = pxi_dot(c->f[f].n, p) - c->f[f].d;
-        if (h > hb) {
-            hb = h;
-            best = f;
-        }
-    }
-    *height = hb;
-    return best;
 }
 
 static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */

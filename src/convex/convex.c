@@ -418,9 +418,8 @@ static size_t weld_points(const px_allocator *alloc, const double *xyz, size_t c
     qsort(keys, count, sizeof *keys, weld_cmp);
     size_t n = 0;
     for (size_t i = 0; i < count; ++i) {
-        if (i > 0 && !weld_cmp(&(weld_key){{keys[i].k[0], keys[i].k[1], keys[i].k[2]}, 0},
-                               &(weld_key){{keys[i - 1].k[0], keys[i - 1].k[1], keys[i - 1].k[2]}, 0}))
-            continue;
+        const int64_t *k = keys[i].k, *prev = i > 0 ? keys[i - 1].k : NULL;
+        if (prev && k[0] == prev[0] && k[1] == prev[1] && k[2] == prev[2]) continue; /* same cell */
         memcpy(kept + 3 * n++, xyz + 3 * keys[i].i, 3 * sizeof *kept);
     }
     pxi_free(alloc, keys, count * sizeof *keys);
@@ -458,10 +457,11 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
         }
     /* An extent that overflows is out of range before any plane is
      * computed from it (the hull's own size check comes later). */
+    px_vec3 lo, hi;
+    pxi_box3(xyz, count, &lo, &hi);
+    const px_vec3 span = pxi_sub(hi, lo);
     for (int j = 0; j < 3; ++j) {
-        double lo = xyz[j], hi = xyz[j];
-        for (size_t i = 1; i < count; ++i) lo = fmin(lo, xyz[3 * i + j]), hi = fmax(hi, xyz[3 * i + j]);
-        if (!isfinite(hi - lo)) {
+        if (!isfinite(j == 0 ? span.x : j == 1 ? span.y : span.z)) {
             pxi_error(err, PX_ERR_RANGE,
                       "px_convex_create: the points span more than the doubles hold along %c (the supported "
                       "size is 2^-1000 .. 2^1000)",
@@ -518,27 +518,16 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
              * computed twice, scans): their tiny faces have normals of
              * noise. Welded within 2^-40 of the points' extent (the hull
              * moves by at most that), the set is tried once more. */
-            double lo[3], hi[3], ext = 0.0;
-            for (int j = 0; j < 3; ++j) lo[j] = hi[j] = xyz[j];
-            for (size_t i = 1; i < count; ++i)
-                for (int j = 0; j < 3; ++j) {
-                    lo[j] = fmin(lo[j], xyz[3 * i + j]);
-                    hi[j] = fmax(hi[j], xyz[3 * i + j]);
-                }
-            for (int j = 0; j < 3; ++j) ext = fmax(ext, hi[j] - lo[j]);
-            double w = ldexp(ext, -40);
+            double w = ldexp(pxi_max2(span.x, pxi_max2(span.y, span.z)), -40);
             double *kept = NULL;
-            size_t n = isfinite(w) && w > 0.0 &&
-                               fmax(fabs(lo[0]), fmax(fabs(lo[1]), fabs(lo[2]))) / w < 0x1p60 &&
-                               fmax(fabs(hi[0]), fmax(fabs(hi[1]), fabs(hi[2]))) / w < 0x1p60
+            size_t n = isfinite(w) && w > 0.0 && pxi_max_abs(lo) / w < 0x1p60 && pxi_max_abs(hi) / w < 0x1p60
                            ? weld_points(&alloc, xyz, count, w, &kept)
                            : 0;
             if (kept && n < count) {
                 px_convex_destroy(c);
                 px_convex *again = convex_create(kept, n, options, 0, err);
                 pxi_free(&alloc, kept, count * 3 * sizeof *kept);
-                if (again) return again;
-                return NULL;
+                return again;
             }
             pxi_free(&alloc, kept, count * 3 * sizeof *kept);
         }

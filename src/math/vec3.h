@@ -28,6 +28,17 @@ static inline px_vec3 pxi_madd(px_vec3 a, px_vec3 b, double s) {
  * without -ffinite-math-only; these compile to minsd and maxsd). */
 static inline double pxi_min2(double a, double b) { return a < b ? a : b; }
 static inline double pxi_max2(double a, double b) { return a > b ? a : b; }
+/* The axis-aligned box [lo, hi] of n >= 1 points (3 doubles each). */
+static inline void pxi_box3(const double *xyz, size_t n, px_vec3 *lo, px_vec3 *hi) {
+    double l[3] = {xyz[0], xyz[1], xyz[2]}, h[3] = {xyz[0], xyz[1], xyz[2]};
+    for (size_t i = 1; i < n; ++i)
+        for (int j = 0; j < 3; ++j) {
+            l[j] = pxi_min2(l[j], xyz[3 * i + j]);
+            h[j] = pxi_max2(h[j], xyz[3 * i + j]);
+        }
+    *lo = (px_vec3){l[0], l[1], l[2]};
+    *hi = (px_vec3){h[0], h[1], h[2]};
+}
 static inline double pxi_max_abs(px_vec3 a) {
     double m = fabs(a.x);
     if (fabs(a.y) > m) m = fabs(a.y);

@@ -103,13 +103,9 @@ static px_convex *piece_hull(const double *xyz, size_t n, double max_s, const px
                              const px_allocator *alloc, px_error *e) {
     px_convex *c = px_convex_create(xyz, n, co, e);
     if (c || e->code != PX_ERR_DEGENERATE || n > ((size_t)1 << 22)) return c;
-    double ext = 0.0, big = 0.0;
-    for (int j = 0; j < 3; ++j) {
-        double lo = xyz[j], hi = xyz[j];
-        for (size_t i = 1; i < n; ++i) lo = fmin(lo, xyz[3 * i + j]), hi = fmax(hi, xyz[3 * i + j]);
-        ext = fmax(ext, hi - lo);
-        big = fmax(big, fmax(fabs(lo), fabs(hi)));
-    }
+    px_vec3 lo, hi;
+    pxi_box3(xyz, n, &lo, &hi);
+    const double ext = pxi_max_abs(pxi_sub(hi, lo)), big = pxi_max2(pxi_max_abs(lo), pxi_max_abs(hi));
     double *corners = pxi_alloc_array(alloc, 8 * n, 3 * sizeof *corners);
     if (!corners) return NULL;
     px_error first = *e;
@@ -118,8 +114,8 @@ static px_convex *piece_hull(const double *xyz, size_t n, double max_s, const px
         for (size_t i = 0; i < n; ++i)
             for (int k = 0; k < 8; ++k)
                 for (int j = 0; j < 3; ++j) {
-                    double lo = floor(xyz[3 * i + j] / s) * s;
-                    corners[3 * (8 * i + (size_t)k) + (size_t)j] = (k >> j) & 1 ? lo + s : lo;
+                    double cell = floor(xyz[3 * i + j] / s) * s;
+                    corners[3 * (8 * i + (size_t)k) + (size_t)j] = (k >> j) & 1 ? cell + s : cell;
                 }
         c = px_convex_create(corners, 8 * n, co, e);
     }
@@ -166,13 +162,9 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
     }
     for (size_t i = 0; i < n; ++i) local[i] = tri[3 * (size_t)mp.first_triangle + i] - mp.first_vertex;
     const double *pv = xyz + 3 * (size_t)mp.first_vertex;
-    double centre[3];
-    for (int j = 0; j < 3; ++j) {
-        double lo = pv[j], hi = pv[j];
-        for (uint32_t i = 1; i < mp.vertex_count; ++i)
-            lo = fmin(lo, pv[3 * i + j]), hi = fmax(hi, pv[3 * i + j]);
-        centre[j] = 0.5 * lo + 0.5 * hi;
-    }
+    px_vec3 lo, hi;
+    pxi_box3(pv, mp.vertex_count, &lo, &hi);
+    const double centre[3] = {0.5 * lo.x + 0.5 * hi.x, 0.5 * lo.y + 0.5 * hi.y, 0.5 * lo.z + 0.5 * hi.z};
     for (uint32_t i = 0; i < mp.vertex_count; ++i)
         for (int j = 0; j < 3; ++j) moved[3 * i + j] = pv[3 * i + j] - centre[j];
     pxcd_decomp_options dopt;

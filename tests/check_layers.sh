@@ -37,6 +37,7 @@ rank() {
     narrow/advance.*) echo 5 ;;
     narrow/query.* | narrow/narrow.h) echo 6 ;;
     model/*) echo 7 ;;
+    scene/*) echo 8 ;;
     io/*) echo 8 ;;
     *) echo 99 ;;
   esac

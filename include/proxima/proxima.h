@@ -6,6 +6,8 @@
 ///   proxima/convex.h  convex polytopes
 ///   proxima/mesh.h    triangle meshes with their part tree (assemblies)
 ///   proxima/query.h   distance, intersection and collision translation
+///   proxima/model.h   non-convex models (hierarchies of convex pieces)
+///   proxima/scene.h   many moving bodies: broad phase and pair scheduling
 ///   proxima/io.h      meshes and polytopes from files (Assimp; link proxima-io)
 ///
 /// C11, no global state beyond the file-import lock of io.h. Geometry
@@ -21,5 +23,6 @@
 #include "proxima/mesh.h"
 #include "proxima/model.h"
 #include "proxima/query.h"
+#include "proxima/scene.h"
 
 #endif /* PROXIMA_PROXIMA_H */

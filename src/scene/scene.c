@@ -1,0 +1,1196 @@
+/* px_scene: bodies, sweep-and-prune over fat boxes, and a priority queue of
+ * pairs keyed by the earliest time they could come within the report
+ * distance (seed 000 §3.6; REFERENCES §4.2, §4.3).
+ *
+ * Broad phase (I-COLLIDE, Cohen et al. 1995; the pair updates of Bullet's
+ * btAxisSweep3): three sorted arrays of box endpoints, kept sorted by
+ * insertion sort. A swap of a min with another body's max changes the
+ * overlap of that one pair on that axis; the pair is added when the boxes
+ * then overlap on the other two axes (tested on the endpoints' positions,
+ * which follow the same total order as the sort) and removed when they stop
+ * overlapping. Boxes are the body's world box grown by half the report
+ * distance plus a slack: a body is re-sorted only when it leaves its fat
+ * box, so slow bodies cost one box test per step.
+ *
+ * Scheduler (Lin's thesis §3.6; the safe time of REFERENCES §4.3): after a
+ * query at t0 with distance d, the gap g = d - report - eps can close no
+ * faster than u = s_A + s_B, the bodies' largest point speeds (linear speed
+ * of the reference point plus angular speed times the radius about it), or
+ * with acceleration bounds and known velocities no faster than
+ * u0 + a (t - t0); the pair is due at t0 + tau, the time the bound reaches
+ * g. An indexed binary heap on (due, a, b) pops the due pairs.
+ *
+ * Safety does not rest on the declared bounds: every pose set is measured
+ * (the largest displacement of any point of the body, |dc| + theta R,
+ * theta the rotation angle), summed per body into its travel, and each pair
+ * keeps both travels at its last query. A due pair whose bodies travelled
+ * less than its gap since is re-keyed without a query; a body that moved
+ * more than its bounds allow in a step makes all its pairs due now. So a
+ * pair is measured before its distance can fall to the report distance,
+ * whatever the poses do. */
+#include "proxima/scene.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/core.h"
+#include "math/vec3.h"
+
+#define S_NONE UINT32_MAX
+#define S_PI 3.14159265358979323846
+/* The fat box's slack, relative to the body's box half-diagonal. */
+#define S_SLACK 0.125
+
+enum { K_CONVEX = 0, K_MODEL_MODEL = 1, K_MODEL_CONVEX = 2, K_CONVEX_MODEL = 3 };
+
+typedef struct sbody {
+    const px_model *model;
+    const px_convex *convex;
+    px_pose pose;         /* the pose the next step measures */
+    px_pose last;         /* the pose of the last step */
+    px_vec3 center;       /* body frame */
+    px_vec3 lo, hi;       /* body-frame box */
+    double radius;        /* largest distance from center to the body */
+    double size;          /* half-diagonal of the body-frame box */
+    double vmax, wmax;    /* speed bounds */
+    double accel;         /* amax + alphamax * radius: bound on a point's acceleration (0: none) */
+    double speed;         /* vmax + wmax * radius: bound on a point's speed */
+    double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
+    double travel;        /* sum of the displacement bounds of every pose change */
+    double fat[6];        /* the fat box in the sweep: lo xyz, hi xyz */
+    uint32_t ep[3][2];    /* positions of its min and max endpoints on each axis */
+    uint32_t group, mask, flags;
+    uint32_t first_pair; /* head of its list of pairs */
+    uint8_t alive, dirty, added, vel_now, chain;
+    void *user;
+} sbody;
+
+typedef struct spair {
+    uint32_t a, b;
+    uint32_t heap;             /* position in the heap; S_NONE when out of it */
+    uint32_t next[2], prev[2]; /* lists of a ([0]) and b ([1]) */
+    uint32_t kind;
+    uint8_t measured, contact, chain_keyed;
+    double due;
+    double snap_a, snap_b; /* travels at the last query */
+    double gap;            /* distance - report - eps at the last query */
+    px_scene_pair res;
+    union {
+        px_pair_cache convex;
+        px_model_cache model;
+    } cache;
+} spair;
+
+typedef struct sep {
+    double v;
+    uint32_t id; /* body << 1 | is_max */
+} sep;
+
+/* Open addressing on 64-bit keys (a << 32 | b), linear probing, deletion by
+ * backward shift (no tombstones, so the layout depends only on the set). */
+typedef struct shash {
+    uint64_t *key;
+    uint32_t *val;
+    uint32_t cap, n; /* cap: a power of two or 0 */
+} shash;
+
+struct px_scene {
+    px_allocator alloc;
+    double margin, report;
+    size_t model_cache_bytes;
+    double time;
+    int stepped;
+    sbody *body;
+    uint32_t n_body, cap_body, alive;
+    sep *axis[3];
+    uint32_t n_ep, cap_ep;
+    spair *pair;
+    uint32_t n_pair, cap_pair, free_pair, live_pairs;
+    shash pairs, excluded;
+    uint32_t *heap, cap_heap, n_heap;
+    uint32_t *dirty, n_dirty, cap_dirty;
+    uint32_t *later, n_later, cap_later;
+    uint32_t *rep, n_rep, cap_rep;
+    px_scene_pair *out;
+    uint32_t cap_out;
+    px_scene_event *ev, *pending;
+    uint32_t n_ev, cap_ev, n_pending, cap_pending;
+    uint32_t added, chains;
+    px_scene_stats stats;
+    size_t bytes;
+};
+
+/* ---- memory ------------------------------------------------------------ */
+
+/* Grows *arr (elements of `size` bytes, capacity *cap) to hold `need`. */
+static int grow(px_scene *s, void **arr, uint32_t *cap, uint32_t need, size_t size) {
+    if (need <= *cap) return 1;
+    if (need > UINT32_MAX / 2) return 0;
+    uint32_t nc = *cap ? *cap : 16;
+    while (nc < need) nc *= 2;
+    void *p = pxi_alloc_array(&s->alloc, nc, size);
+    if (!p) return 0;
+    if (*cap) memcpy(p, *arr, (size_t)*cap * size);
+    pxi_free(&s->alloc, *arr, (size_t)*cap * size);
+    s->bytes += (size_t)(nc - *cap) * size;
+    *arr = p;
+    *cap = nc;
+    return 1;
+}
+#define GROW(s, arr, cap, need) grow((s), (void **)&(arr), &(cap), (need), sizeof *(arr))
+
+/* ---- hash of pairs ----------------------------------------------------- */
+
+static uint64_t pair_key(uint32_t a, uint32_t b) {
+    return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+}
+
+static uint32_t hash_slot(uint64_t k, uint32_t cap) {
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdull;
+    k ^= k >> 33;
+    k *= 0xc4ceb9fe1a85ec53ull;
+    k ^= k >> 33;
+    return (uint32_t)k & (cap - 1);
+}
+
+static uint32_t hash_get(const shash *h, uint64_t k) {
+    if (!h->cap) return S_NONE;
+    for (uint32_t i = hash_slot(k, h->cap);; i = (i + 1) & (h->cap - 1)) {
+        if (h->val[i] == S_NONE) return S_NONE;
+        if (h->key[i] == k) return h->val[i];
+    }
+}
+
+static int hash_put(px_scene *s, shash *h, uint64_t k, uint32_t v) {
+    if (2 * (h->n + 1) > h->cap) {
+        uint32_t nc = h->cap ? 2 * h->cap : 64;
+        uint64_t *key = pxi_alloc_array(&s->alloc, nc, sizeof *key);
+        uint32_t *val = pxi_alloc_array(&s->alloc, nc, sizeof *val);
+        if (!key || !val || nc < h->cap) {
+            pxi_free(&s->alloc, key, (size_t)nc * sizeof *key);
+            pxi_free(&s->alloc, val, (size_t)nc * sizeof *val);
+            return 0;
+        }
+        for (uint32_t i = 0; i < nc; ++i) val[i] = S_NONE;
+        for (uint32_t i = 0; i < h->cap; ++i) {
+            if (h->val[i] == S_NONE) continue;
+            uint32_t j = hash_slot(h->key[i], nc);
+            while (val[j] != S_NONE) j = (j + 1) & (nc - 1);
+            key[j] = h->key[i];
+            val[j] = h->val[i];
+        }
+        pxi_free(&s->alloc, h->key, (size_t)h->cap * sizeof *key);
+        pxi_free(&s->alloc, h->val, (size_t)h->cap * sizeof *val);
+        s->bytes += (size_t)(nc - h->cap) * (sizeof *key + sizeof *val);
+        h->key = key;
+        h->val = val;
+        h->cap = nc;
+    }
+    uint32_t i = hash_slot(k, h->cap);
+    while (h->val[i] != S_NONE && h->key[i] != k) i = (i + 1) & (h->cap - 1);
+    if (h->val[i] == S_NONE) h->n++;
+    h->key[i] = k;
+    h->val[i] = v;
+    return 1;
+}
+
+static void hash_del(shash *h, uint64_t k) {
+    if (!h->cap) return;
+    uint32_t m = h->cap - 1, i = hash_slot(k, h->cap);
+    while (h->val[i] != S_NONE && h->key[i] != k) i = (i + 1) & m;
+    if (h->val[i] == S_NONE) return;
+    h->n--;
+    /* Backward shift: pull later entries of the run into the hole when
+     * their home slot does not lie strictly between the hole and them. */
+    for (uint32_t j = (i + 1) & m;; j = (j + 1) & m) {
+        if (h->val[j] == S_NONE) break;
+        uint32_t home = hash_slot(h->key[j], h->cap);
+        if (((j - home) & m) >= ((j - i) & m)) {
+            h->key[i] = h->key[j];
+            h->val[i] = h->val[j];
+            i = j;
+        }
+    }
+    h->val[i] = S_NONE;
+}
+
+static void hash_free(px_scene *s, shash *h) {
+    pxi_free(&s->alloc, h->key, (size_t)h->cap * sizeof *h->key);
+    pxi_free(&s->alloc, h->val, (size_t)h->cap * sizeof *h->val);
+    memset(h, 0, sizeof *h);
+}
+
+/* ---- heap of pairs on (due, a, b) -------------------------------------- */
+
+static int heap_less(const px_scene *s, uint32_t x, uint32_t y) {
+    const spair *p = &s->pair[x], *q = &s->pair[y];
+    if (p->due != q->due) return p->due < q->due;
+    if (p->a != q->a) return p->a < q->a;
+    return p->b < q->b;
+}
+
+static void heap_set(px_scene *s, uint32_t i, uint32_t p) {
+    s->heap[i] = p;
+    s->pair[p].heap = i;
+}
+
+static void heap_up(px_scene *s, uint32_t i) {
+    uint32_t p = s->heap[i];
+    while (i > 0 && heap_less(s, p, s->heap[(i - 1) / 2])) {
+        heap_set(s, i, s->heap[(i - 1) / 2]);
+        i = (i - 1) / 2;
+    }
+    heap_set(s, i, p);
+}
+
+static void heap_down(px_scene *s, uint32_t i) {
+    uint32_t p = s->heap[i];
+    for (;;) {
+        uint32_t k = 2 * i + 1;
+        if (k >= s->n_heap) break;
+        if (k + 1 < s->n_heap && heap_less(s, s->heap[k + 1], s->heap[k])) ++k;
+        if (!heap_less(s, s->heap[k], p)) break;
+        heap_set(s, i, s->heap[k]);
+        i = k;
+    }
+    heap_set(s, i, p);
+}
+
+/* The heap's capacity is kept at the pair pool's, so pushing never fails. */
+static void heap_push(px_scene *s, uint32_t p) {
+    heap_set(s, s->n_heap++, p);
+    heap_up(s, s->n_heap - 1);
+}
+
+static void heap_remove(px_scene *s, uint32_t p) {
+    uint32_t i = s->pair[p].heap;
+    if (i == S_NONE) return;
+    s->pair[p].heap = S_NONE;
+    uint32_t last = s->heap[--s->n_heap];
+    if (i == s->n_heap) return;
+    heap_set(s, i, last);
+    heap_up(s, i);
+    heap_down(s, s->pair[last].heap);
+}
+
+/* Makes a queued pair due now. */
+static void make_due(px_scene *s, uint32_t p) {
+    s->pair[p].due = -INFINITY;
+    if (s->pair[p].heap != S_NONE) heap_up(s, s->pair[p].heap);
+}
+
+/* ---- events ------------------------------------------------------------ */
+
+static int event(px_scene *s, uint32_t a, uint32_t b, int began) {
+    if (!GROW(s, s->pending, s->cap_pending, s->n_pending + 1)) return 0;
+    s->pending[s->n_pending++] = (px_scene_event){a, b, (uint32_t)began, 0};
+    return 1;
+}
+
+/* ---- pairs --------------------------------------------------------------- */
+
+static int filtered(const px_scene *s, uint32_t a, uint32_t b) {
+    const sbody *x = &s->body[a], *y = &s->body[b];
+    if (!(x->group & y->mask) || !(y->group & x->mask)) return 1;
+    return hash_get(&s->excluded, pair_key(a, b)) != S_NONE;
+}
+
+static void link_pair(px_scene *s, uint32_t p) {
+    spair *q = &s->pair[p];
+    for (int k = 0; k < 2; ++k) {
+        sbody *b = &s->body[k ? q->b : q->a];
+        q->prev[k] = S_NONE;
+        q->next[k] = b->first_pair;
+        if (b->first_pair != S_NONE) {
+            spair *h = &s->pair[b->first_pair];
+            h->prev[h->a == (k ? q->b : q->a) ? 0 : 1] = p;
+        }
+        b->first_pair = p;
+    }
+}
+
+static void unlink_pair(px_scene *s, uint32_t p) {
+    spair *q = &s->pair[p];
+    for (int k = 0; k < 2; ++k) {
+        uint32_t me = k ? q->b : q->a;
+        if (q->prev[k] != S_NONE) {
+            spair *o = &s->pair[q->prev[k]];
+            o->next[o->a == me ? 0 : 1] = q->next[k];
+        } else {
+            s->body[me].first_pair = q->next[k];
+        }
+        if (q->next[k] != S_NONE) {
+            spair *o = &s->pair[q->next[k]];
+            o->prev[o->a == me ? 0 : 1] = q->prev[k];
+        }
+    }
+}
+
+/* The next pair of body `me` after pair p in its list. */
+static uint32_t next_of(const px_scene *s, uint32_t p, uint32_t me) {
+    const spair *q = &s->pair[p];
+    return q->next[q->a == me ? 0 : 1];
+}
+
+static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
+    if (a > b) {
+        uint32_t t = a;
+        a = b;
+        b = t;
+    }
+    if (filtered(s, a, b)) return 1;
+    uint64_t k = pair_key(a, b);
+    if (hash_get(&s->pairs, k) != S_NONE) return 1;
+    uint32_t p;
+    if (s->free_pair != S_NONE) {
+        p = s->free_pair;
+        s->free_pair = s->pair[p].next[0];
+    } else {
+        if (!GROW(s, s->pair, s->cap_pair, s->n_pair + 1)) return 0;
+        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair)) return 0;
+        p = s->n_pair++;
+    }
+    if (!hash_put(s, &s->pairs, k, p)) {
+        s->pair[p].a = s->pair[p].b = S_NONE;
+        s->pair[p].next[0] = s->free_pair;
+        s->free_pair = p;
+        return 0;
+    }
+    spair *q = &s->pair[p];
+    memset(q, 0, sizeof *q);
+    q->a = a;
+    q->b = b;
+    const sbody *x = &s->body[a], *y = &s->body[b];
+    q->kind = x->convex && y->convex ? K_CONVEX
+              : x->model && y->model ? K_MODEL_MODEL
+              : x->model             ? K_MODEL_CONVEX
+                                     : K_CONVEX_MODEL;
+    if (q->kind != K_CONVEX) {
+        q->cache.model.allocator = &s->alloc;
+        q->cache.model.max_bytes = s->model_cache_bytes;
+    }
+    q->due = -INFINITY;
+    q->heap = S_NONE;
+    link_pair(s, p);
+    heap_push(s, p);
+    s->live_pairs++;
+    return 1;
+}
+
+static void free_pair(px_scene *s, uint32_t p, int silent) {
+    spair *q = &s->pair[p];
+    if (q->contact && !silent) event(s, q->a, q->b, 0);
+    hash_del(&s->pairs, pair_key(q->a, q->b));
+    heap_remove(s, p);
+    unlink_pair(s, p);
+    if (q->kind != K_CONVEX) px_model_cache_release(&q->cache.model);
+    q->a = q->b = S_NONE;
+    q->next[0] = s->free_pair;
+    s->free_pair = p;
+    s->live_pairs--;
+}
+
+static void remove_pair(px_scene *s, uint32_t a, uint32_t b) {
+    uint32_t p = hash_get(&s->pairs, pair_key(a, b));
+    if (p != S_NONE) free_pair(s, p, 0);
+}
+
+/* ---- sweep and prune ------------------------------------------------------ */
+
+/* The sort's total order: value, then min before max (touching boxes
+ * overlap), then body id. */
+static int precedes(sep x, sep y) {
+    if (x.v != y.v) return x.v < y.v;
+    if ((x.id & 1) != (y.id & 1)) return (x.id & 1) < (y.id & 1);
+    return (x.id >> 1) < (y.id >> 1);
+}
+
+static int overlap_on(const px_scene *s, uint32_t a, uint32_t b, int k) {
+    const sbody *x = &s->body[a], *y = &s->body[b];
+    return x->ep[k][0] < y->ep[k][1] && y->ep[k][0] < x->ep[k][1];
+}
+
+static int overlap_others(const px_scene *s, uint32_t a, uint32_t b, int k) {
+    return overlap_on(s, a, b, (k + 1) % 3) && overlap_on(s, a, b, (k + 2) % 3);
+}
+
+static void swap_ep(px_scene *s, int k, uint32_t i, uint32_t j) {
+    sep *e = s->axis[k];
+    sep t = e[i];
+    e[i] = e[j];
+    e[j] = t;
+    s->body[e[i].id >> 1].ep[k][e[i].id & 1] = i;
+    s->body[e[j].id >> 1].ep[k][e[j].id & 1] = j;
+    s->stats.swaps++;
+}
+
+/* Moves body b's endpoints on axis k to their new values' places, adding
+ * and removing pairs as min/max swaps change their overlap (expanding moves
+ * first, as btAxisSweep3 does, so a min never passes its own max). */
+static int sift(px_scene *s, uint32_t b, int k) {
+    sep *e = s->axis[k];
+    const uint32_t n = s->n_ep;
+    int ok = 1;
+    uint32_t i = s->body[b].ep[k][0];
+    while (i > 0 && precedes(e[i], e[i - 1])) { /* min left */
+        sep o = e[i - 1];
+        if ((o.id & 1) && overlap_others(s, b, o.id >> 1, k)) ok &= add_pair(s, b, o.id >> 1);
+        swap_ep(s, k, i, i - 1);
+        --i;
+    }
+    i = s->body[b].ep[k][1];
+    while (i + 1 < n && precedes(e[i + 1], e[i])) { /* max right */
+        sep o = e[i + 1];
+        if (!(o.id & 1) && overlap_others(s, b, o.id >> 1, k)) ok &= add_pair(s, b, o.id >> 1);
+        swap_ep(s, k, i, i + 1);
+        ++i;
+    }
+    i = s->body[b].ep[k][0];
+    while (i + 1 < n && precedes(e[i + 1], e[i])) { /* min right */
+        sep o = e[i + 1];
+        if (o.id & 1) remove_pair(s, b, o.id >> 1);
+        swap_ep(s, k, i, i + 1);
+        ++i;
+    }
+    i = s->body[b].ep[k][1];
+    while (i > 0 && precedes(e[i], e[i - 1])) { /* max left */
+        sep o = e[i - 1];
+        if (!(o.id & 1)) remove_pair(s, b, o.id >> 1);
+        swap_ep(s, k, i, i - 1);
+        --i;
+    }
+    return ok;
+}
+
+/* The body's world box at its pose (the body-frame box turned: |R| half). */
+static void world_box(const sbody *b, double out[6]) {
+    px_vec3 c = pxi_scale(pxi_add(b->lo, b->hi), 0.5), h = pxi_scale(pxi_sub(b->hi, b->lo), 0.5);
+    px_vec3 wc = pxi_xform(&b->pose, c);
+    const double *r = b->pose.r;
+    double wc3[3] = {wc.x, wc.y, wc.z};
+    for (int i = 0; i < 3; ++i) {
+        double e = fabs(r[3 * i]) * h.x + fabs(r[3 * i + 1]) * h.y + fabs(r[3 * i + 2]) * h.z;
+        /* Rounding of the centre and extent: a few ulps of the coordinates. */
+        e += 8.0 * DBL_EPSILON * (fabs(wc3[i]) + e);
+        out[i] = wc3[i] - e;
+        out[3 + i] = wc3[i] + e;
+    }
+}
+
+/* New fat box when the grown world box leaves the old one; 1 when moved. */
+static int refit(px_scene *s, sbody *b) {
+    double w[6], g = 0.5 * s->report;
+    world_box(b, w);
+    int inside = 1;
+    for (int i = 0; i < 3; ++i)
+        if (w[i] - g < b->fat[i] || w[3 + i] + g > b->fat[3 + i]) inside = 0;
+    if (inside) return 0;
+    double slack = g + S_SLACK * b->size;
+    for (int i = 0; i < 3; ++i) {
+        b->fat[i] = w[i] - slack;
+        b->fat[3 + i] = w[3 + i] + slack;
+    }
+    return 1;
+}
+
+static void write_ep(px_scene *s, uint32_t id) {
+    sbody *b = &s->body[id];
+    for (int k = 0; k < 3; ++k) {
+        s->axis[k][b->ep[k][0]].v = b->fat[k];
+        s->axis[k][b->ep[k][1]].v = b->fat[3 + k];
+    }
+}
+
+static int cmp_sep(const void *x, const void *y) {
+    sep a = *(const sep *)x, b = *(const sep *)y;
+    return precedes(a, b) ? -1 : precedes(b, a) ? 1 : 0;
+}
+
+/* Sorts every axis anew and adds every overlapping pair that is missing
+ * (a sweep along x with the active bodies): used when many bodies were
+ * added at once, where sifting each in would cost O(n) swaps apiece. */
+static int rebuild(px_scene *s) {
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->n_body; ++i) {
+        sbody *b = &s->body[i];
+        if (!b->alive) continue;
+        b->added = 0;
+        for (int k = 0; k < 3; ++k) {
+            s->axis[k][n] = (sep){b->fat[k], i << 1};
+            s->axis[k][n + 1] = (sep){b->fat[3 + k], i << 1 | 1};
+        }
+        n += 2;
+    }
+    s->n_ep = n;
+    for (int k = 0; k < 3; ++k) {
+        qsort(s->axis[k], n, sizeof(sep), cmp_sep);
+        for (uint32_t i = 0; i < n; ++i) s->body[s->axis[k][i].id >> 1].ep[k][s->axis[k][i].id & 1] = i;
+    }
+    /* Active bodies along x: those whose min was passed and max not yet. */
+    uint32_t *active = s->later, n_active = 0; /* `later` is free outside the due loop */
+    if (!GROW(s, s->later, s->cap_later, s->alive)) return 0;
+    active = s->later;
+    for (uint32_t i = 0; i < n; ++i) {
+        sep e = s->axis[0][i];
+        uint32_t b = e.id >> 1;
+        if (e.id & 1) {
+            for (uint32_t j = 0; j < n_active; ++j)
+                if (active[j] == b) {
+                    active[j] = active[--n_active];
+                    break;
+                }
+            continue;
+        }
+        for (uint32_t j = 0; j < n_active; ++j)
+            if (overlap_others(s, b, active[j], 0) && !add_pair(s, b, active[j])) return 0;
+        active[n_active++] = b;
+    }
+    s->added = 0;
+    return 1;
+}
+
+/* Puts a newly added body into the sorted arrays: its endpoints start past
+ * every other at +inf and sift down, pairs being added only on the last
+ * axis, once the other two hold their values (btAxisSweep3::addHandle). */
+static int insert(px_scene *s, uint32_t id) {
+    sbody *b = &s->body[id];
+    uint32_t n = s->n_ep;
+    for (int k = 0; k < 3; ++k) {
+        s->axis[k][n] = (sep){INFINITY, id << 1};
+        s->axis[k][n + 1] = (sep){INFINITY, id << 1 | 1};
+        b->ep[k][0] = n;
+        b->ep[k][1] = n + 1;
+    }
+    s->n_ep = n + 2;
+    b->added = 0;
+    int ok = 1;
+    for (int k = 0; k < 3; ++k) {
+        s->axis[k][b->ep[k][0]].v = b->fat[k];
+        s->axis[k][b->ep[k][1]].v = b->fat[3 + k];
+        ok &= sift(s, id, k);
+    }
+    return ok;
+}
+
+/* Takes a body's endpoints out of the arrays. */
+static void extract(px_scene *s, uint32_t id) {
+    for (int k = 0; k < 3; ++k) {
+        sep *e = s->axis[k];
+        uint32_t w = 0;
+        for (uint32_t i = 0; i < s->n_ep; ++i) {
+            if (e[i].id >> 1 == id) continue;
+            e[w] = e[i];
+            s->body[e[w].id >> 1].ep[k][e[w].id & 1] = w;
+            ++w;
+        }
+    }
+    s->n_ep -= 2;
+}
+
+/* ---- motion ------------------------------------------------------------ */
+
+/* A bound on how far any point of the body moved from pose p to pose q:
+ * the reference point's displacement plus the rotation angle times the
+ * radius (a chord is shorter than its arc). theta from the Frobenius norm
+ * of the difference of the rotations: |Rq - Rp|_F = 2 sqrt 2 sin(theta/2). */
+static double displacement(const sbody *b, const px_pose *p, const px_pose *q) {
+    px_vec3 cp = pxi_xform(p, b->center), cq = pxi_xform(q, b->center);
+    double f = 0.0;
+    for (int i = 0; i < 9; ++i) f += (q->r[i] - p->r[i]) * (q->r[i] - p->r[i]);
+    double sn = sqrt(f) / (2.0 * sqrt(2.0));
+    double theta = sn >= 1.0 ? S_PI : 2.0 * asin(sn);
+    double d = pxi_len(pxi_sub(cq, cp)) + theta * b->radius;
+    /* Rounding of the points and of theta: a few ulps of the coordinates. */
+    return d * (1.0 + 16.0 * DBL_EPSILON) + 16.0 * DBL_EPSILON * (pxi_len(cp) + pxi_len(cq) + b->radius);
+}
+
+/* Makes all pairs of body id due now. */
+static void all_due(px_scene *s, uint32_t id) {
+    for (uint32_t p = s->body[id].first_pair; p != S_NONE; p = next_of(s, p, id)) make_due(s, p);
+}
+
+/* Measures a moved body: travel, bounds, and its chain of known
+ * velocities (with acceleration bounds). */
+static void measure(px_scene *s, uint32_t id, double dt) {
+    sbody *b = &s->body[id];
+    double d = memcmp(&b->pose, &b->last, sizeof b->pose) ? displacement(b, &b->last, &b->pose) : 0.0;
+    b->travel += d;
+    /* Poses set before the first step (dt infinite) are free. */
+    double allowed = isinf(b->speed) || isinf(dt) ? INFINITY : dt > 0.0 ? b->speed * dt : 0.0;
+    int violated = d > allowed;
+    if (b->chain) {
+        /* Known speed s_prev at the last step: this step moved at most
+         * s_prev dt + a dt^2 / 2, and the new speed is at most s_prev + a dt. */
+        double a = b->accel;
+        if (!b->vel_now || d > b->s_prev * dt + 0.5 * a * dt * dt || b->s_now > b->s_prev + a * dt) {
+            b->chain = 0;
+            s->chains--;
+            if (b->vel_now) violated = 1;
+            all_due(s, id);
+        }
+    } else if (b->vel_now && b->accel > 0.0 && !isinf(b->speed)) {
+        b->chain = 1;
+        s->chains++;
+    }
+    if (b->chain) b->s_prev = b->s_now;
+    b->vel_now = 0;
+    if (violated) {
+        s->stats.violations++;
+        all_due(s, id);
+    }
+    b->last = b->pose;
+}
+
+/* Earliest time after a query the gap g can close: u t (+ a t^2 / 2). */
+static double safe_time(const px_scene *s, const spair *q, double g) {
+    if (g <= 0.0) return 0.0;
+    const sbody *x = &s->body[q->a], *y = &s->body[q->b];
+    double u = x->speed + y->speed;
+    double tau = u > 0.0 ? g / u : INFINITY;
+    if (x->chain || y->chain) {
+        double u0 = (x->chain ? x->s_prev : x->speed) + (y->chain ? y->s_prev : y->speed);
+        double a = (x->chain ? x->accel : 0.0) + (y->chain ? y->accel : 0.0);
+        /* Stable root of g = u0 t + a t^2 / 2. */
+        double t2 = a > 0.0 ? 2.0 * g / (u0 + sqrt(u0 * u0 + 2.0 * a * g)) : u0 > 0.0 ? g / u0 : INFINITY;
+        if (t2 > tau) tau = t2;
+    }
+    return isnan(tau) ? 0.0 : tau;
+}
+
+/* ---- narrow phase ------------------------------------------------------ */
+
+static px_status query(px_scene *s, spair *q, px_error *err) {
+    const sbody *x = &s->body[q->a], *y = &s->body[q->b];
+    px_scene_pair *r = &q->res;
+    r->body_a = q->a;
+    r->body_b = q->b;
+    px_status st;
+    if (q->kind == K_CONVEX) {
+        px_distance_result d;
+        st = px_distance(x->convex, &x->pose, y->convex, &y->pose, NULL, &q->cache.convex, &d);
+        if (st == PX_OK) {
+            r->distance = r->upper_bound = d.distance;
+            r->point_a = d.point_a;
+            r->point_b = d.point_b;
+            r->leaf_a = r->leaf_b = 0;
+        }
+    } else {
+        px_model_distance_result d;
+        if (q->kind == K_MODEL_MODEL)
+            st = px_model_distance(x->model, &x->pose, y->model, &y->pose, &q->cache.model, &d);
+        else if (q->kind == K_MODEL_CONVEX)
+            st = px_model_distance_convex(x->model, &x->pose, y->convex, &y->pose, &q->cache.model, &d);
+        else
+            st = px_model_distance_convex(y->model, &y->pose, x->convex, &x->pose, &q->cache.model, &d);
+        if (st == PX_OK) {
+            int swap = q->kind == K_CONVEX_MODEL;
+            r->distance = d.distance;
+            r->upper_bound = d.upper_bound;
+            r->point_a = swap ? d.point_b : d.point_a;
+            r->point_b = swap ? d.point_a : d.point_b;
+            r->leaf_a = swap ? d.leaf_b : d.leaf_a;
+            r->leaf_b = swap ? d.leaf_a : d.leaf_b;
+        }
+    }
+    s->stats.pairs_checked++;
+    if (st != PX_OK)
+        return pxi_error(err, st, "px_scene_step: bodies %u and %u: the distance query failed (%s)", q->a,
+                         q->b, px_status_string(st));
+    if (!(r->distance >= 0.0) || !isfinite(r->distance))
+        return pxi_error(err, PX_ERR_INTERNAL, "px_scene_step: bodies %u and %u: distance %g", q->a, q->b,
+                         r->distance);
+    /* Error of the distance: a few ulps of the pair's size and place. */
+    double eps = 64.0 * DBL_EPSILON *
+                 (x->size + y->size + pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + r->distance);
+    q->gap = r->distance - s->report - eps;
+    q->snap_a = x->travel;
+    q->snap_b = y->travel;
+    q->measured = 1;
+    int contact = r->distance <= s->margin;
+    r->contact = (uint32_t)contact;
+    if (contact != q->contact && !event(s, q->a, q->b, contact))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    q->contact = (uint8_t)contact;
+    return PX_OK;
+}
+
+/* ---- API ----------------------------------------------------------------- */
+
+px_scene *px_scene_create(const px_scene_options *options, px_error *err) {
+    pxi_error_clear(err);
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    if (options) o = *options;
+    for (size_t i = 0; i < sizeof o.reserved / sizeof o.reserved[0]; ++i)
+        if (o.reserved[i]) {
+            pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_create: options.reserved[%zu] must be 0", i);
+            return NULL;
+        }
+    if (!isfinite(o.margin) || o.margin < 0.0) {
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_create: options.margin %g is not finite and >= 0",
+                  o.margin);
+        return NULL;
+    }
+    if (o.report_distance == 0.0) o.report_distance = o.margin;
+    if (!isfinite(o.report_distance) || o.report_distance < o.margin) {
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                  "px_scene_create: options.report_distance %g is not finite and >= the margin %g",
+                  o.report_distance, o.margin);
+        return NULL;
+    }
+    px_allocator a;
+    if (pxi_allocator_resolve(o.allocator, &a, err) != PX_OK) return NULL;
+    px_scene *s = pxi_alloc(&a, sizeof *s);
+    if (!s) {
+        pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_create: out of memory");
+        return NULL;
+    }
+    memset(s, 0, sizeof *s);
+    s->alloc = a;
+    s->margin = o.margin;
+    s->report = o.report_distance;
+    s->model_cache_bytes = o.model_cache_bytes ? o.model_cache_bytes : (size_t)256 << 10;
+    s->time = -INFINITY;
+    s->free_pair = S_NONE;
+    s->bytes = sizeof *s;
+    return s;
+}
+
+void px_scene_destroy(px_scene *s) {
+    if (!s) return;
+    for (uint32_t p = 0; p < s->n_pair; ++p)
+        if (s->pair[p].a != S_NONE && s->pair[p].kind != K_CONVEX)
+            px_model_cache_release(&s->pair[p].cache.model);
+    px_allocator a = s->alloc;
+    pxi_free(&a, s->body, (size_t)s->cap_body * sizeof *s->body);
+    for (int k = 0; k < 3; ++k) pxi_free(&a, s->axis[k], (size_t)s->cap_ep * sizeof(sep));
+    pxi_free(&a, s->pair, (size_t)s->cap_pair * sizeof *s->pair);
+    hash_free(s, &s->pairs);
+    hash_free(s, &s->excluded);
+    pxi_free(&a, s->heap, (size_t)s->cap_heap * sizeof *s->heap);
+    pxi_free(&a, s->dirty, (size_t)s->cap_dirty * sizeof *s->dirty);
+    pxi_free(&a, s->later, (size_t)s->cap_later * sizeof *s->later);
+    pxi_free(&a, s->rep, (size_t)s->cap_rep * sizeof *s->rep);
+    pxi_free(&a, s->out, (size_t)s->cap_out * sizeof *s->out);
+    pxi_free(&a, s->ev, (size_t)s->cap_ev * sizeof *s->ev);
+    pxi_free(&a, s->pending, (size_t)s->cap_pending * sizeof *s->pending);
+    pxi_free(&a, s, sizeof *s);
+}
+
+static int body_ok(const px_scene *s, uint32_t id) { return s && id < s->n_body && s->body[id].alive; }
+
+/* The pose's translation must stay where differences of coordinates are
+ * exact enough and finite (the queries' range). */
+static px_status check_pose(const px_pose *pose, const char *fn, px_error *err) {
+    if (!pose) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "%s: pose is NULL", fn);
+    px_status st = px_pose_check(pose, err);
+    if (st != PX_OK) return st;
+    if (!(pxi_max_abs(pose->t) <= 0x1p250))
+        return pxi_error(err, PX_ERR_RANGE, "%s: the pose's translation is beyond 2^250", fn);
+    return PX_OK;
+}
+
+/* Rejects NaN (tested first: an ordered comparison with NaN raises
+ * FE_INVALID) and negatives, allows INFINITY. */
+static int bound_ok(double v) { return !isnan(v) && v >= 0.0; }
+
+px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px_error *err) {
+    pxi_error_clear(err);
+    if (!s || !d || !id) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_add_body: NULL argument");
+    if (!d->model == !d->convex)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_scene_add_body: exactly one of desc.model and desc.convex must be set");
+    if (d->flags & ~(uint32_t)PX_BODY_STATIC)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_add_body: unknown flags 0x%x", d->flags);
+    for (int i = 0; i < 3; ++i)
+        if (d->reserved[i])
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_add_body: desc.reserved[%d] must be 0",
+                             i);
+    if (!bound_ok(d->max_speed) || !bound_ok(d->max_angular_speed) || !bound_ok(d->max_accel) ||
+        !bound_ok(d->max_angular_accel) || isinf(d->max_accel) || isinf(d->max_angular_accel))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_scene_add_body: motion bounds must be >= 0 (speeds may be INFINITY, "
+                         "accelerations must be finite)");
+    if (!pxi_is_finite3(d->center) || !(pxi_max_abs(d->center) <= 0x1p250))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_scene_add_body: desc.center is not finite or beyond 2^250");
+    px_status st = check_pose(&d->pose, "px_scene_add_body", err);
+    if (st != PX_OK) return st;
+    /* Body-frame box. */
+    px_vec3 lo, hi;
+    if (d->model) {
+        px_model_info info;
+        st = px_model_get_info(d->model, &info);
+        if (st != PX_OK) return pxi_error(err, st, "px_scene_add_body: the model is not valid");
+        lo = info.min;
+        hi = info.max;
+    } else {
+        uint32_t nv = px_convex_vertex_count(d->convex);
+        if (nv == 0)
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_add_body: the polytope is empty");
+        px_convex_vertex(d->convex, 0, &lo);
+        hi = lo;
+        for (uint32_t i = 1; i < nv; ++i) {
+            px_vec3 p;
+            px_convex_vertex(d->convex, i, &p);
+            lo = pxi_v(pxi_min2(lo.x, p.x), pxi_min2(lo.y, p.y), pxi_min2(lo.z, p.z));
+            hi = pxi_v(pxi_max2(hi.x, p.x), pxi_max2(hi.y, p.y), pxi_max2(hi.z, p.z));
+        }
+    }
+    /* The smallest free id, for determinism. */
+    uint32_t i = 0;
+    while (i < s->n_body && s->body[i].alive) ++i;
+    if (i == s->n_body) {
+        if (s->n_body >= (UINT32_MAX >> 2) || !GROW(s, s->body, s->cap_body, s->n_body + 1))
+            return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
+        s->n_body++;
+    }
+    uint32_t need = 2 * (s->alive + 1);
+    uint32_t cap = s->cap_ep;
+    for (int k = 0; k < 3; ++k) {
+        uint32_t c = cap;
+        if (!grow(s, (void **)&s->axis[k], &c, need, sizeof(sep)))
+            return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
+        if (k == 2) s->cap_ep = c;
+    }
+    if (!GROW(s, s->dirty, s->cap_dirty, s->alive + 1))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
+    sbody *b = &s->body[i];
+    memset(b, 0, sizeof *b);
+    b->model = d->model;
+    b->convex = d->convex;
+    b->pose = b->last = d->pose;
+    b->center = d->center;
+    b->lo = lo;
+    b->hi = hi;
+    b->size = 0.5 * pxi_len(pxi_sub(hi, lo));
+    double r = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        px_vec3 p = pxi_v(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+        r = pxi_max2(r, pxi_len(pxi_sub(p, d->center)));
+    }
+    b->radius = r * (1.0 + 8.0 * DBL_EPSILON);
+    int fixed = (d->flags & PX_BODY_STATIC) != 0;
+    b->vmax = fixed ? 0.0 : d->max_speed;
+    b->wmax = fixed ? 0.0 : d->max_angular_speed;
+    b->speed = b->wmax > 0.0 ? b->vmax + b->wmax * b->radius : b->vmax;
+    b->accel = fixed ? 0.0 : d->max_accel + d->max_angular_accel * b->radius;
+    b->group = d->group ? d->group : UINT32_MAX;
+    b->mask = d->mask ? d->mask : UINT32_MAX;
+    b->flags = d->flags;
+    b->first_pair = S_NONE;
+    b->user = d->user;
+    b->alive = 1;
+    b->added = 1;
+    for (int k = 0; k < 3; ++k) b->fat[k] = INFINITY, b->fat[3 + k] = -INFINITY;
+    refit(s, b);
+    s->alive++;
+    s->added++;
+    *id = i;
+    return PX_OK;
+}
+
+px_status px_scene_remove_body(px_scene *s, uint32_t id, px_error *err) {
+    pxi_error_clear(err);
+    if (!body_ok(s, id))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_remove_body: no body %u in the scene", id);
+    sbody *b = &s->body[id];
+    while (b->first_pair != S_NONE) free_pair(s, b->first_pair, 0);
+    if (!b->added)
+        extract(s, id);
+    else
+        s->added--;
+    if (b->chain) s->chains--;
+    /* Exclusions name ids, which will be reused. */
+    for (uint32_t i = 0; i < s->excluded.cap;) {
+        uint64_t k = s->excluded.key[i];
+        if (s->excluded.val[i] != S_NONE && ((uint32_t)(k >> 32) == id || (uint32_t)k == id))
+            hash_del(&s->excluded, k); /* the slot may now hold a shifted entry: test it again */
+        else
+            ++i;
+    }
+    for (uint32_t i = 0; i < s->n_dirty; ++i)
+        if (s->dirty[i] == id) s->dirty[i--] = s->dirty[--s->n_dirty];
+    b->alive = 0;
+    s->alive--;
+    return PX_OK;
+}
+
+void *px_scene_body_user(const px_scene *s, uint32_t id) { return body_ok(s, id) ? s->body[id].user : NULL; }
+
+px_status px_scene_exclude_pair(px_scene *s, uint32_t a, uint32_t b, px_error *err) {
+    pxi_error_clear(err);
+    if (!body_ok(s, a) || !body_ok(s, b) || a == b)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_scene_exclude_pair: bodies %u and %u are not two bodies of the scene", a, b);
+    if (!hash_put(s, &s->excluded, pair_key(a, b), 0))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_exclude_pair: out of memory");
+    uint32_t p = hash_get(&s->pairs, pair_key(a, b));
+    if (p != S_NONE) free_pair(s, p, 1);
+    return PX_OK;
+}
+
+static px_status mark_dirty(px_scene *s, uint32_t id) {
+    sbody *b = &s->body[id];
+    if (!b->dirty) {
+        b->dirty = 1;
+        s->dirty[s->n_dirty++] = id; /* capacity: one per body */
+    }
+    return PX_OK;
+}
+
+px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_error *err) {
+    if (!body_ok(s, id))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_pose: no body %u in the scene", id);
+    if (s->body[id].flags & PX_BODY_STATIC)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_pose: body %u is static", id);
+    px_status st = check_pose(pose, "px_scene_set_pose", err);
+    if (st != PX_OK) return st;
+    pxi_error_clear(err);
+    s->body[id].pose = *pose;
+    return mark_dirty(s, id);
+}
+
+px_status px_scene_set_velocity(px_scene *s, uint32_t id, px_vec3 v, double w, px_error *err) {
+    if (!body_ok(s, id))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_velocity: no body %u in the scene", id);
+    sbody *b = &s->body[id];
+    double lin = pxi_len(v);
+    if (!pxi_is_finite3(v) || !isfinite(w) || w < 0.0 || lin > b->vmax || w > b->wmax)
+        return pxi_error(
+            err, PX_ERR_INVALID_ARGUMENT,
+            "px_scene_set_velocity: body %u: speed %g and angular speed %g must be finite and within "
+            "its bounds %g and %g",
+            id, lin, w, b->vmax, b->wmax);
+    pxi_error_clear(err);
+    b->s_now = lin + w * b->radius;
+    b->vel_now = 1;
+    return mark_dirty(s, id);
+}
+
+static int cmp_pair_out(const void *x, const void *y) {
+    const px_scene_pair *a = x, *b = y;
+    if (a->body_a != b->body_a) return a->body_a < b->body_a ? -1 : 1;
+    return a->body_b < b->body_b ? -1 : a->body_b > b->body_b;
+}
+
+static int cmp_event(const void *x, const void *y) {
+    const px_scene_event *a = x, *b = y;
+    if (a->body_a != b->body_a) return a->body_a < b->body_a ? -1 : 1;
+    if (a->body_b != b->body_b) return a->body_b < b->body_b ? -1 : 1;
+    /* One pair's events (ended, then began again after a body was removed
+     * and its id reused) keep their order: `reserved` tags the sequence. */
+    return a->reserved < b->reserved ? -1 : a->reserved > b->reserved;
+}
+
+px_status px_scene_step(px_scene *s, double time, px_error *err) {
+    pxi_error_clear(err);
+    if (!s) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_step: scene is NULL");
+    if (!isfinite(time) || (s->stepped && time < s->time))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_scene_step: time %g is not finite or goes back (last %g)", time, s->time);
+    double dt = s->stepped ? time - s->time : INFINITY;
+    uint64_t checked0 = 0;
+    s->stats.swaps = 0;
+    s->stats.violations = 0;
+    s->stats.pairs_checked = checked0;
+    s->stats.moved = s->n_dirty;
+    s->stats.box_updates = 0;
+    /* Bodies whose velocity chain lapses without a pose or velocity set. */
+    if (s->chains)
+        for (uint32_t i = 0; i < s->n_body; ++i)
+            if (s->body[i].alive && s->body[i].chain && !s->body[i].dirty) mark_dirty(s, i);
+    int ok = 1;
+    for (uint32_t i = 0; i < s->n_dirty; ++i) {
+        uint32_t id = s->dirty[i];
+        sbody *b = &s->body[id];
+        b->dirty = 0;
+        measure(s, id, dt);
+        /* A body added since the last step is sorted in below, at its
+         * refitted box. */
+        if (!refit(s, b) || b->added) continue;
+        s->stats.box_updates++;
+        write_ep(s, id);
+        for (int k = 0; k < 3 && ok; ++k) ok &= sift(s, id, k);
+    }
+    s->n_dirty = 0;
+    if (ok && s->added) {
+        if (s->added > 16 && s->added * 4 > s->alive) {
+            ok = rebuild(s);
+        } else {
+            for (uint32_t id = 0; id < s->n_body && ok; ++id)
+                if (s->body[id].alive && s->body[id].added) ok = insert(s, id);
+            s->added = 0;
+        }
+    }
+    if (!ok) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    s->time = time;
+    s->stepped = 1;
+    /* Due pairs. */
+    s->n_rep = 0;
+    s->n_later = 0;
+    if (!GROW(s, s->later, s->cap_later, s->live_pairs) || !GROW(s, s->rep, s->cap_rep, s->live_pairs))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    px_status st = PX_OK;
+    while (s->n_heap > 0 && s->pair[s->heap[0]].due <= time) {
+        uint32_t p = s->heap[0];
+        heap_remove(s, p);
+        spair *q = &s->pair[p];
+        s->later[s->n_later++] = p;
+        double moved = (s->body[q->a].travel - q->snap_a) + (s->body[q->b].travel - q->snap_b);
+        if (q->measured && moved < q->gap) {
+            /* Not closer than the report distance yet: key again from the
+             * gap left, measured from now. */
+            q->due = time + safe_time(s, q, q->gap - moved);
+            q->gap -= moved;
+            q->snap_a = s->body[q->a].travel;
+            q->snap_b = s->body[q->b].travel;
+            continue;
+        }
+        if (!q->measured || moved > 0.0) {
+            st = query(s, q, err);
+            if (st != PX_OK) {
+                q->due = -INFINITY;
+                break;
+            }
+        }
+        if (q->gap <= 0.0 || q->res.distance <= s->report) s->rep[s->n_rep++] = p;
+        q->due = time + safe_time(s, q, q->gap);
+    }
+    for (uint32_t i = 0; i < s->n_later; ++i) heap_push(s, s->later[i]);
+    s->n_later = 0;
+    if (st != PX_OK) {
+        s->n_rep = 0;
+        return st;
+    }
+    /* Reports, in (a, b) order. */
+    if (!GROW(s, s->out, s->cap_out, s->n_rep))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->n_rep; ++i) {
+        const spair *q = &s->pair[s->rep[i]];
+        if (q->res.distance <= s->report) s->out[n++] = q->res;
+    }
+    s->n_rep = n;
+    qsort(s->out, n, sizeof *s->out, cmp_pair_out);
+    /* Events, in (a, b) order. */
+    if (!GROW(s, s->ev, s->cap_ev, s->n_pending))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    for (uint32_t i = 0; i < s->n_pending; ++i) s->pending[i].reserved = i;
+    qsort(s->pending, s->n_pending, sizeof *s->pending, cmp_event);
+    for (uint32_t i = 0; i < s->n_pending; ++i) {
+        s->ev[i] = s->pending[i];
+        s->ev[i].reserved = 0;
+    }
+    s->n_ev = s->n_pending;
+    s->n_pending = 0;
+    s->stats.bodies = s->alive;
+    s->stats.candidate_pairs = s->live_pairs;
+    return PX_OK;
+}
+
+const px_scene_pair *px_scene_pairs(const px_scene *s, size_t *count) {
+    if (count) *count = s ? s->n_rep : 0;
+    return s ? s->out : NULL;
+}
+
+const px_scene_event *px_scene_events(const px_scene *s, size_t *count) {
+    if (count) *count = s ? s->n_ev : 0;
+    return s ? s->ev : NULL;
+}
+
+px_status px_scene_get_stats(const px_scene *s, px_scene_stats *out) {
+    if (!s || !out) return PX_ERR_INVALID_ARGUMENT;
+    *out = s->stats;
+    out->bodies = s->alive;
+    size_t bytes = s->bytes;
+    for (uint32_t p = 0; p < s->n_pair; ++p)
+        if (s->pair[p].a != S_NONE && s->pair[p].kind != K_CONVEX)
+            bytes += s->pair[p].cache.model.memory_bytes;
+    out->memory_bytes = bytes;
+    return PX_OK;
+}
+
+/* ---- global minimum ------------------------------------------------------ */
+
+typedef struct sbox {
+    double b[6];
+    uint32_t id;
+} sbox;
+
+static int cmp_sbox(const void *x, const void *y) {
+    const sbox *a = x, *b = y;
+    if (a->b[0] != b->b[0]) return a->b[0] < b->b[0] ? -1 : 1;
+    return a->id < b->id ? -1 : a->id > b->id;
+}
+
+static double box_gap(const double *a, const double *b) {
+    double g2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        double g = pxi_max2(a[i] - b[3 + i], b[i] - a[3 + i]);
+        if (g > 0.0) g2 += g * g;
+    }
+    return sqrt(g2);
+}
+
+px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) {
+    pxi_error_clear(err);
+    if (!s || !out) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_min_distance: NULL argument");
+    memset(out, 0, sizeof *out);
+    out->body_a = out->body_b = UINT32_MAX;
+    out->distance = out->upper_bound = INFINITY;
+    if (!s->stepped) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_min_distance: no step yet");
+    /* A reported pair is nearer than every pair not reported. */
+    if (s->n_rep > 0) {
+        for (uint32_t i = 0; i < s->n_rep; ++i)
+            if (s->out[i].distance < out->distance) *out = s->out[i];
+        return PX_OK;
+    }
+    sbox *bx = pxi_alloc_array(&s->alloc, s->alive ? s->alive : 1, sizeof *bx);
+    if (!bx) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_min_distance: out of memory");
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < s->n_body; ++i) {
+        if (!s->body[i].alive) continue;
+        world_box(&s->body[i], bx[n].b);
+        bx[n++].id = i;
+    }
+    qsort(bx, n, sizeof *bx, cmp_sbox);
+    px_status st = PX_OK;
+    spair tmp;
+    for (uint32_t i = 0; i < n && st == PX_OK; ++i)
+        for (uint32_t j = i + 1; j < n && st == PX_OK; ++j) {
+            if (bx[j].b[0] - bx[i].b[3] > out->distance) break;
+            uint32_t a = bx[i].id, b = bx[j].id;
+            if (a > b) a = bx[j].id, b = bx[i].id;
+            if (filtered(s, a, b) || box_gap(bx[i].b, bx[j].b) > out->distance) continue;
+            memset(&tmp, 0, sizeof tmp);
+            tmp.a = a;
+            tmp.b = b;
+            const sbody *x = &s->body[a], *y = &s->body[b];
+            tmp.kind = x->convex && y->convex ? K_CONVEX
+                       : x->model && y->model ? K_MODEL_MODEL
+                       : x->model             ? K_MODEL_CONVEX
+                                              : K_CONVEX_MODEL;
+            if (tmp.kind != K_CONVEX) {
+                tmp.cache.model.allocator = &s->alloc;
+                tmp.cache.model.max_bytes = s->model_cache_bytes;
+            }
+            uint8_t contact = 0;
+            tmp.contact = contact;
+            /* query() records events on contact changes: this pair starts
+             * with contact = the result's own, so no event is made. */
+            int was = s->n_pending;
+            st = query(s, &tmp, err);
+            s->n_pending = (uint32_t)was;
+            s->stats.pairs_checked--;
+            if (tmp.kind != K_CONVEX) px_model_cache_release(&tmp.cache.model);
+            if (st == PX_OK && tmp.res.distance < out->distance) *out = tmp.res;
+        }
+    pxi_free(&s->alloc, bx, (size_t)(s->alive ? s->alive : 1) * sizeof *bx);
+    if (st != PX_OK) return st;
+    out->contact = out->distance <= s->margin;
+    return PX_OK;
+}

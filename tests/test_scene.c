@@ -1,0 +1,448 @@
+/* px_scene against brute force (issue 11, section 2): at every step of
+ * random bounded motion, the reported pairs must be exactly the pairs whose
+ * distance (px_distance / px_model_distance, cold, all pairs) is at most the
+ * report distance, with the same distances, and the contact events must be
+ * the transitions of the brute-force contact set. Also: teleports that break
+ * the declared bounds, acceleration bounds with velocities, bodies added and
+ * removed, filters and excluded pairs, static bodies, the global minimum,
+ * determinism, bad inputs. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "proxima/proxima.h"
+#include "test_util.h"
+
+/* Deterministic random numbers (splitmix64). */
+static uint64_t rng_state = 1;
+static double urand(void) {
+    uint64_t z = (rng_state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return (double)(z >> 11) * 0x1p-53;
+}
+static double srand1(void) { return 2.0 * urand() - 1.0; }
+
+/* Hull of n random points on a sphere of radius r. */
+static px_convex *random_hull(int n, double r) {
+    double p[3 * 64];
+    for (int i = 0; i < n; ++i) {
+        double x, y, z, l;
+        do {
+            x = srand1(), y = srand1(), z = srand1();
+            l = sqrt(x * x + y * y + z * z);
+        } while (l < 0.1 || l > 1.0);
+        p[3 * i] = r * x / l, p[3 * i + 1] = r * y / l, p[3 * i + 2] = r * z / l;
+    }
+    return px_convex_create(p, (size_t)n, NULL, NULL);
+}
+
+/* A non-convex model: an L of two boxes, as point-set pieces. */
+static px_model *l_model(double s) {
+    double p[2 * 8 * 3];
+    const double box[2][6] = {{0, 0, 0, 2, 0.5, 0.5}, {0, 0, 0, 0.5, 2, 0.5}};
+    for (int b = 0; b < 2; ++b)
+        for (int c = 0; c < 8; ++c)
+            for (int k = 0; k < 3; ++k)
+                p[3 * (8 * b + c) + k] = s * ((c >> k) & 1 ? box[b][3 + k] : box[b][k]) - s * 0.6;
+    uint32_t ends[2] = {8, 16};
+    return px_model_create_from_points(p, ends, 2, NULL, NULL);
+}
+
+static px_pose pose_of(const double q[4], px_vec3 t) {
+    px_pose p;
+    double tt[3] = {t.x, t.y, t.z};
+    px_pose_from_quat(q, tt, &p);
+    return p;
+}
+
+/* Rotates quaternion q by angle a about a random unit axis. */
+static void turn(double q[4], double a) {
+    double ax[3] = {srand1(), srand1(), srand1()};
+    double l = sqrt(ax[0] * ax[0] + ax[1] * ax[1] + ax[2] * ax[2]);
+    if (l < 1e-9) return;
+    double s = sin(a / 2) / l, d[4] = {cos(a / 2), ax[0] * s, ax[1] * s, ax[2] * s};
+    double r[4] = {d[0] * q[0] - d[1] * q[1] - d[2] * q[2] - d[3] * q[3],
+                   d[0] * q[1] + d[1] * q[0] + d[2] * q[3] - d[3] * q[2],
+                   d[0] * q[2] - d[1] * q[3] + d[2] * q[0] + d[3] * q[1],
+                   d[0] * q[3] + d[1] * q[2] - d[2] * q[1] + d[3] * q[0]};
+    double n = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+    for (int i = 0; i < 4; ++i) q[i] = r[i] / n;
+}
+
+typedef struct sim_body {
+    px_convex *convex;
+    px_model *model;
+    double q[4];
+    px_vec3 t, v;
+    double w; /* angle per step */
+    uint32_t id;
+    uint32_t group, mask;
+    int alive, fixed;
+} sim_body;
+
+typedef struct sim {
+    const char *name;
+    int bodies, steps, models; /* models: every k-th body is an L model (0: none) */
+    double box, speed, spin, margin, report;
+    int teleport_every; /* 0: never */
+    int churn;          /* add and remove bodies now and then */
+    int filters;        /* groups, masks and excluded pairs */
+    int statics;        /* some static bodies */
+    int accel;          /* accelerating bodies with velocities */
+} sim;
+
+static double pair_distance(const sim_body *x, const sim_body *y, px_vec3 *pa, px_vec3 *pb) {
+    px_pose px = pose_of(x->q, x->t), py = pose_of(y->q, y->t);
+    if (x->convex && y->convex) {
+        px_distance_result r;
+        px_status st = px_distance(x->convex, &px, y->convex, &py, NULL, NULL, &r);
+        CHECK(st == PX_OK, "brute force px_distance: %d", st);
+        *pa = r.point_a, *pb = r.point_b;
+        return r.distance;
+    }
+    px_model_distance_result r;
+    px_status st;
+    if (x->model && y->model)
+        st = px_model_distance(x->model, &px, y->model, &py, NULL, &r);
+    else if (x->model)
+        st = px_model_distance_convex(x->model, &px, y->convex, &py, NULL, &r);
+    else {
+        st = px_model_distance_convex(y->model, &py, x->convex, &px, NULL, &r);
+        px_vec3 t = r.point_a;
+        r.point_a = r.point_b;
+        r.point_b = t;
+    }
+    CHECK(st == PX_OK, "brute force px_model_distance: %d", st);
+    *pa = r.point_a, *pb = r.point_b;
+    return r.distance;
+}
+
+static int excluded_pair(uint32_t a, uint32_t b) { return (a + 3 * b) % 11 == 0; }
+
+static int paired(const sim *c, const sim_body *x, const sim_body *y) {
+    if (!c->filters) return 1;
+    if (!(x->group & y->mask) || !(y->group & x->mask)) return 0;
+    uint32_t a = x->id < y->id ? x->id : y->id, b = x->id < y->id ? y->id : x->id;
+    return !excluded_pair(a, b);
+}
+
+static void add_sim_body(px_scene *s, const sim *c, sim_body *b, int k) {
+    b->convex = NULL;
+    b->model = NULL;
+    if (c->models && k % c->models == 0)
+        b->model = l_model(0.6 + 0.4 * urand());
+    else
+        b->convex = random_hull(8 + (int)(urand() * 24), 0.5 + 0.5 * urand());
+    b->q[0] = 1, b->q[1] = b->q[2] = b->q[3] = 0;
+    turn(b->q, 3.0 * urand());
+    b->t = (px_vec3){c->box * urand(), c->box * urand(), c->box * urand()};
+    double vs = c->speed * urand();
+    px_vec3 d = {srand1(), srand1(), srand1()};
+    double l = sqrt(d.x * d.x + d.y * d.y + d.z * d.z) + 1e-12;
+    b->v = (px_vec3){vs * d.x / l, vs * d.y / l, vs * d.z / l};
+    b->w = c->spin * urand();
+    b->fixed = c->statics && k % 5 == 1;
+    b->group = c->filters ? 1u << (k % 3) : 0;
+    b->mask = c->filters ? (k % 4 == 0 ? ~(1u << 1) : 0xFFFFFFFFu) : 0;
+    px_body_desc d2;
+    memset(&d2, 0, sizeof d2);
+    d2.convex = b->convex;
+    d2.model = b->model;
+    d2.pose = pose_of(b->q, b->t);
+    d2.max_speed = b->fixed ? 0 : c->speed;
+    d2.max_angular_speed = b->fixed ? 0 : c->spin;
+    d2.max_accel = c->accel && !b->fixed ? 0.01 : 0;
+    d2.group = b->group;
+    d2.mask = b->mask;
+    d2.flags = b->fixed ? PX_BODY_STATIC : 0;
+    px_error e;
+    px_status st = px_scene_add_body(s, &d2, &b->id, &e);
+    CHECK(st == PX_OK, "add body: %s", e.message);
+    b->alive = 1;
+}
+
+static void free_sim_body(sim_body *b) {
+    px_convex_destroy(b->convex);
+    px_model_destroy(b->model);
+    b->convex = NULL;
+    b->model = NULL;
+    b->alive = 0;
+}
+
+/* Runs one scenario; returns a hash of everything reported. */
+static uint64_t run(const sim *c, int verbose) {
+    rng_state = 12345;
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    o.margin = c->margin;
+    o.report_distance = c->report;
+    px_error e;
+    px_scene *s = px_scene_create(&o, &e);
+    CHECK(s != NULL, "create: %s", e.message);
+    if (!s) return 0;
+    int cap = c->bodies + 64;
+    sim_body *b = calloc((size_t)cap, sizeof *b);
+    int n = c->bodies;
+    for (int i = 0; i < n; ++i) add_sim_body(s, c, &b[i], i);
+    if (c->filters)
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j)
+                if (excluded_pair(b[i].id < b[j].id ? b[i].id : b[j].id,
+                                  b[i].id < b[j].id ? b[j].id : b[i].id))
+                    CHECK(px_scene_exclude_pair(s, b[i].id, b[j].id, NULL) == PX_OK, "exclude");
+    /* Brute-force contact state per pair of sim indices. */
+    unsigned char *contact = calloc((size_t)cap * cap, 1);
+    uint64_t hash = 1469598103934665603ull, checked = 0, candidates = 0;
+    int mismatches = 0, event_mismatches = 0;
+    double worst = 0;
+    for (int step = 0; step < c->steps; ++step) {
+        /* Motion: constant velocities and spins, bouncing off the walls;
+         * accelerating ones change speed within the bound. */
+        for (int i = 0; i < n; ++i) {
+            sim_body *x = &b[i];
+            if (!x->alive || x->fixed || step == 0) continue;
+            if (c->accel) {
+                px_vec3 a = {0.01 * srand1() / 1.8, 0.01 * srand1() / 1.8, 0.01 * srand1() / 1.8};
+                px_vec3 nv = {x->v.x + a.x, x->v.y + a.y, x->v.z + a.z};
+                double l = sqrt(nv.x * nv.x + nv.y * nv.y + nv.z * nv.z);
+                if (l > 0.999 * c->speed)
+                    nv = (px_vec3){nv.x * 0.999 * c->speed / l, nv.y * 0.999 * c->speed / l,
+                                   nv.z * 0.999 * c->speed / l};
+                x->v = nv;
+            }
+            x->t.x += x->v.x, x->t.y += x->v.y, x->t.z += x->v.z;
+            double *t3[3] = {&x->t.x, &x->t.y, &x->t.z}, *v3[3] = {&x->v.x, &x->v.y, &x->v.z};
+            for (int k = 0; k < 3; ++k)
+                if (*t3[k] < 0 || *t3[k] > c->box) *v3[k] = -*v3[k];
+            turn(x->q, x->w);
+            if (c->teleport_every && (step + i) % c->teleport_every == 0)
+                x->t = (px_vec3){c->box * urand(), c->box * urand(), c->box * urand()};
+            px_pose p = pose_of(x->q, x->t);
+            CHECK(px_scene_set_pose(s, x->id, &p, &e) == PX_OK, "set pose: %s", e.message);
+            if (c->accel)
+                CHECK(px_scene_set_velocity(s, x->id, x->v, x->w, &e) == PX_OK, "set velocity: %s",
+                      e.message);
+        }
+        if (c->churn && step > 0 && step % 7 == 0) {
+            int victim = (int)(urand() * n);
+            if (b[victim].alive) {
+                CHECK(px_scene_remove_body(s, b[victim].id, &e) == PX_OK, "remove: %s", e.message);
+                /* Contacts of the victim end: the brute force forgets them
+                 * and expects ended events. */
+                free_sim_body(&b[victim]);
+            }
+            if (n < cap) {
+                add_sim_body(s, c, &b[n], n);
+                ++n;
+            }
+        }
+        px_status st = px_scene_step(s, (double)step, &e);
+        CHECK(st == PX_OK, "%s: step %d: %s", c->name, step, e.message);
+        size_t np, ne;
+        const px_scene_pair *pr = px_scene_pairs(s, &np);
+        const px_scene_event *ev = px_scene_events(s, &ne);
+        px_scene_stats stats;
+        px_scene_get_stats(s, &stats);
+        checked += stats.pairs_checked;
+        candidates += stats.candidate_pairs;
+        /* Order. */
+        for (size_t k = 0; k + 1 < np; ++k)
+            CHECK(pr[k].body_a < pr[k + 1].body_a ||
+                      (pr[k].body_a == pr[k + 1].body_a && pr[k].body_b < pr[k + 1].body_b),
+                  "%s: pairs out of order", c->name);
+        /* Brute force. */
+        size_t found = 0;
+        size_t expect_events = 0;
+        for (int i = 0; i < n; ++i)
+            for (int j = i + 1; j < n; ++j) {
+                sim_body *x = &b[i], *y = &b[j];
+                int both_alive = x->alive && y->alive;
+                int was = contact[(size_t)i * cap + j];
+                if (!both_alive || !paired(c, x, y) || (x->fixed && y->fixed && 0)) {
+                    if (was) {
+                        /* ended by removal */
+                        contact[(size_t)i * cap + j] = 0;
+                        expect_events++;
+                    }
+                    continue;
+                }
+                px_vec3 pa, pb;
+                double d = pair_distance(x, y, &pa, &pb);
+                uint32_t a = x->id < y->id ? x->id : y->id, bb = x->id < y->id ? y->id : x->id;
+                const px_scene_pair *hit = NULL;
+                for (size_t k = 0; k < np; ++k)
+                    if (pr[k].body_a == a && pr[k].body_b == bb) hit = &pr[k];
+                double tol = 1e-9 * (1.0 + d);
+                if (d <= c->report - tol) {
+                    if (!hit) {
+                        if (mismatches++ < 10)
+                            CHECK(0, "%s: step %d: pair (%u, %u) at %.17g missed (report %g)", c->name, step,
+                                  a, bb, d, c->report);
+                    } else {
+                        double err = fabs(hit->distance - d);
+                        if (err > worst) worst = err;
+                        CHECK(err <= tol, "%s: step %d: pair (%u, %u) distance %.17g, brute force %.17g",
+                              c->name, step, a, bb, hit->distance, d);
+                    }
+                } else if (d > c->report + tol && hit) {
+                    if (mismatches++ < 10)
+                        CHECK(0, "%s: step %d: pair (%u, %u) reported at %.17g, brute force %.17g > %g",
+                              c->name, step, a, bb, hit->distance, d, c->report);
+                }
+                if (hit) ++found;
+                int now = hit ? (int)hit->contact : 0;
+                if (hit) CHECK(hit->contact == (hit->distance <= c->margin), "contact flag");
+                if (now != was) expect_events++;
+                contact[(size_t)i * cap + j] = (unsigned char)now;
+            }
+        CHECK(found == np, "%s: step %d: %zu reported pairs, %zu matched", c->name, step, np, found);
+        if (ne != expect_events && event_mismatches++ < 5)
+            CHECK(0, "%s: step %d: %zu events, expected %zu", c->name, step, ne, expect_events);
+        for (size_t k = 0; k < np; ++k) {
+            uint64_t w[3] = {pr[k].body_a, pr[k].body_b, 0};
+            memcpy(&w[2], &pr[k].distance, sizeof(double));
+            for (int m = 0; m < 3; ++m) hash = (hash ^ w[m]) * 1099511628211ull;
+        }
+        for (size_t k = 0; k < ne; ++k)
+            hash = (hash ^ (ev[k].body_a * 31u + ev[k].body_b * 7u + ev[k].began)) * 1099511628211ull;
+        /* Global minimum now and then. */
+        if (step % 10 == 3) {
+            px_scene_pair m;
+            CHECK(px_scene_min_distance(s, &m, &e) == PX_OK, "min distance: %s", e.message);
+            double best = INFINITY;
+            for (int i = 0; i < n; ++i)
+                for (int j = i + 1; j < n; ++j) {
+                    if (!b[i].alive || !b[j].alive || !paired(c, &b[i], &b[j])) continue;
+                    px_vec3 pa, pb;
+                    double d = pair_distance(&b[i], &b[j], &pa, &pb);
+                    if (d < best) best = d;
+                }
+            CHECK(fabs(m.distance - best) <= 1e-9 * (1 + best),
+                  "%s: step %d: min distance %.17g, brute force %.17g", c->name, step, m.distance, best);
+        }
+    }
+    if (verbose)
+        printf("  %s: %d bodies, %d steps: %.1f checks/step of %.1f candidate pairs; worst distance error "
+               "%.3g\n",
+               c->name, c->bodies, c->steps, (double)checked / c->steps, (double)candidates / c->steps,
+               worst);
+    px_scene_destroy(s);
+    for (int i = 0; i < n; ++i) free_sim_body(&b[i]);
+    free(b);
+    free(contact);
+    return hash;
+}
+
+/* The scheduler must skip most pairs of a sparse, slow scene. */
+static void test_savings(void) {
+    sim c = {"savings", 80, 120, 0, 14.0, 0.02, 0.01, 0.05, 0.3, 0, 0, 0, 0, 0};
+    rng_state = 7;
+    run(&c, 1);
+}
+
+static void test_bad_inputs(void) {
+    px_error e;
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    o.margin = -1;
+    CHECK(px_scene_create(&o, &e) == NULL && e.code == PX_ERR_INVALID_ARGUMENT, "negative margin refused");
+    o.margin = NAN;
+    CHECK(px_scene_create(&o, &e) == NULL, "NaN margin refused");
+    o.margin = 0.5;
+    o.report_distance = 0.1;
+    CHECK(px_scene_create(&o, &e) == NULL, "report below margin refused");
+    o.report_distance = 1.0;
+    o.reserved[2] = 1;
+    CHECK(px_scene_create(&o, &e) == NULL, "reserved refused");
+    o.reserved[2] = 0;
+    px_scene *s = px_scene_create(&o, &e);
+    CHECK(s != NULL, "create");
+    px_convex *c = random_hull(12, 1.0);
+    px_body_desc d;
+    memset(&d, 0, sizeof d);
+    d.pose = px_pose_identity();
+    uint32_t id;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_ERR_INVALID_ARGUMENT, "no shape refused");
+    d.convex = c;
+    d.max_speed = -1;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_ERR_INVALID_ARGUMENT, "negative speed refused");
+    d.max_speed = NAN;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_ERR_INVALID_ARGUMENT, "NaN speed refused");
+    d.max_speed = 1;
+    d.pose.t.x = NAN;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_ERR_NON_FINITE, "NaN pose refused: %d", e.code);
+    d.pose.t.x = 1e300;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_ERR_RANGE, "far pose refused");
+    d.pose = px_pose_identity();
+    d.flags = 8;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_ERR_INVALID_ARGUMENT, "unknown flag refused");
+    d.flags = PX_BODY_STATIC;
+    uint32_t fixed;
+    CHECK(px_scene_add_body(s, &d, &fixed, &e) == PX_OK, "static body");
+    d.flags = 0;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_OK && id == 1, "second body gets id 1");
+    px_pose p = px_pose_identity();
+    CHECK(px_scene_set_pose(s, fixed, &p, &e) == PX_ERR_INVALID_ARGUMENT, "static body refuses a pose");
+    CHECK(px_scene_set_pose(s, 99, &p, &e) == PX_ERR_INVALID_ARGUMENT, "unknown body");
+    p.r[0] = 2;
+    CHECK(px_scene_set_pose(s, id, &p, &e) == PX_ERR_INVALID_POSE, "bad rotation refused");
+    CHECK(px_scene_set_velocity(s, id, (px_vec3){5, 0, 0}, 0, &e) == PX_ERR_INVALID_ARGUMENT,
+          "velocity above the bound refused");
+    CHECK(px_scene_exclude_pair(s, id, id, &e) == PX_ERR_INVALID_ARGUMENT, "self exclusion refused");
+    CHECK(px_scene_step(s, NAN, &e) == PX_ERR_INVALID_ARGUMENT, "NaN time refused");
+    CHECK(px_scene_step(s, 1.0, &e) == PX_OK, "step");
+    size_t n;
+    const px_scene_pair *pr = px_scene_pairs(s, &n);
+    CHECK(n == 1 && pr[0].contact == 1 && pr[0].distance == 0.0, "two coincident bodies touch (%zu pairs)",
+          n);
+    CHECK(px_scene_step(s, 0.5, &e) == PX_ERR_INVALID_ARGUMENT, "time going back refused");
+    /* Moving in zero time breaks any finite bound: the pair is checked. */
+    p = px_pose_identity();
+    p.t.x = 10;
+    CHECK(px_scene_set_pose(s, id, &p, &e) == PX_OK, "teleport");
+    CHECK(px_scene_step(s, 1.0, &e) == PX_OK, "step at the same time");
+    pr = px_scene_pairs(s, &n);
+    CHECK(n == 0, "teleported body reported apart (%zu pairs)", n);
+    size_t ne;
+    const px_scene_event *ev = px_scene_events(s, &ne);
+    CHECK(ne == 1 && ev[0].began == 0, "contact ended (%zu events)", ne);
+    px_scene_stats st;
+    px_scene_get_stats(s, &st);
+    CHECK(st.violations == 1, "the teleport counted as a violation (%u)", st.violations);
+    CHECK(px_scene_remove_body(s, 7, &e) == PX_ERR_INVALID_ARGUMENT, "unknown body removal refused");
+    CHECK(px_scene_remove_body(s, fixed, &e) == PX_OK, "remove");
+    CHECK(px_scene_body_user(s, fixed) == NULL, "removed body has no user pointer");
+    d.flags = 0;
+    d.user = &n;
+    CHECK(px_scene_add_body(s, &d, &id, &e) == PX_OK && id == 0, "freed id reused");
+    CHECK(px_scene_body_user(s, id) == &n, "user pointer");
+    px_scene_destroy(s);
+    px_convex_destroy(c);
+}
+
+int main(void) {
+    tu_init("test_scene");
+    int quick = tu_sanitized();
+    sim cases[] = {
+        {"convex", 40, quick ? 60 : 200, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0},
+        {"convex dense", 60, quick ? 40 : 150, 0, 5.0, 0.08, 0.1, 0.05, 0.25, 0, 0, 0, 0, 0},
+        {"teleports", 40, quick ? 50 : 150, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 13, 0, 0, 0, 0},
+        {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0},
+        {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0},
+        {"filters", 40, quick ? 60 : 150, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 1, 0, 0},
+        {"statics", 40, quick ? 60 : 150, 4, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 1, 0},
+        {"accel", 40, quick ? 60 : 200, 0, 8.0, 0.06, 0.02, 0.1, 0.4, 0, 0, 0, 0, 1},
+        {"zero margin", 50, quick ? 60 : 150, 0, 6.0, 0.05, 0.05, 0.0, 0.0, 0, 0, 0, 0, 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        uint64_t h1 = run(&cases[i], 1);
+        if (i < 2) CHECK(run(&cases[i], 0) == h1, "%s: a second run reports the same", cases[i].name);
+    }
+    test_savings();
+    test_bad_inputs();
+    return tu_finish();
+}

@@ -60,7 +60,6 @@ typedef struct sbody {
     double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
     double travel;        /* sum of the displacement bounds of every pose change */
     double fat[6];        /* the fat box in the sweep: lo xyz, hi xyz */
-    uint32_t ep[3][2];    /* positions of its min and max endpoints on each axis */
     uint32_t group, mask, flags;
     uint32_t first_pair; /* head of its list of pairs */
     uint8_t alive, dirty, added, vel_now, chain;
@@ -69,10 +68,10 @@ typedef struct sbody {
 
 typedef struct spair {
     uint32_t a, b;
-    uint32_t heap;             /* position in the heap; S_NONE when out of it */
+    uint32_t slot;             /* position in the heap or in the close list */
     uint32_t next[2], prev[2]; /* lists of a ([0]) and b ([1]) */
     uint32_t kind;
-    uint8_t measured, contact, chain_keyed;
+    uint8_t measured, contact, where;
     double due;
     double snap_a, snap_b; /* travels at the last query */
     double gap;            /* distance - report - eps at the last query */
@@ -87,6 +86,8 @@ typedef struct sep {
     double v;
     uint32_t id; /* body << 1 | is_max */
 } sep;
+
+typedef struct shent shent;
 
 /* Open addressing on 64-bit keys (a << 32 | b), linear probing, deletion by
  * backward shift (no tombstones, so the layout depends only on the set). */
@@ -103,13 +104,17 @@ struct px_scene {
     double time;
     int stepped;
     sbody *body;
-    uint32_t n_body, cap_body, alive;
+    uint32_t n_body, cap_body, cap_bep, alive, free_hint;
     sep *axis[3];
+    uint32_t *ep; /* per body, 6 positions: its min and max on each axis (apart from
+                   * the bodies, so that sifting touches little memory) */
     uint32_t n_ep, cap_ep;
     spair *pair;
     uint32_t n_pair, cap_pair, free_pair, live_pairs;
     shash pairs, excluded;
-    uint32_t *heap, cap_heap, n_heap;
+    shent *heap;
+    uint32_t cap_heap, n_heap;
+    uint32_t *close, cap_close, n_close;
     uint32_t *dirty, n_dirty, cap_dirty;
     uint32_t *later, n_later, cap_later;
     uint32_t *rep, n_rep, cap_rep;
@@ -223,63 +228,93 @@ static void hash_free(px_scene *s, shash *h) {
     memset(h, 0, sizeof *h);
 }
 
-/* ---- heap of pairs on (due, a, b) -------------------------------------- */
+/* ---- the queue: a heap on (due, a, b), and the close pairs ----------------
+ *
+ * Heap entries carry their key, so sifting touches only the heap array.
+ * Pairs within the report distance are due at every step: they sit in a
+ * plain list instead (where = Q_CLOSE), which costs no sifting. */
 
-static int heap_less(const px_scene *s, uint32_t x, uint32_t y) {
-    const spair *p = &s->pair[x], *q = &s->pair[y];
-    if (p->due != q->due) return p->due < q->due;
-    if (p->a != q->a) return p->a < q->a;
-    return p->b < q->b;
+enum { Q_NONE = 0, Q_HEAP = 1, Q_CLOSE = 2 };
+
+struct shent {
+    double due;
+    uint64_t ab; /* a << 32 | b: the tie-break */
+    uint32_t pair;
+};
+
+static int heap_less(const shent *x, const shent *y) {
+    if (x->due != y->due) return x->due < y->due;
+    return x->ab < y->ab;
 }
 
-static void heap_set(px_scene *s, uint32_t i, uint32_t p) {
-    s->heap[i] = p;
-    s->pair[p].heap = i;
+static void heap_set(px_scene *s, uint32_t i, shent e) {
+    s->heap[i] = e;
+    s->pair[e.pair].slot = i;
 }
 
 static void heap_up(px_scene *s, uint32_t i) {
-    uint32_t p = s->heap[i];
-    while (i > 0 && heap_less(s, p, s->heap[(i - 1) / 2])) {
+    shent e = s->heap[i];
+    while (i > 0 && heap_less(&e, &s->heap[(i - 1) / 2])) {
         heap_set(s, i, s->heap[(i - 1) / 2]);
         i = (i - 1) / 2;
     }
-    heap_set(s, i, p);
+    heap_set(s, i, e);
 }
 
 static void heap_down(px_scene *s, uint32_t i) {
-    uint32_t p = s->heap[i];
+    shent e = s->heap[i];
     for (;;) {
         uint32_t k = 2 * i + 1;
         if (k >= s->n_heap) break;
-        if (k + 1 < s->n_heap && heap_less(s, s->heap[k + 1], s->heap[k])) ++k;
-        if (!heap_less(s, s->heap[k], p)) break;
+        if (k + 1 < s->n_heap && heap_less(&s->heap[k + 1], &s->heap[k])) ++k;
+        if (!heap_less(&s->heap[k], &e)) break;
         heap_set(s, i, s->heap[k]);
         i = k;
     }
-    heap_set(s, i, p);
+    heap_set(s, i, e);
 }
 
-/* The heap's capacity is kept at the pair pool's, so pushing never fails. */
-static void heap_push(px_scene *s, uint32_t p) {
-    heap_set(s, s->n_heap++, p);
+/* Queues pair p at its `due`: in the close list when `close`, else in the
+ * heap. Capacities follow the pair pool's, so this never fails. */
+static void enqueue(px_scene *s, uint32_t p, int close) {
+    spair *q = &s->pair[p];
+    if (close) {
+        q->where = Q_CLOSE;
+        q->slot = s->n_close;
+        s->close[s->n_close++] = p;
+        return;
+    }
+    q->where = Q_HEAP;
+    heap_set(s, s->n_heap++, (shent){q->due, pair_key(q->a, q->b), p});
     heap_up(s, s->n_heap - 1);
 }
 
-static void heap_remove(px_scene *s, uint32_t p) {
-    uint32_t i = s->pair[p].heap;
-    if (i == S_NONE) return;
-    s->pair[p].heap = S_NONE;
-    uint32_t last = s->heap[--s->n_heap];
-    if (i == s->n_heap) return;
-    heap_set(s, i, last);
-    heap_up(s, i);
-    heap_down(s, s->pair[last].heap);
+static void dequeue(px_scene *s, uint32_t p) {
+    spair *q = &s->pair[p];
+    uint32_t i = q->slot;
+    if (q->where == Q_CLOSE) {
+        uint32_t last = s->close[--s->n_close];
+        s->close[i] = last;
+        s->pair[last].slot = i;
+    } else if (q->where == Q_HEAP) {
+        shent last = s->heap[--s->n_heap];
+        if (i != s->n_heap) {
+            heap_set(s, i, last);
+            heap_up(s, i);
+            heap_down(s, s->pair[last.pair].slot);
+        }
+    }
+    q->where = Q_NONE;
 }
 
-/* Makes a queued pair due now. */
+/* Makes a queued pair due now (close pairs are due at every step). */
 static void make_due(px_scene *s, uint32_t p) {
-    s->pair[p].due = -INFINITY;
-    if (s->pair[p].heap != S_NONE) heap_up(s, s->pair[p].heap);
+    spair *q = &s->pair[p];
+    q->due = -INFINITY;
+    if (q->where == Q_HEAP) {
+        s->heap[q->slot].due = -INFINITY;
+        heap_up(s, q->slot);
+    }
 }
 
 /* ---- events ------------------------------------------------------------ */
@@ -350,7 +385,8 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
         s->free_pair = s->pair[p].next[0];
     } else {
         if (!GROW(s, s->pair, s->cap_pair, s->n_pair + 1)) return 0;
-        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair)) return 0;
+        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair) || !GROW(s, s->close, s->cap_close, s->cap_pair))
+            return 0;
         p = s->n_pair++;
     }
     if (!hash_put(s, &s->pairs, k, p)) {
@@ -373,9 +409,8 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
         q->cache.model.max_bytes = s->model_cache_bytes;
     }
     q->due = -INFINITY;
-    q->heap = S_NONE;
     link_pair(s, p);
-    heap_push(s, p);
+    enqueue(s, p, 0);
     s->live_pairs++;
     return 1;
 }
@@ -384,7 +419,7 @@ static void free_pair(px_scene *s, uint32_t p, int silent) {
     spair *q = &s->pair[p];
     if (q->contact && !silent) event(s, q->a, q->b, 0);
     hash_del(&s->pairs, pair_key(q->a, q->b));
-    heap_remove(s, p);
+    dequeue(s, p);
     unlink_pair(s, p);
     if (q->kind != K_CONVEX) px_model_cache_release(&q->cache.model);
     q->a = q->b = S_NONE;
@@ -408,9 +443,10 @@ static int precedes(sep x, sep y) {
     return (x.id >> 1) < (y.id >> 1);
 }
 
+#define EP(s, b, k, m) ((s)->ep[6 * (size_t)(b) + 2 * (k) + (m)])
+
 static int overlap_on(const px_scene *s, uint32_t a, uint32_t b, int k) {
-    const sbody *x = &s->body[a], *y = &s->body[b];
-    return x->ep[k][0] < y->ep[k][1] && y->ep[k][0] < x->ep[k][1];
+    return EP(s, a, k, 0) < EP(s, b, k, 1) && EP(s, b, k, 0) < EP(s, a, k, 1);
 }
 
 static int overlap_others(const px_scene *s, uint32_t a, uint32_t b, int k) {
@@ -422,8 +458,8 @@ static void swap_ep(px_scene *s, int k, uint32_t i, uint32_t j) {
     sep t = e[i];
     e[i] = e[j];
     e[j] = t;
-    s->body[e[i].id >> 1].ep[k][e[i].id & 1] = i;
-    s->body[e[j].id >> 1].ep[k][e[j].id & 1] = j;
+    EP(s, e[i].id >> 1, k, e[i].id & 1) = i;
+    EP(s, e[j].id >> 1, k, e[j].id & 1) = j;
     s->stats.swaps++;
 }
 
@@ -434,28 +470,28 @@ static int sift(px_scene *s, uint32_t b, int k) {
     sep *e = s->axis[k];
     const uint32_t n = s->n_ep;
     int ok = 1;
-    uint32_t i = s->body[b].ep[k][0];
+    uint32_t i = EP(s, b, k, 0);
     while (i > 0 && precedes(e[i], e[i - 1])) { /* min left */
         sep o = e[i - 1];
         if ((o.id & 1) && overlap_others(s, b, o.id >> 1, k)) ok &= add_pair(s, b, o.id >> 1);
         swap_ep(s, k, i, i - 1);
         --i;
     }
-    i = s->body[b].ep[k][1];
+    i = EP(s, b, k, 1);
     while (i + 1 < n && precedes(e[i + 1], e[i])) { /* max right */
         sep o = e[i + 1];
         if (!(o.id & 1) && overlap_others(s, b, o.id >> 1, k)) ok &= add_pair(s, b, o.id >> 1);
         swap_ep(s, k, i, i + 1);
         ++i;
     }
-    i = s->body[b].ep[k][0];
+    i = EP(s, b, k, 0);
     while (i + 1 < n && precedes(e[i + 1], e[i])) { /* min right */
         sep o = e[i + 1];
         if (o.id & 1) remove_pair(s, b, o.id >> 1);
         swap_ep(s, k, i, i + 1);
         ++i;
     }
-    i = s->body[b].ep[k][1];
+    i = EP(s, b, k, 1);
     while (i > 0 && precedes(e[i], e[i - 1])) { /* max left */
         sep o = e[i - 1];
         if (!(o.id & 1)) remove_pair(s, b, o.id >> 1);
@@ -499,8 +535,8 @@ static int refit(px_scene *s, sbody *b) {
 static void write_ep(px_scene *s, uint32_t id) {
     sbody *b = &s->body[id];
     for (int k = 0; k < 3; ++k) {
-        s->axis[k][b->ep[k][0]].v = b->fat[k];
-        s->axis[k][b->ep[k][1]].v = b->fat[3 + k];
+        s->axis[k][EP(s, id, k, 0)].v = b->fat[k];
+        s->axis[k][EP(s, id, k, 1)].v = b->fat[3 + k];
     }
 }
 
@@ -527,7 +563,7 @@ static int rebuild(px_scene *s) {
     s->n_ep = n;
     for (int k = 0; k < 3; ++k) {
         qsort(s->axis[k], n, sizeof(sep), cmp_sep);
-        for (uint32_t i = 0; i < n; ++i) s->body[s->axis[k][i].id >> 1].ep[k][s->axis[k][i].id & 1] = i;
+        for (uint32_t i = 0; i < n; ++i) EP(s, s->axis[k][i].id >> 1, k, s->axis[k][i].id & 1) = i;
     }
     /* Active bodies along x: those whose min was passed and max not yet. */
     uint32_t *active = s->later, n_active = 0; /* `later` is free outside the due loop */
@@ -561,15 +597,15 @@ static int insert(px_scene *s, uint32_t id) {
     for (int k = 0; k < 3; ++k) {
         s->axis[k][n] = (sep){INFINITY, id << 1};
         s->axis[k][n + 1] = (sep){INFINITY, id << 1 | 1};
-        b->ep[k][0] = n;
-        b->ep[k][1] = n + 1;
+        EP(s, id, k, 0) = n;
+        EP(s, id, k, 1) = n + 1;
     }
     s->n_ep = n + 2;
     b->added = 0;
     int ok = 1;
     for (int k = 0; k < 3; ++k) {
-        s->axis[k][b->ep[k][0]].v = b->fat[k];
-        s->axis[k][b->ep[k][1]].v = b->fat[3 + k];
+        s->axis[k][EP(s, id, k, 0)].v = b->fat[k];
+        s->axis[k][EP(s, id, k, 1)].v = b->fat[3 + k];
         ok &= sift(s, id, k);
     }
     return ok;
@@ -583,7 +619,7 @@ static void extract(px_scene *s, uint32_t id) {
         for (uint32_t i = 0; i < s->n_ep; ++i) {
             if (e[i].id >> 1 == id) continue;
             e[w] = e[i];
-            s->body[e[w].id >> 1].ep[k][e[w].id & 1] = w;
+            EP(s, e[w].id >> 1, k, e[w].id & 1) = w;
             ++w;
         }
     }
@@ -766,11 +802,13 @@ void px_scene_destroy(px_scene *s) {
             px_model_cache_release(&s->pair[p].cache.model);
     px_allocator a = s->alloc;
     pxi_free(&a, s->body, (size_t)s->cap_body * sizeof *s->body);
+    pxi_free(&a, s->ep, (size_t)s->cap_bep * sizeof *s->ep);
     for (int k = 0; k < 3; ++k) pxi_free(&a, s->axis[k], (size_t)s->cap_ep * sizeof(sep));
     pxi_free(&a, s->pair, (size_t)s->cap_pair * sizeof *s->pair);
     hash_free(s, &s->pairs);
     hash_free(s, &s->excluded);
     pxi_free(&a, s->heap, (size_t)s->cap_heap * sizeof *s->heap);
+    pxi_free(&a, s->close, (size_t)s->cap_close * sizeof *s->close);
     pxi_free(&a, s->dirty, (size_t)s->cap_dirty * sizeof *s->dirty);
     pxi_free(&a, s->later, (size_t)s->cap_later * sizeof *s->later);
     pxi_free(&a, s->rep, (size_t)s->cap_rep * sizeof *s->rep);
@@ -840,11 +878,12 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
             hi = pxi_v(pxi_max2(hi.x, p.x), pxi_max2(hi.y, p.y), pxi_max2(hi.z, p.z));
         }
     }
-    /* The smallest free id, for determinism. */
-    uint32_t i = 0;
+    /* The smallest free id, for determinism (no id below the hint is free). */
+    uint32_t i = s->free_hint;
     while (i < s->n_body && s->body[i].alive) ++i;
     if (i == s->n_body) {
-        if (s->n_body >= (UINT32_MAX >> 2) || !GROW(s, s->body, s->cap_body, s->n_body + 1))
+        if (s->n_body >= (UINT32_MAX >> 3) || !GROW(s, s->body, s->cap_body, s->n_body + 1) ||
+            !grow(s, (void **)&s->ep, &s->cap_bep, 6 * (s->n_body + 1), sizeof *s->ep))
             return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
         s->n_body++;
     }
@@ -889,6 +928,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     refit(s, b);
     s->alive++;
     s->added++;
+    s->free_hint = i + 1;
     *id = i;
     return PX_OK;
 }
@@ -916,6 +956,7 @@ px_status px_scene_remove_body(px_scene *s, uint32_t id, px_error *err) {
         if (s->dirty[i] == id) s->dirty[i--] = s->dirty[--s->n_dirty];
     b->alive = 0;
     s->alive--;
+    if (id < s->free_hint) s->free_hint = id;
     return PX_OK;
 }
 
@@ -986,6 +1027,31 @@ static int cmp_event(const void *x, const void *y) {
     return a->reserved < b->reserved ? -1 : a->reserved > b->reserved;
 }
 
+/* Brings pair p up to date at `time` and sets its next due time: re-keyed
+ * without a query while its bodies travelled less than its gap since the
+ * last one, measured again otherwise (not when neither body moved). */
+static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err) {
+    spair *q = &s->pair[p];
+    double moved = (s->body[q->a].travel - q->snap_a) + (s->body[q->b].travel - q->snap_b);
+    if (q->measured && moved < q->gap) {
+        q->gap -= moved;
+        q->snap_a = s->body[q->a].travel;
+        q->snap_b = s->body[q->b].travel;
+        q->due = time + safe_time(s, q, q->gap);
+        return PX_OK;
+    }
+    if (!q->measured || moved > 0.0) {
+        px_status st = query(s, q, err);
+        if (st != PX_OK) {
+            q->due = -INFINITY;
+            return st;
+        }
+    }
+    if (q->res.distance <= s->report) s->rep[s->n_rep++] = p;
+    q->due = time + safe_time(s, q, q->gap);
+    return PX_OK;
+}
+
 px_status px_scene_step(px_scene *s, double time, px_error *err) {
     pxi_error_clear(err);
     if (!s) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_step: scene is NULL");
@@ -1032,35 +1098,31 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     /* Due pairs. */
     s->n_rep = 0;
     s->n_later = 0;
-    if (!GROW(s, s->later, s->cap_later, s->live_pairs) || !GROW(s, s->rep, s->cap_rep, s->live_pairs))
+    if (!GROW(s, s->later, s->cap_later, s->live_pairs + 1) ||
+        !GROW(s, s->rep, s->cap_rep, s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     px_status st = PX_OK;
-    while (s->n_heap > 0 && s->pair[s->heap[0]].due <= time) {
-        uint32_t p = s->heap[0];
-        heap_remove(s, p);
-        spair *q = &s->pair[p];
-        s->later[s->n_later++] = p;
-        double moved = (s->body[q->a].travel - q->snap_a) + (s->body[q->b].travel - q->snap_b);
-        if (q->measured && moved < q->gap) {
-            /* Not closer than the report distance yet: key again from the
-             * gap left, measured from now. */
-            q->due = time + safe_time(s, q, q->gap - moved);
-            q->gap -= moved;
-            q->snap_a = s->body[q->a].travel;
-            q->snap_b = s->body[q->b].travel;
-            continue;
+    /* The close pairs, then the heap's due ones; a pair that stays within
+     * the report distance goes (back) to the close list, the others to the
+     * heap once the loop is over. */
+    for (uint32_t i = s->n_close; i-- > 0 && st == PX_OK;) {
+        uint32_t p = s->close[i];
+        st = update_pair(s, p, time, err);
+        if (s->pair[p].due > time || st != PX_OK) {
+            dequeue(s, p);
+            s->later[s->n_later++] = p;
         }
-        if (!q->measured || moved > 0.0) {
-            st = query(s, q, err);
-            if (st != PX_OK) {
-                q->due = -INFINITY;
-                break;
-            }
-        }
-        if (q->gap <= 0.0 || q->res.distance <= s->report) s->rep[s->n_rep++] = p;
-        q->due = time + safe_time(s, q, q->gap);
     }
-    for (uint32_t i = 0; i < s->n_later; ++i) heap_push(s, s->later[i]);
+    while (st == PX_OK && s->n_heap > 0 && s->heap[0].due <= time) {
+        uint32_t p = s->heap[0].pair;
+        dequeue(s, p);
+        st = update_pair(s, p, time, err);
+        if (s->pair[p].due <= time && st == PX_OK)
+            enqueue(s, p, 1);
+        else
+            s->later[s->n_later++] = p;
+    }
+    for (uint32_t i = 0; i < s->n_later; ++i) enqueue(s, s->later[i], 0);
     s->n_later = 0;
     if (st != PX_OK) {
         s->n_rep = 0;
@@ -1070,10 +1132,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     if (!GROW(s, s->out, s->cap_out, s->n_rep))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     uint32_t n = 0;
-    for (uint32_t i = 0; i < s->n_rep; ++i) {
-        const spair *q = &s->pair[s->rep[i]];
-        if (q->res.distance <= s->report) s->out[n++] = q->res;
-    }
+    for (uint32_t i = 0; i < s->n_rep; ++i) s->out[n++] = s->pair[s->rep[i]].res;
     s->n_rep = n;
     qsort(s->out, n, sizeof *s->out, cmp_pair_out);
     /* Events, in (a, b) order. */

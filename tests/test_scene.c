@@ -424,6 +424,81 @@ static void test_bad_inputs(void) {
     px_convex_destroy(c);
 }
 
+/* A closed box mesh (triangle leaves: its inside counts through the solid
+ * test, not the distance query) with a small polytope moving through it:
+ * inside, the pair is in contact at distance 0 and marked contained. */
+static void test_containment(void) {
+    const double h = 2.0;
+    double xyz[24];
+    for (int c = 0; c < 8; ++c)
+        for (int k = 0; k < 3; ++k) xyz[3 * c + k] = (c >> k) & 1 ? h : -h;
+    const uint32_t tri[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                              2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    px_mesh_desc md;
+    memset(&md, 0, sizeof md);
+    md.xyz = xyz;
+    md.vertex_count = 8;
+    md.triangles = tri;
+    md.triangle_count = 12;
+    px_error e;
+    px_mesh *mesh = px_mesh_create(&md, NULL, &e);
+    CHECK(mesh != NULL, "box mesh: %s", e.message);
+    px_model_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.pieces = PX_PIECES_TRIANGLES;
+    px_model *box = px_model_create_from_mesh(mesh, &mo, &e);
+    CHECK(box != NULL, "box model: %s", e.message);
+    px_convex *small = random_hull(12, 0.3);
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    o.margin = 0.05;
+    o.report_distance = 0.2;
+    px_scene *s = px_scene_create(&o, &e);
+    px_body_desc d;
+    memset(&d, 0, sizeof d);
+    d.model = box;
+    d.pose = px_pose_identity();
+    d.flags = PX_BODY_STATIC;
+    uint32_t ib, ic;
+    CHECK(px_scene_add_body(s, &d, &ib, &e) == PX_OK, "add box");
+    memset(&d, 0, sizeof d);
+    d.convex = small;
+    d.pose = px_pose_identity();
+    d.pose.t.x = -4;
+    d.max_speed = 0.1;
+    CHECK(px_scene_add_body(s, &d, &ic, &e) == PX_OK, "add small");
+    int inside_steps = 0;
+    for (int k = 0; k <= 80; ++k) {
+        px_pose p = px_pose_identity();
+        p.t.x = -4 + 0.1 * k;
+        CHECK(px_scene_set_pose(s, ic, &p, &e) == PX_OK, "pose");
+        CHECK(px_scene_step(s, k, &e) == PX_OK, "step: %s", e.message);
+        size_t n;
+        const px_scene_pair *pr = px_scene_pairs(s, &n);
+        /* Brute force: the surface distance, and inside when the centre is
+         * inside the box and the surfaces are apart. */
+        px_model_distance_result r;
+        px_pose id = px_pose_identity();
+        px_model_distance_convex(box, &id, small, &p, NULL, &r);
+        int inside = fabs(p.t.x) < h && r.distance > 0;
+        double want = inside ? 0.0 : r.distance;
+        if (want <= o.report_distance) {
+            CHECK(n == 1 && pr[0].distance == want && pr[0].contained == (uint32_t)inside &&
+                      pr[0].contact == (want <= o.margin),
+                  "containment: x %.2f: %zu pairs, distance %g (want %g), contained %u", p.t.x, n,
+                  n ? pr[0].distance : -1.0, want, n ? pr[0].contained : 9u);
+        } else {
+            CHECK(n == 0, "containment: x %.2f: %zu pairs at surface distance %g", p.t.x, n, r.distance);
+        }
+        inside_steps += inside;
+    }
+    CHECK(inside_steps > 20, "the polytope spent steps inside (%d)", inside_steps);
+    px_scene_destroy(s);
+    px_convex_destroy(small);
+    px_model_destroy(box);
+    px_mesh_destroy(mesh);
+}
+
 int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
@@ -443,6 +518,7 @@ int main(void) {
         if (i < 2) CHECK(run(&cases[i], 0) == h1, "%s: a second run reports the same", cases[i].name);
     }
     test_savings();
+    test_containment();
     test_bad_inputs();
     return tu_finish();
 }

@@ -30,7 +30,9 @@
 /// Distances are those of px_distance (convex bodies) and
 /// px_model_distance (models): exact for exact leaves, a lower bound with a
 /// certified upper bound for coarse leaves (the pair is reported and in
-/// contact by its lower bound, so nothing is missed).
+/// contact by its lower bound, so nothing is missed). Bodies are solids:
+/// polytopes, convex pieces and the closed parts of triangle models; a body
+/// inside another's closed part is at distance 0 (`contained`).
 ///
 /// Determinism: bodies are numbered in order of creation (a removed body's
 /// id is reused, smallest first); pairs are ordered by (body_a, body_b)
@@ -168,7 +170,11 @@ typedef struct px_scene_pair {
     uint32_t leaf_a, leaf_b;
     /// 1 when distance <= margin.
     uint32_t contact;
-    uint32_t reserved;
+    /// 1 when one body lies inside a closed part of the other without
+    /// touching its surface: distance (and upper_bound) is then 0, as
+    /// between solids, and the witness points are the closest points of
+    /// the two surfaces.
+    uint32_t contained;
 } px_scene_pair;
 
 /// A contact that began (distance came within the margin) or ended (the

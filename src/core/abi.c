@@ -25,3 +25,8 @@ _Static_assert(sizeof(px_mesh_info) == 72, "px_mesh_info");
 /* pointers, sizes and a double: fixed where pointers are 64-bit */
 _Static_assert(sizeof(px_mesh_desc) == 88 || sizeof(void *) != 8, "px_mesh_desc");
 _Static_assert(sizeof(px_model_options) == 56 || sizeof(void *) != 8, "px_model_options");
+_Static_assert(sizeof(px_scene_options) == 64 || sizeof(void *) != 8, "px_scene_options");
+_Static_assert(sizeof(px_body_desc) == 200 || sizeof(void *) != 8, "px_body_desc");
+_Static_assert(sizeof(px_scene_pair) == 88, "px_scene_pair");
+_Static_assert(sizeof(px_scene_event) == 16, "px_scene_event");
+_Static_assert(sizeof(px_scene_stats) == 48 || sizeof(void *) != 8, "px_scene_stats");

@@ -37,6 +37,7 @@
 
 #include "core/core.h"
 #include "math/vec3.h"
+#include "model/model.h"
 
 #define S_NONE UINT32_MAX
 #define S_PI 3.14159265358979323846
@@ -698,12 +699,37 @@ static double safe_time(const px_scene *s, const spair *q, double g) {
 
 /* ---- narrow phase ------------------------------------------------------ */
 
+/* A piece of body `in` inside a closed part of model body `out`, their
+ * surfaces being apart: one representative point per connected piece of
+ * `in` (its first vertex for a polytope) tested against `out`'s solid, after
+ * a test against its box. Only triangle trees need this: convex leaves are
+ * solids to the distance query already. */
+static int inside_solid(const sbody *in, const sbody *out) {
+    const px_model *m = out->model;
+    if (!m || m->pieces != PX_PIECES_TRIANGLES || m->solid_parts == 0) return 0;
+    uint32_t n = in->model ? in->model->n_reps : 1;
+    for (uint32_t i = 0; i < n; ++i) {
+        px_vec3 p;
+        if (in->model)
+            p = in->model->reps[i];
+        else
+            px_convex_vertex(in->convex, 0, &p);
+        px_vec3 l = pxi_xform_inv(&out->pose, pxi_xform(&in->pose, p));
+        if (l.x < out->lo.x || l.y < out->lo.y || l.z < out->lo.z || l.x > out->hi.x || l.y > out->hi.y ||
+            l.z > out->hi.z)
+            continue;
+        if (pxi_model_point_inside(m, l)) return 1;
+    }
+    return 0;
+}
+
 static px_status query(px_scene *s, spair *q, px_error *err) {
     const sbody *x = &s->body[q->a], *y = &s->body[q->b];
     px_scene_pair *r = &q->res;
     r->body_a = q->a;
     r->body_b = q->b;
     px_status st;
+    r->contained = 0;
     if (q->kind == K_CONVEX) {
         px_distance_result d;
         st = px_distance(x->convex, &x->pose, y->convex, &y->pose, NULL, &q->cache.convex, &d);
@@ -729,6 +755,9 @@ static px_status query(px_scene *s, spair *q, px_error *err) {
             r->point_b = swap ? d.point_a : d.point_b;
             r->leaf_a = swap ? d.leaf_b : d.leaf_a;
             r->leaf_b = swap ? d.leaf_a : d.leaf_b;
+            /* Solids: a body inside the other's closed part touches it. */
+            r->contained = d.distance > 0.0 && (inside_solid(x, y) || inside_solid(y, x));
+            if (r->contained) r->distance = r->upper_bound = 0.0;
         }
     }
     s->stats.pairs_checked++;

@@ -29,4 +29,4 @@ _Static_assert(sizeof(px_scene_options) == 64 || sizeof(void *) != 8, "px_scene_
 _Static_assert(sizeof(px_body_desc) == 200 || sizeof(void *) != 8, "px_body_desc");
 _Static_assert(sizeof(px_scene_pair) == 88, "px_scene_pair");
 _Static_assert(sizeof(px_scene_event) == 16, "px_scene_event");
-_Static_assert(sizeof(px_scene_stats) == 48 || sizeof(void *) != 8, "px_scene_stats");
+_Static_assert(sizeof(px_scene_stats) == 56 || sizeof(void *) != 8, "px_scene_stats");

@@ -69,7 +69,6 @@ typedef struct sbody {
 
 typedef struct spair {
     uint32_t a, b;
-    uint32_t slot;             /* position in the heap or in the close list */
     uint32_t next[2], prev[2]; /* lists of a ([0]) and b ([1]) */
     uint32_t kind;
     uint8_t measured, contact, where;
@@ -116,6 +115,8 @@ struct px_scene {
     shent *heap;
     uint32_t cap_heap, n_heap;
     uint32_t *close, cap_close, n_close;
+    uint32_t *slot, cap_slot; /* per pair: its position in the heap or the close list
+                               * (apart from the pair records: sifting touches only these) */
     uint32_t *dirty, n_dirty, cap_dirty;
     uint32_t *later, n_later, cap_later;
     uint32_t *rep, n_rep, cap_rep;
@@ -250,7 +251,7 @@ static int heap_less(const shent *x, const shent *y) {
 
 static void heap_set(px_scene *s, uint32_t i, shent e) {
     s->heap[i] = e;
-    s->pair[e.pair].slot = i;
+    s->slot[e.pair] = i;
 }
 
 static void heap_up(px_scene *s, uint32_t i) {
@@ -281,7 +282,7 @@ static void enqueue(px_scene *s, uint32_t p, int close) {
     spair *q = &s->pair[p];
     if (close) {
         q->where = Q_CLOSE;
-        q->slot = s->n_close;
+        s->slot[p] = s->n_close;
         s->close[s->n_close++] = p;
         return;
     }
@@ -292,17 +293,17 @@ static void enqueue(px_scene *s, uint32_t p, int close) {
 
 static void dequeue(px_scene *s, uint32_t p) {
     spair *q = &s->pair[p];
-    uint32_t i = q->slot;
+    uint32_t i = s->slot[p];
     if (q->where == Q_CLOSE) {
         uint32_t last = s->close[--s->n_close];
         s->close[i] = last;
-        s->pair[last].slot = i;
+        s->slot[last] = i;
     } else if (q->where == Q_HEAP) {
         shent last = s->heap[--s->n_heap];
         if (i != s->n_heap) {
             heap_set(s, i, last);
             heap_up(s, i);
-            heap_down(s, s->pair[last.pair].slot);
+            heap_down(s, s->slot[last.pair]);
         }
     }
     q->where = Q_NONE;
@@ -313,8 +314,8 @@ static void make_due(px_scene *s, uint32_t p) {
     spair *q = &s->pair[p];
     q->due = -INFINITY;
     if (q->where == Q_HEAP) {
-        s->heap[q->slot].due = -INFINITY;
-        heap_up(s, q->slot);
+        s->heap[s->slot[p]].due = -INFINITY;
+        heap_up(s, s->slot[p]);
     }
 }
 
@@ -386,7 +387,8 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
         s->free_pair = s->pair[p].next[0];
     } else {
         if (!GROW(s, s->pair, s->cap_pair, s->n_pair + 1)) return 0;
-        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair) || !GROW(s, s->close, s->cap_close, s->cap_pair))
+        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair) || !GROW(s, s->close, s->cap_close, s->cap_pair) ||
+            !GROW(s, s->slot, s->cap_slot, s->cap_pair))
             return 0;
         p = s->n_pair++;
     }
@@ -466,7 +468,10 @@ static void swap_ep(px_scene *s, int k, uint32_t i, uint32_t j) {
 
 /* Moves body b's endpoints on axis k to their new values' places, adding
  * and removing pairs as min/max swaps change their overlap (expanding moves
- * first, as btAxisSweep3 does, so a min never passes its own max). */
+ * first, as btAxisSweep3 does, so a min never passes its own max). A pair
+ * can only be present when the boxes overlap on the other two axes: the
+ * removals test that before looking the pair up (Bullet's
+ * USE_OVERLAP_TEST_ON_REMOVES). */
 static int sift(px_scene *s, uint32_t b, int k) {
     sep *e = s->axis[k];
     const uint32_t n = s->n_ep;
@@ -488,14 +493,14 @@ static int sift(px_scene *s, uint32_t b, int k) {
     i = EP(s, b, k, 0);
     while (i + 1 < n && precedes(e[i + 1], e[i])) { /* min right */
         sep o = e[i + 1];
-        if (o.id & 1) remove_pair(s, b, o.id >> 1);
+        if ((o.id & 1) && overlap_others(s, b, o.id >> 1, k)) remove_pair(s, b, o.id >> 1);
         swap_ep(s, k, i, i + 1);
         ++i;
     }
     i = EP(s, b, k, 1);
     while (i > 0 && precedes(e[i], e[i - 1])) { /* max left */
         sep o = e[i - 1];
-        if (!(o.id & 1)) remove_pair(s, b, o.id >> 1);
+        if (!(o.id & 1) && overlap_others(s, b, o.id >> 1, k)) remove_pair(s, b, o.id >> 1);
         swap_ep(s, k, i, i - 1);
         --i;
     }
@@ -637,8 +642,10 @@ static double displacement(const sbody *b, const px_pose *p, const px_pose *q) {
     px_vec3 cp = pxi_xform(p, b->center), cq = pxi_xform(q, b->center);
     double f = 0.0;
     for (int i = 0; i < 9; ++i) f += (q->r[i] - p->r[i]) * (q->r[i] - p->r[i]);
-    double sn = sqrt(f) / (2.0 * sqrt(2.0));
-    double theta = sn >= 1.0 ? S_PI : 2.0 * asin(sn);
+    double sn = sqrt(f) * 0.35355339059327379; /* 1 / (2 sqrt 2), rounded up */
+    /* theta = 2 asin(sn) <= 2 sn / sqrt(1 - sn^2) (asin x <= x / sqrt(1 - x^2)),
+     * without the libm call; capped at pi. */
+    double theta = sn < 0.7071 ? 2.0 * sn / sqrt(1.0 - sn * sn) : S_PI;
     double d = pxi_len(pxi_sub(cq, cp)) + theta * b->radius;
     /* Rounding of the points and of theta: a few ulps of the coordinates. */
     return d * (1.0 + 16.0 * DBL_EPSILON) + 16.0 * DBL_EPSILON * (pxi_len(cp) + pxi_len(cq) + b->radius);
@@ -838,6 +845,7 @@ void px_scene_destroy(px_scene *s) {
     hash_free(s, &s->excluded);
     pxi_free(&a, s->heap, (size_t)s->cap_heap * sizeof *s->heap);
     pxi_free(&a, s->close, (size_t)s->cap_close * sizeof *s->close);
+    pxi_free(&a, s->slot, (size_t)s->cap_slot * sizeof *s->slot);
     pxi_free(&a, s->dirty, (size_t)s->cap_dirty * sizeof *s->dirty);
     pxi_free(&a, s->later, (size_t)s->cap_later * sizeof *s->later);
     pxi_free(&a, s->rep, (size_t)s->cap_rep * sizeof *s->rep);
@@ -940,6 +948,20 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
         px_vec3 p = pxi_v(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
         r = pxi_max2(r, pxi_len(pxi_sub(p, d->center)));
     }
+    /* The bounding sphere (the model's root, the polytope's) often bounds
+     * the radius about `center` tighter than the box's corners. */
+    px_vec3 sc;
+    double sr;
+    if (d->model) {
+        sc = d->model->nodes[0].center;
+        sr = d->model->nodes[0].radius;
+    } else {
+        px_bounds bd;
+        px_convex_bounds(d->convex, NULL, &bd);
+        sc = bd.center;
+        sr = bd.radius;
+    }
+    r = pxi_min2(r, pxi_len(pxi_sub(sc, d->center)) + sr);
     b->radius = r * (1.0 + 8.0 * DBL_EPSILON);
     int fixed = (d->flags & PX_BODY_STATIC) != 0;
     b->vmax = fixed ? 0.0 : d->max_speed;
@@ -1061,6 +1083,7 @@ static int cmp_event(const void *x, const void *y) {
  * last one, measured again otherwise (not when neither body moved). */
 static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err) {
     spair *q = &s->pair[p];
+    s->stats.pairs_due++;
     double moved = (s->body[q->a].travel - q->snap_a) + (s->body[q->b].travel - q->snap_b);
     if (q->measured && moved < q->gap) {
         q->gap -= moved;
@@ -1092,6 +1115,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     s->stats.swaps = 0;
     s->stats.violations = 0;
     s->stats.pairs_checked = checked0;
+    s->stats.pairs_due = 0;
     s->stats.moved = s->n_dirty;
     s->stats.box_updates = 0;
     /* Bodies whose velocity chain lapses without a pose or velocity set. */

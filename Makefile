@@ -133,8 +133,9 @@ test: deps
 
 # The full benchmark (about 40 minutes on the 2-core machine; not part of
 # CI): writes docs/bench/convex.csv, convex_tables.md, hybrid.csv, hybrid.md,
-# models.csv, models.md and regenerates the plots. `make bench-models` runs
-# only the model benchmark (real meshes against FCL's BVHModel<OBBRSS>).
+# models.csv, models.md, scene.csv, scene.md and regenerates the plots.
+# `make bench-models` runs only the model benchmark (real meshes against
+# FCL's BVHModel<OBBRSS>), `make bench-scene` only the scene benchmark.
 bench: deps
 	$(MAKE) build
 	./$(BUILD)/bench/bench_convex --out docs/bench
@@ -142,6 +143,7 @@ bench: deps
 	gnuplot docs/bench/plot_convex.gp
 	gnuplot docs/bench/plot_hybrid.gp
 	$(MAKE) bench-models-run
+	$(MAKE) bench-scene-run
 
 .PHONY: bench-models bench-models-run
 bench-models: deps
@@ -151,6 +153,21 @@ bench-models: deps
 bench-models-run:
 	./$(BUILD)/bench/bench_models --meshes $(MESH_DATA) --models models --out docs/bench
 	gnuplot docs/bench/plot_models.gp
+
+# Issue 11 section 5 (about 10 minutes on the 2-core machine; not part of
+# CI, only its smoke ctest is): px_scene against FCL's
+# DynamicAABBTreeCollisionManager + fcl::distance and brute force all pairs
+# on 100 .. 10,000 moving bodies; writes docs/bench/scene.csv, scene.md and
+# scene.png.
+.PHONY: bench-scene bench-scene-run
+bench-scene: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPROXIMA_WERROR=ON
+	cmake --build $(BUILD) -j $(JOBS) --target bench_scene
+	$(MAKE) bench-scene-run
+
+bench-scene-run:
+	./$(BUILD)/bench/bench_scene --models models --out docs/bench
+	gnuplot docs/bench/plot_scene.gp
 
 # Issue 10 section 3 (about 20 minutes on the 2-core machine; not part of
 # CI): PX_PIECES_APPROXIMATE against Bullet's ConvexDecomposition and HACD

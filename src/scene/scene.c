@@ -49,17 +49,20 @@ enum { K_CONVEX = 0, K_MODEL_MODEL = 1, K_MODEL_CONVEX = 2, K_CONVEX_MODEL = 3 }
 typedef struct sbody {
     const px_model *model;
     const px_convex *convex;
-    px_pose pose;         /* the pose the next step measures */
-    px_pose last;         /* the pose of the last step */
-    px_vec3 center;       /* body frame */
-    px_vec3 lo, hi;       /* body-frame box */
-    double radius;        /* largest distance from center to the body */
+    px_pose pose;   /* the pose the next step measures */
+    px_pose last;   /* the pose of the last step */
+    px_vec3 center; /* body frame */
+    px_vec3 lo, hi; /* body-frame box */
+    double radius;  /* largest distance from center to the body */
+    px_vec3 sc;     /* bounding sphere: centre (body frame) and radius */
+    double sr;
     double size;          /* half-diagonal of the body-frame box */
     double vmax, wmax;    /* speed bounds */
     double accel;         /* amax + alphamax * radius: bound on a point's acceleration (0: none) */
     double speed;         /* vmax + wmax * radius: bound on a point's speed */
     double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
     double travel;        /* sum of the displacement bounds of every pose change */
+    double fit_travel;    /* travel when the fat box was last fitted */
     double fat[6];        /* the fat box in the sweep: lo xyz, hi xyz */
     uint32_t group, mask, flags;
     uint32_t first_pair; /* head of its list of pairs */
@@ -507,23 +510,30 @@ static int sift(px_scene *s, uint32_t b, int k) {
     return ok;
 }
 
-/* The body's world box at its pose (the body-frame box turned: |R| half). */
+/* The body's world box at its pose: the body-frame box turned (|R| half)
+ * cut down to the box of its bounding sphere, which does not grow with the
+ * rotation (a round body's turned box is up to sqrt 3 times wider). */
 static void world_box(const sbody *b, double out[6]) {
     px_vec3 c = pxi_scale(pxi_add(b->lo, b->hi), 0.5), h = pxi_scale(pxi_sub(b->hi, b->lo), 0.5);
-    px_vec3 wc = pxi_xform(&b->pose, c);
+    px_vec3 wc = pxi_xform(&b->pose, c), ws = pxi_xform(&b->pose, b->sc);
     const double *r = b->pose.r;
-    double wc3[3] = {wc.x, wc.y, wc.z};
+    double wc3[3] = {wc.x, wc.y, wc.z}, ws3[3] = {ws.x, ws.y, ws.z};
     for (int i = 0; i < 3; ++i) {
         double e = fabs(r[3 * i]) * h.x + fabs(r[3 * i + 1]) * h.y + fabs(r[3 * i + 2]) * h.z;
-        /* Rounding of the centre and extent: a few ulps of the coordinates. */
+        /* Rounding of the centres and extents: a few ulps of the coordinates. */
         e += 8.0 * DBL_EPSILON * (fabs(wc3[i]) + e);
-        out[i] = wc3[i] - e;
-        out[3 + i] = wc3[i] + e;
+        double es = b->sr + 8.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
+        out[i] = pxi_max2(wc3[i] - e, ws3[i] - es);
+        out[3 + i] = pxi_min2(wc3[i] + e, ws3[i] + es);
     }
 }
 
 /* New fat box when the grown world box leaves the old one; 1 when moved. */
 static int refit(px_scene *s, sbody *b) {
+    /* Every point moved at most the travel since the last fit, so the body
+     * grown by g is still inside the fat box while that travel is below the
+     * slack: no box to compute. */
+    if (b->travel - b->fit_travel <= 0.99 * S_SLACK * b->size) return 0;
     double w[6], g = 0.5 * s->report;
     world_box(b, w);
     int inside = 1;
@@ -535,6 +545,7 @@ static int refit(px_scene *s, sbody *b) {
         b->fat[i] = w[i] - slack;
         b->fat[3 + i] = w[3 + i] + slack;
     }
+    b->fit_travel = b->travel;
     return 1;
 }
 
@@ -639,7 +650,8 @@ static void extract(px_scene *s, uint32_t id) {
  * radius (a chord is shorter than its arc). theta from the Frobenius norm
  * of the difference of the rotations: |Rq - Rp|_F = 2 sqrt 2 sin(theta/2). */
 static double displacement(const sbody *b, const px_pose *p, const px_pose *q) {
-    px_vec3 cp = pxi_xform(p, b->center), cq = pxi_xform(q, b->center);
+    int origin = b->center.x == 0.0 && b->center.y == 0.0 && b->center.z == 0.0;
+    px_vec3 cp = origin ? p->t : pxi_xform(p, b->center), cq = origin ? q->t : pxi_xform(q, b->center);
     double f = 0.0;
     for (int i = 0; i < 9; ++i) f += (q->r[i] - p->r[i]) * (q->r[i] - p->r[i]);
     double sn = sqrt(f) * 0.35355339059327379; /* 1 / (2 sqrt 2), rounded up */
@@ -963,6 +975,8 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     }
     r = pxi_min2(r, pxi_len(pxi_sub(sc, d->center)) + sr);
     b->radius = r * (1.0 + 8.0 * DBL_EPSILON);
+    b->sc = sc;
+    b->sr = sr * (1.0 + 8.0 * DBL_EPSILON);
     int fixed = (d->flags & PX_BODY_STATIC) != 0;
     b->vmax = fixed ? 0.0 : d->max_speed;
     b->wmax = fixed ? 0.0 : d->max_angular_speed;
@@ -976,6 +990,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->alive = 1;
     b->added = 1;
     for (int k = 0; k < 3; ++k) b->fat[k] = INFINITY, b->fat[3 + k] = -INFINITY;
+    b->fit_travel = -INFINITY; /* no fit yet */
     refit(s, b);
     s->alive++;
     s->added++;

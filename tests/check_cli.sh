@@ -1,9 +1,11 @@
 #!/bin/bash
 # The proxima command: every subcommand on shipped models, its errors and
-# exit codes. Usage: check_cli.sh PROXIMA MODELS_DIR
+# exit codes. Usage: check_cli.sh PROXIMA MODELS_DIR [MAKE_ASSEMBLY]
+# (MAKE_ASSEMBLY: tests/make_assembly.c, for `proxima check`).
 set -u
 B=$1
 M=$2
+A=${3:-}
 P=$M/puma560/rtb_puma560_description/meshes
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
@@ -78,5 +80,121 @@ expect 2 "from 1 to 256" -- "$B" build x -o y --pieces approximate --threads 0
 expect 2 "in \[0.0001, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 0
 expect 2 "in \[0.0001, 1\]" -- "$B" build x -o y --pieces approximate --tolerance 1e-5
 expect 1 "cannot create" -- "$B" build "$P/puma560_link2.dae" -o /nonexistent/dir/x.pxm
+expect 2 "options of check" -- "$B" info x --json
+expect 2 "options of check" -- "$B" build x -o y --clearance 1
+
+# proxima check (issue 11 §4): every pair of parts that interferes or is
+# closer than the clearance.
+# ok CONDITION MESSAGE: one assertion
+ok() {
+  if eval "$1"; then pass=$((pass + 1)); else
+    echo "check_cli: FAILED: $2" >&2
+    fail=$((fail + 1))
+  fi
+}
+# findings FILE: the findings of a --json report, one per line, names
+# dropped (they differ between formats)
+findings() { grep -E '^    \{"a": ' "$1" | sed -E 's/"part_a": "[^"]*", "part_b": "[^"]*", //'; }
+if [ -n "$A" ]; then
+  mkdir -p "$T/stl" "$T/empty" "$T/bad" "$T/qz" "$T/q3a" "$T/q3b" "$T/q3c"
+  "$A" boxes --obj "$T/boxes.obj" && "$A" boxes --stl "$T/stl" && "$A" boxes --dae "$T/boxes.dae"
+  ok '[ $? = 0 ]' "make_assembly boxes"
+  # The shipped example is the generated one.
+  ok 'cmp -s "$T/boxes.dae" "$M/assembly/boxes.dae"' "models/assembly/boxes.dae differs from make_assembly's"
+  # The same answers from one OBJ, one COLLADA (parts placed by node
+  # matrices) and a folder of STL files. Known: a-b overlap, c-d touch, e-f
+  # 0.5 apart (witnesses x = 21 and 21.5), h and the open sheet i inside the
+  # closed g (surfaces 1 and 0.5 apart), h-i sqrt(3), j-k 2, others >= 5.
+  for f in boxes.obj boxes.dae stl; do
+    "$B" check "$T/$f" --clearance 0.75 --json >"$T/$f.json"
+    ok "[ $? = 1 ]" "check $f --clearance 0.75: exit status 1"
+    findings "$T/$f.json" >"$T/$f.found"
+    ok '[ $(wc -l <"$T/$f.found") = 5 ]' "check $f --clearance 0.75: 5 findings"
+    ok 'grep -qE "^    \{\"a\": 0, \"b\": 1, \"status\": \"interference\", \"distance\": 0," "$T/$f.found"' "$f: a-b overlap"
+    ok 'grep -qE "^    \{\"a\": 2, \"b\": 3, \"status\": \"interference\", \"distance\": 0," "$T/$f.found"' "$f: c-d touch"
+    ok 'grep -qE "^    \{\"a\": 4, \"b\": 5, \"status\": \"clearance\", \"distance\": 0.5, \"upper_bound\": 0.5, \"point_a\": \[21, .*\"point_b\": \[21.5, " "$T/$f.found"' "$f: e-f at 0.5"
+    ok 'grep -qE "^    \{\"a\": 6, \"b\": 7, \"status\": \"inside\", \"distance\": 0, .*\"surface_distance\": 1, \"inside\": \"b\"" "$T/$f.found"' "$f: h inside g"
+    ok 'grep -qE "^    \{\"a\": 6, \"b\": 8, \"status\": \"inside\", \"distance\": 0, .*\"surface_distance\": 0.5, \"inside\": \"b\"" "$T/$f.found"' "$f: i inside g"
+    ok 'grep -q "\"counts\": {\"interference\": 2, \"inside\": 2, \"clearance\": 1, \"possible\": 0}" "$T/$f.json"' "$f: counts"
+  done
+  ok 'cmp -s "$T/boxes.obj.found" "$T/stl.found"' "OBJ and STL folder findings differ"
+  ok 'cmp -s "$T/boxes.dae.found" "$T/stl.found"' "COLLADA and STL folder findings differ"
+  if command -v python3 >/dev/null; then
+    ok 'python3 -c "import json,sys; json.load(open(sys.argv[1]))" "$T/stl.json"' "--json is not valid JSON"
+  fi
+  # Deterministic: the same report twice.
+  "$B" check "$T/stl" --clearance 3 --json >"$T/r1" 2>&1
+  "$B" check "$T/stl" --clearance 3 --json >"$T/r2" 2>&1
+  ok 'cmp -s "$T/r1" "$T/r2"' "two runs differ"
+  # Clearance 3 adds h-i (sqrt 3) and j-k (2); clearance 0 drops e-f.
+  ok '[ $(findings "$T/r1" | wc -l) = 7 ]' "check --clearance 3: 7 findings"
+  ok 'findings "$T/r1" | grep -qE "\"a\": 7, \"b\": 8, \"status\": \"clearance\", \"distance\": 1.73205080756887[67]"' "h-i at sqrt(3)"
+  ok 'findings "$T/r1" | grep -qE "\"a\": 9, \"b\": 10, \"status\": \"clearance\", \"distance\": 2, .*\"point_a\": \[41, .*\"point_b\": \[43, "' "j-k at 2"
+  ok '[ $("$B" check "$T/stl" --json | grep -c "\"status\"") = 4 ]' "check (clearance 0): 4 findings"
+  expect 1 "^e_gap.stl +f_gap.stl +clearance +0.5 +21 1 0 +21.5 1 0" -- "$B" check "$T/stl" --clearance 0.75
+  expect 1 "^g_shell +h_inner +b inside a +0 " -- "$B" check "$T/boxes.obj" --clearance 0.75
+  expect 1 "found: +5 pairs: 2 interfering, 2 inside another part, 1 closer than 0.75" -- "$B" check "$T/boxes.dae" --clearance 0.75
+  # --ignore: the pairs touching by design; then clean (exit 0), with the
+  # closest pair named.
+  IGN="--ignore a_overlap.stl,b_overlap.stl --ignore c_touch.stl,d_touch.stl --ignore g_shell.stl,h_inner.stl --ignore i_sheet.stl,g_shell.stl"
+  expect 0 "found: +nothing" -- "$B" check "$T/stl" --clearance 0.25 $IGN
+  expect 0 "closest: +0.5 between e_gap.stl and f_gap.stl" -- "$B" check "$T/stl" --clearance 0.25 $IGN
+  expect 1 "found: +1 pairs" -- "$B" check "$T/stl" --clearance 0.75 $IGN
+  expect 2 "not two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl,nope.stl
+  expect 2 "two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl
+  # Coarse leaves: brackets, and a bracket across the clearance is "possible".
+  expect 1 "possible" -- "$B" check "$T/stl" --pieces parts --clearance 0.75
+  expect 1 "upper bound" -- "$B" check "$T/boxes.obj" --pieces approximate --tolerance 0.05 --clearance 0.75
+  # Errors: exit 2, naming the file and the problem.
+  expect 2 "nonexistent.dae" -- "$B" check /nonexistent.dae
+  expect 2 "empty'?: the folder holds no mesh file" -- "$B" check "$T/empty"
+  printf 'solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 zz\n' >"$T/bad/broken.stl"
+  cp "$T/stl/a_overlap.stl" "$T/bad/"
+  expect 2 "broken.stl" -- "$B" check "$T/bad"
+  expect 2 "broken.stl" -- "$B" check "$T/bad/broken.stl"
+  expect 2 "finite number >= 0, not '-1'" -- "$B" check "$T/stl" --clearance -1
+  expect 2 "finite number >= 0, not 'nan'" -- "$B" check "$T/stl" --clearance nan
+  expect 2 "finite number >= 0, not 'inf'" -- "$B" check "$T/stl" --clearance inf
+  expect 2 "finite number >= 0, not 'abc'" -- "$B" check "$T/stl" --clearance abc
+  expect 2 "finite number >= 0, not '1mm'" -- "$B" check "$T/stl" --clearance 1mm
+  expect 2 "needs a number" -- "$B" check "$T/stl" --clearance
+  expect 2 "takes one assembly" -- "$B" check "$T/stl" "$T/boxes.obj"
+  expect 2 "takes one assembly" -- "$B" check
+  expect 2 "no -o" -- "$B" check "$T/stl" --pose-a 1,0,0
+  expect 0 "found: +nothing \(one part only\)" -- "$B" check "$M/puma560/rtb_puma560_description/meshes/puma560_link3.dae"
+
+  # The Puma 560 (SOURCE.md table 1) at joint configurations, a folder of
+  # seven link STLs each. Adjacent links meet at their joints (found unless
+  # ignored); link5-link7 (wrist and flange) stay 5.04 mm apart.
+  ADJ="--ignore link1.stl,link2.stl --ignore link2.stl,link3.stl --ignore link3.stl,link4.stl --ignore link4.stl,link5.stl --ignore link5.stl,link6.stl --ignore link6.stl,link7.stl"
+  "$A" puma "$T/qz" "$M" 0 0 0 0 0 0 && "$A" puma "$T/q3a" "$M" 0 0 -1 0 0 0 &&
+    "$A" puma "$T/q3b" "$M" 0 0 -1.05 0 0 0 && "$A" puma "$T/q3c" "$M" 0 0 -1.6 0 0 0
+  ok '[ $? = 0 ]' "make_assembly puma"
+  expect 1 "^link1.stl +link2.stl +interference" -- "$B" check "$T/qz"
+  expect 0 "closest: +0.00503999" -- "$B" check "$T/qz" $ADJ --clearance 0.005
+  expect 1 "^link5.stl +link7.stl +clearance +0.00503999" -- "$B" check "$T/qz" $ADJ --clearance 0.01
+  expect 1 "found: +1 pairs" -- "$B" check "$T/qz" $ADJ --clearance 0.01
+  # Elbow folded back: at q3 = -1 the forearm clears the shoulder by 29.8
+  # mm, at -1.05 its wrist comes 17.9 mm from link3, at -1.6 the forearm
+  # passes through the upper arm and the wrist's last links lie inside it.
+  expect 0 "closest: +0.0298" -- "$B" check "$T/q3a" $ADJ --ignore link5.stl,link7.stl --clearance 0.02
+  expect 1 "^link3.stl +link5.stl +clearance +0.0178" -- "$B" check "$T/q3b" $ADJ --ignore link5.stl,link7.stl --clearance 0.02
+  "$B" check "$T/q3c" $ADJ --json >"$T/q3c.json"
+  ok "[ $? = 1 ]" "Puma folded: exit status 1"
+  ok 'grep -q "\"counts\": {\"interference\": 5, \"inside\": 2, \"clearance\": 0" "$T/q3c.json"' "Puma folded: 5 interfering, 2 inside"
+  # Against every pair measured alone (px_model_distance and collide, no
+  # scene): the same pairs found.
+  for i in 1 2 3 4 5 6 7; do
+    for j in 1 2 3 4 5 6 7; do
+      [ "$i" -lt "$j" ] || continue
+      [ "$j" -gt $((i + 1)) ] || continue
+      if "$B" distance "$T/q3c/link$i.stl" "$T/q3c/link$j.stl" | grep -qE "collide: +yes"; then
+        echo "$((i - 1)) $((j - 1))"
+      fi
+    done
+  done >"$T/q3c.pairs"
+  findings "$T/q3c.json" | sed -E 's/^    \{"a": ([0-9]+), "b": ([0-9]+),.*/\1 \2/' >"$T/q3c.found"
+  ok 'cmp -s "$T/q3c.pairs" "$T/q3c.found"' "Puma folded: check finds $(tr '\n' ' ' <"$T/q3c.found"), pairs alone $(tr '\n' ' ' <"$T/q3c.pairs")"
+fi
 echo "check_cli: $pass passed, $fail failed"
 [ "$fail" = 0 ]

@@ -2,6 +2,7 @@
  *   proxima info FILE
  *   proxima build IN -o OUT.pxm [--pieces parts|triangles|approximate] [--tolerance T] [--scale S]
  *   proxima distance A B [--pose-a P] [--pose-b P] [--pieces ...] [--tolerance T] [--scale S]
+ *   proxima check FILE [--clearance C] [--json] [--ignore A,B]... [--pieces ...] [--scale S]
  * FILE, IN, A, B: mesh files (any format proxima-io reads) or .pxm models
  * (recognised by their content, not their name). Uses the public API only. */
 #include <errno.h>
@@ -12,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "check.h"
 #include "proxima/io.h"
 #include "proxima/proxima.h"
 
@@ -26,6 +28,12 @@ static const char *usage_text =
     "  proxima distance A B [--pose-a P] [--pose-b P] [--pieces ...] [--tolerance T]\n"
     "                [--scale S]\n"
     "      distance, closest points, bracket and collision of two models\n"
+    "  proxima check FILE [--clearance C] [--json] [--ignore A,B]... [--pieces ...]\n"
+    "                [--tolerance T] [--threads N] [--scale S]\n"
+    "      every pair of parts of an assembly that interferes (touches, overlaps,\n"
+    "      or lies inside a closed part) or is closer than C (default 0), with\n"
+    "      distance and witness points; FILE is one file with many parts or a\n"
+    "      folder of part files (each file a part named by its file name)\n"
     "\n"
     "FILE, IN, A, B are mesh files (OBJ, STL, PLY, OFF, COLLADA, glTF, ... through\n"
     "Assimp) or .pxm files written by `proxima build`.\n"
@@ -44,7 +52,13 @@ static const char *usage_text =
     "             metres); a .pxm model keeps the scale it was built with\n"
     "  --pose-a, --pose-b P   the model's pose: tx,ty,tz or tx,ty,tz,qw,qx,qy,qz\n"
     "             (translation, then a quaternion of any non-zero length)\n"
-    "Exit status: 0 success, 1 an error (the message names the file), 2 bad usage.\n";
+    "  --clearance C  check: the distance parts must keep (>= 0, in the mesh's\n"
+    "             units after --scale); pairs closer than C are reported\n"
+    "  --json     check: a JSON document instead of the table (docs/check.md)\n"
+    "  --ignore A,B   check: never report parts A and B (touching by design);\n"
+    "             repeatable\n"
+    "Exit status: 0 success, 1 an error (the message names the file), 2 bad usage;\n"
+    "for check: 0 clean, 1 something found, 2 an error or bad usage.\n";
 
 static int usage_error(const char *fmt, ...)
 #if defined(__GNUC__)
@@ -71,6 +85,11 @@ typedef struct opts {
     double tolerance; /* 0: the library's default */
     unsigned threads; /* 0: one */
     px_pose pose[2];
+    int has_pose;
+    double clearance;
+    int has_clearance, json;
+    const char **ignore; /* check's --ignore values (room for argc) */
+    int nignore;
 } opts;
 
 static int parse_pose(const char *s, px_pose *out) {
@@ -94,8 +113,9 @@ static int parse_pose(const char *s, px_pose *out) {
     return px_pose_from_quat(q, v, out) == PX_OK;
 }
 
-static int parse(int argc, char **argv, int first, opts *o) {
+static int parse(int argc, char **argv, int first, opts *o, const char **ignore) {
     memset(o, 0, sizeof *o);
+    o->ignore = ignore;
     o->pieces = -1;
     o->pose[0] = o->pose[1] = px_pose_identity();
     for (int i = first; i < argc; ++i) {
@@ -144,6 +164,22 @@ static int parse(int argc, char **argv, int first, opts *o) {
             if (!parse_pose(v, &o->pose[a[7] == 'b']))
                 return usage_error("bad pose '%s': tx,ty,tz or tx,ty,tz,qw,qx,qy,qz (quaternion not zero)",
                                    v);
+            o->has_pose = 1;
+        } else if (!strcmp(a, "--clearance")) {
+            if (!has_value) return usage_error("%s needs a number", a);
+            char *end;
+            const char *v = argv[++i];
+            o->clearance = strtod(v, &end);
+            if (end == v || *end || !isfinite(o->clearance) || !(o->clearance >= 0.0))
+                return usage_error("--clearance takes a finite number >= 0, not '%s'", v);
+            o->has_clearance = 1;
+        } else if (!strcmp(a, "--json")) {
+            o->json = 1;
+        } else if (!strcmp(a, "--ignore")) {
+            if (!has_value) return usage_error("%s needs two part names A,B", a);
+            const char *v = argv[++i];
+            if (!strchr(v, ',')) return usage_error("--ignore takes two part names A,B, not '%s'", v);
+            o->ignore[o->nignore++] = v;
         } else if (a[0] == '-' && a[1] != '\0') {
             return usage_error("unknown option '%s'", a);
         } else {
@@ -350,6 +386,23 @@ static int cmd_distance(const opts *o) {
     return rc;
 }
 
+static int cmd_check(const opts *o) {
+    if (o->nfiles != 1) return usage_error("check takes one assembly (a file or a folder)");
+    if (o->out || o->has_pose) return usage_error("check takes no -o, --pose-a or --pose-b");
+    check_opts c;
+    memset(&c, 0, sizeof c);
+    c.file = o->files[0];
+    c.clearance = o->clearance;
+    c.json = o->json;
+    c.pieces = o->pieces < 0 ? PX_PIECES_TRIANGLES : (uint32_t)o->pieces;
+    c.tolerance = o->tolerance;
+    c.threads = o->threads;
+    c.scale = o->scale;
+    c.ignore = o->ignore;
+    c.nignore = o->nignore;
+    return check_run(&c);
+}
+
 int main(int argc, char **argv) {
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
         fputs(usage_text, argc < 2 ? stderr : stdout);
@@ -360,10 +413,27 @@ int main(int argc, char **argv) {
         return 0;
     }
     opts o;
-    int rc = parse(argc, argv, 2, &o);
-    if (rc) return rc;
-    if (!strcmp(argv[1], "info")) return cmd_info(&o);
-    if (!strcmp(argv[1], "build")) return cmd_build(&o);
-    if (!strcmp(argv[1], "distance")) return cmd_distance(&o);
-    return usage_error("unknown command '%s' (info, build, distance)", argv[1]);
+    const char **ignore = calloc((size_t)argc, sizeof *ignore);
+    if (!ignore) {
+        fprintf(stderr, "proxima: out of memory\n");
+        return 2;
+    }
+    int rc = parse(argc, argv, 2, &o, ignore);
+    if (!rc) {
+        int check = !strcmp(argv[1], "check");
+        if (!check && (o.has_clearance || o.json || o.nignore))
+            rc = usage_error("--clearance, --json and --ignore are options of check");
+        else if (check)
+            rc = cmd_check(&o);
+        else if (!strcmp(argv[1], "info"))
+            rc = cmd_info(&o);
+        else if (!strcmp(argv[1], "build"))
+            rc = cmd_build(&o);
+        else if (!strcmp(argv[1], "distance"))
+            rc = cmd_distance(&o);
+        else
+            rc = usage_error("unknown command '%s' (info, build, distance, check)", argv[1]);
+    }
+    free(ignore);
+    return rc;
 }

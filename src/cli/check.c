@@ -1,0 +1,675 @@
+/* proxima check: every pair of parts of an assembly that interferes or is
+ * closer than a clearance (issue 11 §4; docs/check.md).
+ *
+ * The assembly is one mesh file (each part px_mesh_load finds is a part)
+ * or a folder of mesh files (each file is a part, named by its file name).
+ * Each part becomes one model (exact triangle leaves by default) and one
+ * static body of a px_scene whose margin and report distance are the
+ * clearance: the scene's sweep-and-prune finds the pairs whose boxes come
+ * within the clearance and measures them, so the pairs closer than the
+ * clearance, with their witness points, are the scene's report.
+ *
+ * Parts are solids where they are closed: the scene puts a part that lies
+ * inside another's closed part, the surfaces apart, at distance 0 and says
+ * so (px_scene_pair.contained), with the closest points of the surfaces as
+ * witnesses.
+ *
+ * Uses the public API only. */
+#define _POSIX_C_SOURCE 200809L
+#include "check.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#include "proxima/io.h"
+#include "proxima/proxima.h"
+
+/* What a pair is: its surfaces meet; one is inside the other's closed
+ * part; closer than the clearance; or, with coarse leaves, a bracket
+ * [distance, upper bound] that neither confirms nor clears. */
+enum { F_INTERFERENCE = 0, F_INSIDE = 1, F_CLEARANCE = 2, F_POSSIBLE = 3 };
+static const char *status_name[] = {"interference", "inside", "clearance", "possible"};
+
+typedef struct part {
+    char *name;      /* the part's name (folder: the file name) */
+    px_model *model; /* world frame: bodies sit at the identity */
+    uint32_t triangles;
+    uint32_t closed; /* every mesh part closed (a solid) */
+    px_vec3 lo, hi;  /* world box */
+} part;
+
+typedef struct finding {
+    uint32_t a, b; /* part indices, a < b */
+    int status;    /* F_* */
+    double distance, upper;
+    px_vec3 pa, pb;
+    int inside; /* 0: not told, 1: a inside b, 2: b inside a */
+} finding;
+
+typedef struct findings {
+    finding *v;
+    size_t n;
+} findings;
+
+typedef struct assembly {
+    part *parts;
+    uint32_t count, cap;
+    int folder;
+} assembly;
+
+static void note(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+static void note(const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "proxima: ");
+    vfprintf(stderr, fmt, ap);
+    fprintf(stderr, "\n");
+    va_end(ap);
+}
+
+static char *dup_string(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+/* A mesh of the given parts of `m` alone (vertices and triangles copied,
+ * indices rebased), or NULL with `e` filled. */
+static px_mesh *submesh(const px_mesh *m, const uint32_t *ids, uint32_t n, px_error *e) {
+    const double *xyz = px_mesh_vertices(m);
+    const uint32_t *tri = px_mesh_triangles(m);
+    size_t nv = 0, nt = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        px_mesh_part p;
+        px_mesh_get_part(m, ids[i], &p);
+        nv += p.vertex_count;
+        nt += p.triangle_count;
+    }
+    double *v = malloc(sizeof(double) * 3 * (nv ? nv : 1));
+    uint32_t *t = malloc(sizeof(uint32_t) * 3 * (nt ? nt : 1));
+    px_mesh_part_desc *pd = calloc(n, sizeof *pd);
+    px_mesh *out = NULL;
+    if (v && t && pd) {
+        size_t fv = 0, ft = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+            px_mesh_part p;
+            px_mesh_get_part(m, ids[i], &p);
+            memcpy(v + 3 * fv, xyz + 3 * (size_t)p.first_vertex, sizeof(double) * 3 * p.vertex_count);
+            for (size_t k = 0; k < 3 * (size_t)p.triangle_count; ++k)
+                t[3 * ft + k] = (uint32_t)(tri[3 * (size_t)p.first_triangle + k] - p.first_vertex + fv);
+            pd[i].name = p.name;
+            pd[i].node = -1;
+            pd[i].first_vertex = (uint32_t)fv;
+            pd[i].vertex_count = p.vertex_count;
+            pd[i].first_triangle = (uint32_t)ft;
+            pd[i].triangle_count = p.triangle_count;
+            fv += p.vertex_count;
+            ft += p.triangle_count;
+        }
+        px_mesh_info info;
+        px_mesh_get_info(m, &info);
+        px_mesh_desc d;
+        memset(&d, 0, sizeof d);
+        d.xyz = v;
+        d.vertex_count = nv;
+        d.triangles = t;
+        d.triangle_count = nt;
+        d.parts = pd;
+        d.part_count = n;
+        d.unit_metres = info.unit_metres;
+        d.float_coordinates = info.float_coordinates;
+        out = px_mesh_create(&d, NULL, e);
+    } else if (e) {
+        e->code = PX_ERR_OUT_OF_MEMORY;
+        snprintf(e->message, sizeof e->message, "out of memory");
+    }
+    free(v);
+    free(t);
+    free(pd);
+    return out;
+}
+
+/* Adds the given parts of `m` as one part of the assembly; 0 on error
+ * (message printed). */
+static int add_part(assembly *as, const check_opts *o, const char *file, const char *name, const px_mesh *m,
+                    const uint32_t *ids, uint32_t n) {
+    px_error e;
+    px_mesh *sub = submesh(m, ids, n, &e);
+    if (!sub) {
+        note("'%s': part '%s': %s", file, name, e.message);
+        return 0;
+    }
+    px_model_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.pieces = o->pieces;
+    if (o->pieces == PX_PIECES_APPROXIMATE) {
+        mo.tolerance = o->tolerance;
+        mo.threads = o->threads;
+    }
+    px_model *model = px_model_create_from_mesh(sub, &mo, &e);
+    px_mesh_info mi;
+    px_mesh_get_info(sub, &mi);
+    uint32_t triangles = px_mesh_triangle_count(sub), closed = mi.closed_parts == px_mesh_part_count(sub);
+    px_mesh_destroy(sub);
+    if (!model) {
+        note("'%s': part '%s': %s", file, name, e.message);
+        return 0;
+    }
+    if (as->count == as->cap) {
+        uint32_t cap = as->cap ? 2 * as->cap : 16;
+        part *p = realloc(as->parts, sizeof *p * cap);
+        if (!p) {
+            px_model_destroy(model);
+            note("out of memory");
+            return 0;
+        }
+        as->parts = p;
+        as->cap = cap;
+    }
+    part *p = &as->parts[as->count];
+    memset(p, 0, sizeof *p);
+    p->name = dup_string(name);
+    if (!p->name) {
+        px_model_destroy(model);
+        note("out of memory");
+        return 0;
+    }
+    as->count++;
+    p->model = model;
+    p->triangles = triangles;
+    p->closed = closed;
+    px_model_info info;
+    px_model_get_info(model, &info);
+    p->lo = info.min;
+    p->hi = info.max;
+    return 1;
+}
+
+static px_mesh *load(const char *path, const check_opts *o) {
+    px_mesh_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.scale = o->scale;
+    px_error e;
+    px_mesh *m = px_mesh_load(path, &mo, &e);
+    if (!m) note("%s", e.message);
+    return m;
+}
+
+/* Indices of the parts of `m` that have triangles (a part of points or
+ * lines only has no surface to check: skipped with a note). */
+static uint32_t surface_parts(const px_mesh *m, const char *file, uint32_t *ids) {
+    uint32_t n = 0, np = px_mesh_part_count(m);
+    for (uint32_t i = 0; i < np; ++i) {
+        px_mesh_part p;
+        px_mesh_get_part(m, i, &p);
+        if (p.triangle_count)
+            ids[n++] = i;
+        else
+            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
+    }
+    return n;
+}
+
+/* The name of the node part ids[i] hangs from, or "" for none. */
+static const char *node_name(const px_mesh *m, uint32_t id) {
+    px_mesh_part p;
+    px_mesh_node nd;
+    px_mesh_get_part(m, id, &p);
+    return p.node >= 0 && px_mesh_get_node(m, (uint32_t)p.node, &nd) == PX_OK ? nd.name : "";
+}
+
+/* A part's name in the report: its node's name (the name the file gives
+ * the body: a COLLADA or glTF node, an OBJ object) when no other part has
+ * it, else px_mesh_load's "node/mesh". */
+static const char *part_name(const px_mesh *m, const uint32_t *ids, uint32_t n, uint32_t i) {
+    const char *name = node_name(m, ids[i]);
+    for (uint32_t j = 0; j < n && name[0]; ++j)
+        if (j != i && !strcmp(node_name(m, ids[j]), name)) name = "";
+    if (name[0]) return name;
+    px_mesh_part p;
+    px_mesh_get_part(m, ids[i], &p);
+    return p.name;
+}
+
+/* One file: each part with triangles is a part of the assembly. */
+static int load_file(assembly *as, const check_opts *o) {
+    px_mesh *m = load(o->file, o);
+    if (!m) return 0;
+    uint32_t np = px_mesh_part_count(m);
+    uint32_t *ids = malloc(sizeof *ids * (np ? np : 1));
+    int ok = ids != NULL;
+    uint32_t n = ok ? surface_parts(m, o->file, ids) : 0;
+    for (uint32_t i = 0; ok && i < n; ++i) {
+        px_mesh_part p;
+        px_mesh_get_part(m, ids[i], &p);
+        ok = add_part(as, o, o->file, part_name(m, ids, n, i), m, &ids[i], 1);
+    }
+    if (!ids) note("out of memory");
+    free(ids);
+    px_mesh_destroy(m);
+    return ok;
+}
+
+/* The mesh formats a folder's files are taken from (by extension, any
+ * case); other files (materials, textures, glTF buffers, notes) are not
+ * parts. */
+static int mesh_extension(const char *name) {
+    static const char *ext[] = {"stl", "obj", "ply", "off",  "dae", "gltf", "glb", "fbx",  "3ds",
+                                "ac",  "amf", "lwo", "ms3d", "x3d", "xgl",  "dxf", "blend"};
+    const char *dot = strrchr(name, '.');
+    if (!dot || dot == name) return 0;
+    for (size_t i = 0; i < sizeof ext / sizeof ext[0]; ++i)
+        if (!strcasecmp(dot + 1, ext[i])) return 1;
+    return 0;
+}
+
+static int cmp_name(const void *x, const void *y) { return strcmp(*(char *const *)x, *(char *const *)y); }
+
+/* A folder: each mesh file is one part named by its file name, in byte
+ * order of the names. */
+static int load_folder(assembly *as, const check_opts *o) {
+    DIR *d = opendir(o->file);
+    if (!d) {
+        note("'%s': cannot read the folder: %s", o->file, strerror(errno));
+        return 0;
+    }
+    char **names = NULL;
+    size_t n = 0, cap = 0;
+    int ok = 1;
+    struct dirent *de;
+    size_t dirlen = strlen(o->file);
+    while (ok && (de = readdir(d)) != NULL) {
+        if (de->d_name[0] == '.' || !mesh_extension(de->d_name)) continue;
+        if (n == cap) {
+            cap = cap ? 2 * cap : 16;
+            char **nn = realloc(names, sizeof *nn * cap);
+            if (!nn) {
+                ok = 0;
+                break;
+            }
+            names = nn;
+        }
+        char *path = malloc(dirlen + strlen(de->d_name) + 2);
+        if (!path) {
+            ok = 0;
+            break;
+        }
+        sprintf(path, "%s/%s", o->file, de->d_name);
+        struct stat st;
+        if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+            free(path);
+            continue; /* a sub-folder or a broken link is not a part */
+        }
+        free(path);
+        names[n] = dup_string(de->d_name);
+        if (!names[n])
+            ok = 0;
+        else
+            ++n;
+    }
+    closedir(d);
+    if (!ok) note("out of memory");
+    if (ok && n == 0) {
+        note("'%s': the folder holds no mesh file (.stl, .obj, .ply, .off, .dae, .gltf, .glb, ...)", o->file);
+        ok = 0;
+    }
+    if (ok) qsort(names, n, sizeof *names, cmp_name);
+    for (size_t i = 0; ok && i < n; ++i) {
+        char *path = malloc(dirlen + strlen(names[i]) + 2);
+        if (!path) {
+            note("out of memory");
+            ok = 0;
+            break;
+        }
+        sprintf(path, "%s/%s", o->file, names[i]);
+        px_mesh *m = load(path, o);
+        if (!m) {
+            free(path);
+            ok = 0;
+            break;
+        }
+        uint32_t np = px_mesh_part_count(m);
+        uint32_t *ids = malloc(sizeof *ids * (np ? np : 1));
+        uint32_t k = ids ? surface_parts(m, path, ids) : 0;
+        if (!ids) {
+            note("out of memory");
+            ok = 0;
+        } else if (k == 0) {
+            note("note: '%s' has no triangles: not checked", path);
+        } else {
+            ok = add_part(as, o, path, names[i], m, ids, k);
+        }
+        free(ids);
+        px_mesh_destroy(m);
+        free(path);
+    }
+    for (size_t i = 0; i < n; ++i) free(names[i]);
+    free(names);
+    return ok;
+}
+
+/* ---- ignored pairs --------------------------------------------------- */
+
+typedef struct ipair {
+    uint32_t a, b;
+} ipair;
+
+/* The parts named `name` (a name may repeat). */
+static int named(const assembly *as, const char *name, size_t len, uint32_t i) {
+    return strlen(as->parts[i].name) == len && !strncmp(as->parts[i].name, name, len);
+}
+
+static int has_name(const assembly *as, const char *name, size_t len) {
+    for (uint32_t i = 0; i < as->count; ++i)
+        if (named(as, name, len, i)) return 1;
+    return 0;
+}
+
+/* Every pair of parts "A,B" names (each of A and B may name several parts;
+ * names may hold commas: the split must be the only one that names parts on
+ * both sides). Returns the count, or -1 with a message. */
+static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out) {
+    ipair *v = NULL;
+    size_t n = 0, cap = 0;
+    for (int g = 0; g < o->nignore; ++g) {
+        const char *s = o->ignore[g];
+        const char *split = NULL;
+        int splits = 0;
+        for (const char *c = strchr(s, ','); c; c = strchr(c + 1, ','))
+            if (has_name(as, s, (size_t)(c - s)) && has_name(as, c + 1, strlen(c + 1))) {
+                split = c;
+                ++splits;
+            }
+        if (splits != 1) {
+            note("--ignore '%s': %s", s,
+                 splits ? "more than one way to split it into two part names"
+                        : "not two part names A,B of the assembly (`proxima check FILE --json` lists them)");
+            free(v);
+            return -1;
+        }
+        size_t la = (size_t)(split - s), lb = strlen(split + 1);
+        for (uint32_t i = 0; i < as->count; ++i) {
+            if (!named(as, s, la, i)) continue;
+            for (uint32_t j = 0; j < as->count; ++j) {
+                if (j == i || !named(as, split + 1, lb, j)) continue;
+                if (n == cap) {
+                    cap = cap ? 2 * cap : 16;
+                    ipair *nv = realloc(v, sizeof *nv * cap);
+                    if (!nv) {
+                        free(v);
+                        note("out of memory");
+                        return -1;
+                    }
+                    v = nv;
+                }
+                v[n++] = (ipair){i < j ? i : j, i < j ? j : i};
+            }
+        }
+    }
+    *out = v;
+    return (long)n;
+}
+
+/* ---- the check ------------------------------------------------------- */
+
+static int box_within(const part *p, const part *q) {
+    return p->lo.x >= q->lo.x && p->hi.x <= q->hi.x && p->lo.y >= q->lo.y && p->hi.y <= q->hi.y &&
+           p->lo.z >= q->lo.z && p->hi.z <= q->hi.z;
+}
+
+static int cmp_finding(const void *x, const void *y) {
+    const finding *f = x, *g = y;
+    if (f->a != g->a) return f->a < g->a ? -1 : 1;
+    return f->b < g->b ? -1 : f->b > g->b;
+}
+
+/* ---- output ---------------------------------------------------------- */
+
+static void json_string(const char *s) {
+    putchar('"');
+    for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
+        if (*c == '"' || *c == '\\')
+            printf("\\%c", *c);
+        else if (*c < 0x20)
+            printf("\\u%04x", *c);
+        else
+            putchar(*c);
+    }
+    putchar('"');
+}
+
+/* The distance between the witness points: the surfaces' distance. */
+static double gap(const finding *f) {
+    double x = f->pb.x - f->pa.x, y = f->pb.y - f->pa.y, z = f->pb.z - f->pa.z;
+    return sqrt(x * x + y * y + z * z);
+}
+
+static void json_vec(px_vec3 v) { printf("[%.17g, %.17g, %.17g]", v.x, v.y, v.z); }
+
+static const char *pieces_word(uint32_t p) {
+    return p == PX_PIECES_TRIANGLES ? "triangles" : p == PX_PIECES_PARTS ? "parts" : "approximate";
+}
+
+static void print_json(const assembly *as, const check_opts *o, const findings *fs, const size_t counts[4],
+                       const px_scene_pair *closest, const ipair *ig, long nig) {
+    printf("{\n  \"format\": \"proxima-check\",\n  \"version\": 1,\n  \"file\": ");
+    json_string(o->file);
+    printf(",\n  \"kind\": \"%s\",\n  \"clearance\": %.17g,\n  \"pieces\": \"%s\",\n  \"exact\": %s,\n",
+           as->folder ? "folder" : "file", o->clearance, pieces_word(o->pieces),
+           o->pieces == PX_PIECES_TRIANGLES ? "true" : "false");
+    printf("  \"parts\": [");
+    for (uint32_t i = 0; i < as->count; ++i) {
+        printf("%s\n    {\"index\": %u, \"name\": ", i ? "," : "", i);
+        json_string(as->parts[i].name);
+        printf(", \"triangles\": %u, \"closed\": %s}", as->parts[i].triangles,
+               as->parts[i].closed ? "true" : "false");
+    }
+    printf("%s],\n  \"ignored\": [", as->count ? "\n  " : "");
+    for (long i = 0; i < nig; ++i) printf("%s[%u, %u]", i ? ", " : "", ig[i].a, ig[i].b);
+    printf("],\n  \"findings\": [");
+    for (size_t i = 0; i < fs->n; ++i) {
+        const finding *f = &fs->v[i];
+        printf("%s\n    {\"a\": %u, \"b\": %u, \"part_a\": ", i ? "," : "", f->a, f->b);
+        json_string(as->parts[f->a].name);
+        printf(", \"part_b\": ");
+        json_string(as->parts[f->b].name);
+        printf(", \"status\": \"%s\", \"distance\": %.17g, \"upper_bound\": %.17g, \"point_a\": ",
+               status_name[f->status], f->distance, f->upper);
+        json_vec(f->pa);
+        printf(", \"point_b\": ");
+        json_vec(f->pb);
+        printf(", \"surface_distance\": %.17g", gap(f));
+        printf(", \"inside\": %s}", f->status != F_INSIDE ? "null"
+                                    : f->inside == 1      ? "\"a\""
+                                    : f->inside == 2      ? "\"b\""
+                                                          : "null");
+    }
+    printf("%s],\n  \"counts\": {\"interference\": %zu, \"inside\": %zu, \"clearance\": %zu, \"possible\": "
+           "%zu},\n",
+           fs->n ? "\n  " : "", counts[0], counts[1], counts[2], counts[3]);
+    printf("  \"closest\": ");
+    if (closest->body_a == UINT32_MAX) {
+        printf("null\n}\n");
+        return;
+    }
+    printf("{\"a\": %u, \"b\": %u, \"distance\": %.17g, \"upper_bound\": %.17g, \"point_a\": ",
+           closest->body_a, closest->body_b, closest->distance, closest->upper_bound);
+    json_vec(closest->point_a);
+    printf(", \"point_b\": ");
+    json_vec(closest->point_b);
+    printf("}\n}\n");
+}
+
+static int width(const char *s) { return (int)strlen(s); }
+
+static void print_table(const assembly *as, const check_opts *o, const findings *fs, const size_t counts[4],
+                        const px_scene_pair *closest, long nig) {
+    uint32_t closed = 0;
+    for (uint32_t i = 0; i < as->count; ++i) closed += as->parts[i].closed;
+    int exact = o->pieces == PX_PIECES_TRIANGLES;
+    printf("assembly:  %s (%s, %u part%s, %u closed)\n", o->file, as->folder ? "folder" : "file", as->count,
+           as->count == 1 ? "" : "s", closed);
+    printf("check:     interference and clearance %.9g, %s", o->clearance,
+           exact                          ? "exact (triangle leaves)"
+           : o->pieces == PX_PIECES_PARTS ? "one hull per part (distance brackets)"
+                                          : "approximate convex pieces (distance brackets)");
+    if (nig) printf(", %ld pairs ignored", nig);
+    printf("\n");
+    if (fs->n) {
+        int wa = width("part a"), wb = width("part b");
+        for (size_t i = 0; i < fs->n; ++i) {
+            if (width(as->parts[fs->v[i].a].name) > wa) wa = width(as->parts[fs->v[i].a].name);
+            if (width(as->parts[fs->v[i].b].name) > wb) wb = width(as->parts[fs->v[i].b].name);
+        }
+        printf("\n%-*s  %-*s  %-12s  %-14s  %s%-38s  %s\n", wa, "part a", wb, "part b", "status", "distance",
+               exact ? "" : "upper bound     ", "point a (world)", "point b (world)");
+        for (size_t i = 0; i < fs->n; ++i) {
+            const finding *f = &fs->v[i];
+            char st[32], pa[96], pb[96], up[32] = "";
+            snprintf(st, sizeof st, "%s",
+                     f->status == F_INSIDE && f->inside ? (f->inside == 1 ? "a inside b" : "b inside a")
+                                                        : status_name[f->status]);
+            snprintf(pa, sizeof pa, "%.9g %.9g %.9g", f->pa.x, f->pa.y, f->pa.z);
+            snprintf(pb, sizeof pb, "%.9g %.9g %.9g", f->pb.x, f->pb.y, f->pb.z);
+            if (!exact) snprintf(up, sizeof up, "%-14.9g  ", f->upper);
+            printf("%-*s  %-*s  %-12s  %-14.9g  %s%-38s  %s\n", wa, as->parts[f->a].name, wb,
+                   as->parts[f->b].name, st, f->distance, up, pa, pb);
+        }
+        printf("\n");
+        printf("found:     %zu pairs: %zu interfering, %zu inside another part, %zu closer than %.9g", fs->n,
+               counts[0], counts[1], counts[2], o->clearance);
+        if (counts[3]) printf(", %zu possibly (brackets across it: try the exact default)", counts[3]);
+        printf("\n");
+    } else if (as->count < 2) {
+        printf("found:     nothing (%s)\n", as->count ? "one part only" : "no part with triangles");
+    } else {
+        printf("found:     nothing: no interference, no pair closer than %.9g\n", o->clearance);
+    }
+    if (closest->body_a != UINT32_MAX)
+        printf("closest:   %.9g between %s and %s\n", closest->distance, as->parts[closest->body_a].name,
+               as->parts[closest->body_b].name);
+}
+
+int check_run(const check_opts *o) {
+    assembly as;
+    memset(&as, 0, sizeof as);
+    struct stat st;
+    if (stat(o->file, &st) != 0) {
+        note("cannot open '%s': %s", o->file, strerror(errno));
+        return 2;
+    }
+    as.folder = S_ISDIR(st.st_mode);
+    int rc = 2;
+    ipair *ig = NULL;
+    long nig = 0;
+    findings fs = {NULL, 0};
+    px_scene *scene = NULL;
+    if (!(as.folder ? load_folder(&as, o) : load_file(&as, o))) goto done;
+    nig = resolve_ignores(&as, o, &ig);
+    if (nig < 0) goto done;
+
+    /* The scene: one static body per part, the clearance as margin and
+     * report distance. */
+    px_error e;
+    px_scene_options so;
+    memset(&so, 0, sizeof so);
+    so.margin = so.report_distance = o->clearance;
+    scene = px_scene_create(&so, &e);
+    if (!scene) {
+        note("%s", e.message);
+        goto done;
+    }
+    for (uint32_t i = 0; i < as.count; ++i) {
+        px_body_desc d;
+        memset(&d, 0, sizeof d);
+        d.model = as.parts[i].model;
+        d.pose = px_pose_identity();
+        d.flags = PX_BODY_STATIC;
+        uint32_t id;
+        if (px_scene_add_body(scene, &d, &id, &e) != PX_OK) {
+            note("part '%s': %s", as.parts[i].name, e.message);
+            goto done;
+        }
+    }
+    for (long i = 0; i < nig; ++i)
+        if (px_scene_exclude_pair(scene, ig[i].a, ig[i].b, &e) != PX_OK) {
+            note("%s", e.message);
+            goto done;
+        }
+    if (px_scene_step(scene, 0.0, &e) != PX_OK) {
+        note("'%s': %s", o->file, e.message);
+        goto done;
+    }
+    size_t np;
+    const px_scene_pair *pairs = px_scene_pairs(scene, &np);
+    fs.v = malloc(sizeof *fs.v * (np ? np : 1));
+    if (!fs.v) {
+        note("out of memory");
+        goto done;
+    }
+    for (size_t i = 0; i < np; ++i) {
+        const px_scene_pair *p = &pairs[i];
+        /* Closer than the clearance, or touching (a clearance of 0 still
+         * reports interference). */
+        if (!(p->distance < o->clearance || p->distance == 0.0)) continue;
+        finding *f = &fs.v[fs.n++];
+        memset(f, 0, sizeof *f);
+        f->a = p->body_a;
+        f->b = p->body_b;
+        f->status = p->contained ? F_INSIDE : p->distance == 0.0 ? F_INTERFERENCE : F_CLEARANCE;
+        /* Coarse leaves: the meshes' distance lies in [distance,
+         * upper_bound]; found for sure only when the bound says so. */
+        if (p->upper_bound > p->distance && !(p->upper_bound < o->clearance))
+            f->status = F_POSSIBLE;
+        else if (p->upper_bound > 0.0 && f->status == F_INTERFERENCE)
+            f->status = F_CLEARANCE;
+        if (p->contained) {
+            /* Which one is inside: a connected part inside another's solid,
+             * its surface apart, has its box within the other's box. */
+            const part *pa = &as.parts[f->a], *pb = &as.parts[f->b];
+            f->inside = box_within(pa, pb) && !box_within(pb, pa)   ? 1
+                        : box_within(pb, pa) && !box_within(pa, pb) ? 2
+                                                                    : 0;
+        }
+        f->distance = p->distance;
+        f->upper = p->upper_bound;
+        f->pa = p->point_a;
+        f->pb = p->point_b;
+    }
+    qsort(fs.v, fs.n, sizeof *fs.v, cmp_finding); /* the scene's order already; kept explicit */
+    px_scene_pair closest;
+    if (px_scene_min_distance(scene, &closest, &e) != PX_OK) {
+        note("'%s': %s", o->file, e.message);
+        goto done;
+    }
+    size_t counts[4] = {0, 0, 0, 0};
+    for (size_t i = 0; i < fs.n; ++i) counts[fs.v[i].status]++;
+    if (o->json)
+        print_json(&as, o, &fs, counts, &closest, ig, nig);
+    else
+        print_table(&as, o, &fs, counts, &closest, nig);
+    rc = fs.n ? 1 : 0;
+done:
+    px_scene_destroy(scene);
+    free(fs.v);
+    free(ig);
+    for (uint32_t i = 0; i < as.count; ++i) {
+        px_model_destroy(as.parts[i].model);
+        free(as.parts[i].name);
+    }
+    free(as.parts);
+    return rc;
+}

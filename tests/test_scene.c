@@ -421,6 +421,39 @@ static void test_bad_inputs(void) {
     CHECK(px_scene_add_body(s, &d, &id, &e) == PX_OK && id == 0, "freed id reused");
     CHECK(px_scene_body_user(s, id) == &n, "user pointer");
     px_scene_destroy(s);
+    /* A point body with unbounded speeds, jumping around a polytope: checked
+     * at every step, never a NaN. */
+    double pt[3] = {0, 0, 0};
+    px_convex *point = px_convex_create(pt, 1, NULL, &e);
+    CHECK(point != NULL, "one-point polytope: %s", e.message);
+    o.margin = 0.1;
+    o.report_distance = 0.5;
+    s = px_scene_create(&o, &e);
+    memset(&d, 0, sizeof d);
+    d.convex = c;
+    d.pose = px_pose_identity();
+    d.flags = PX_BODY_STATIC;
+    uint32_t ih, ip;
+    CHECK(px_scene_add_body(s, &d, &ih, &e) == PX_OK, "hull");
+    d.convex = point;
+    d.flags = 0;
+    d.max_speed = INFINITY;
+    d.max_angular_speed = INFINITY;
+    CHECK(px_scene_add_body(s, &d, &ip, &e) == PX_OK, "point with infinite speeds");
+    for (int k = 0; k < 200; ++k) {
+        p = px_pose_identity();
+        p.t = (px_vec3){3 * srand1(), 3 * srand1(), 3 * srand1()};
+        CHECK(px_scene_set_pose(s, ip, &p, &e) == PX_OK, "pose");
+        CHECK(px_scene_step(s, k, &e) == PX_OK, "step");
+        px_distance_result r;
+        px_pose idp = px_pose_identity();
+        px_distance(c, &idp, point, &p, NULL, NULL, &r);
+        pr = px_scene_pairs(s, &n);
+        CHECK((n == 1) == (r.distance <= 0.5) && (n == 0 || pr[0].distance == r.distance),
+              "point at %g: %zu pairs", r.distance, n);
+    }
+    px_scene_destroy(s);
+    px_convex_destroy(point);
     px_convex_destroy(c);
 }
 

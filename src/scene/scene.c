@@ -798,6 +798,10 @@ static px_status query(px_scene *s, spair *q, px_error *err) {
     if (contact != q->contact && !event(s, q->a, q->b, contact))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     q->contact = (uint8_t)contact;
+    /* A model pair far apart for its size is queried rarely: its node-pair
+     * cache is given back, so that memory follows the close pairs. */
+    if (q->kind != K_CONVEX && q->gap > 0.5 * (x->size + y->size) && q->cache.model.memory_bytes > 0)
+        px_model_cache_release(&q->cache.model);
     return PX_OK;
 }
 
@@ -980,8 +984,8 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     int fixed = (d->flags & PX_BODY_STATIC) != 0;
     b->vmax = fixed ? 0.0 : d->max_speed;
     b->wmax = fixed ? 0.0 : d->max_angular_speed;
-    b->speed = b->wmax > 0.0 ? b->vmax + b->wmax * b->radius : b->vmax;
-    b->accel = fixed ? 0.0 : d->max_accel + d->max_angular_accel * b->radius;
+    b->speed = b->wmax > 0.0 && b->radius > 0.0 ? b->vmax + b->wmax * b->radius : b->vmax;
+    b->accel = fixed ? 0.0 : d->max_accel + (b->radius > 0.0 ? d->max_angular_accel * b->radius : 0.0);
     b->group = d->group ? d->group : UINT32_MAX;
     b->mask = d->mask ? d->mask : UINT32_MAX;
     b->flags = d->flags;

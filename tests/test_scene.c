@@ -93,6 +93,7 @@ typedef struct sim {
     int filters;        /* groups, masks and excluded pairs */
     int statics;        /* some static bodies */
     int accel;          /* accelerating bodies with velocities */
+    int flat;           /* every body on one floor (z fixed), no spin off it */
 } sim;
 
 static double pair_distance(const sim_body *x, const sim_body *y, px_vec3 *pa, px_vec3 *pb) {
@@ -145,6 +146,10 @@ static void add_sim_body(px_scene *s, const sim *c, sim_body *b, int k) {
     double l = sqrt(d.x * d.x + d.y * d.y + d.z * d.z) + 1e-12;
     b->v = (px_vec3){vs * d.x / l, vs * d.y / l, vs * d.z / l};
     b->w = c->spin * urand();
+    if (c->flat) {
+        b->t.z = 1.0;
+        b->v.z = 0.0;
+    }
     b->fixed = c->statics && k % 5 == 1;
     b->group = c->filters ? 1u << (k % 3) : 0;
     b->mask = c->filters ? (k % 4 == 0 ? ~(1u << 1) : 0xFFFFFFFFu) : 0;
@@ -339,7 +344,7 @@ static uint64_t run(const sim *c, int verbose) {
 
 /* The scheduler must skip most pairs of a sparse, slow scene. */
 static void test_savings(void) {
-    sim c = {"savings", 80, 120, 0, 14.0, 0.02, 0.01, 0.05, 0.3, 0, 0, 0, 0, 0};
+    sim c = {"savings", 80, 120, 0, 14.0, 0.02, 0.01, 0.05, 0.3, 0, 0, 0, 0, 0, 0};
     rng_state = 7;
     run(&c, 1);
 }
@@ -536,15 +541,16 @@ int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
     sim cases[] = {
-        {"convex", 40, quick ? 60 : 200, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0},
-        {"convex dense", 60, quick ? 40 : 150, 0, 5.0, 0.08, 0.1, 0.05, 0.25, 0, 0, 0, 0, 0},
-        {"teleports", 40, quick ? 50 : 150, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 13, 0, 0, 0, 0},
-        {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0},
-        {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0},
-        {"filters", 40, quick ? 60 : 150, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 1, 0, 0},
-        {"statics", 40, quick ? 60 : 150, 4, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 1, 0},
-        {"accel", 40, quick ? 60 : 200, 0, 8.0, 0.06, 0.02, 0.1, 0.4, 0, 0, 0, 0, 1},
-        {"zero margin", 50, quick ? 60 : 150, 0, 6.0, 0.05, 0.05, 0.0, 0.0, 0, 0, 0, 0, 0},
+        {"convex", 40, quick ? 60 : 200, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 0},
+        {"convex dense", 60, quick ? 40 : 150, 0, 5.0, 0.08, 0.1, 0.05, 0.25, 0, 0, 0, 0, 0, 0},
+        {"teleports", 40, quick ? 50 : 150, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 13, 0, 0, 0, 0, 0},
+        {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0, 0},
+        {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0, 0},
+        {"filters", 40, quick ? 60 : 150, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 1, 0, 0, 0},
+        {"statics", 40, quick ? 60 : 150, 4, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 1, 0, 0},
+        {"accel", 40, quick ? 60 : 200, 0, 8.0, 0.06, 0.02, 0.1, 0.4, 0, 0, 0, 0, 1, 0},
+        {"floor", 60, quick ? 40 : 120, 0, 9.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 1},
+        {"zero margin", 50, quick ? 60 : 150, 0, 6.0, 0.05, 0.05, 0.0, 0.0, 0, 0, 0, 0, 0, 0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         uint64_t h1 = run(&cases[i], 1);

@@ -510,19 +510,40 @@ static int sift(px_scene *s, uint32_t b, int k) {
     return ok;
 }
 
-/* The body's world box at its pose: the body-frame box turned (|R| half)
- * cut down to the box of its bounding sphere, which does not grow with the
- * rotation (a round body's turned box is up to sqrt 3 times wider). */
+/* The sweep's frame: the world turned 0.7 rad about y, then 0.6 rad about
+ * z (REFERENCES §4.2). Bodies resting on a floor or a wall parallel to a
+ * world axis would all overlap along that axis and cost a swap each per
+ * move; in a generic frame no plane of the scene is parallel to an axis.
+ * Distances do not depend on the frame, so boxes grown by half the report
+ * distance overlap for every pair within it, in this frame as in any. */
+static const double SWEEP[9] = {
+    0.6312514969513067,  -0.5646424733950354,
+    0.5316958010320105, /* row x: (Rz(0.6) Ry(0.7)) */
+    0.43186238438518243, 0.8253356149096783,
+    0.36375266832671915, /* row y */
+    -0.644217687237691,  0.0,
+    0.7648421872844885 /* row z */
+};
+
+/* The body's box in the sweep's frame at its pose: the body-frame box
+ * turned (|R| half) cut down to the box of its bounding sphere, which does
+ * not grow with the rotation (a round body's turned box is up to sqrt 3
+ * times wider). */
 static void world_box(const sbody *b, double out[6]) {
     px_vec3 c = pxi_scale(pxi_add(b->lo, b->hi), 0.5), h = pxi_scale(pxi_sub(b->hi, b->lo), 0.5);
-    px_vec3 wc = pxi_xform(&b->pose, c), ws = pxi_xform(&b->pose, b->sc);
-    const double *r = b->pose.r;
+    px_vec3 wc = pxi_rot(SWEEP, pxi_xform(&b->pose, c)), ws = pxi_rot(SWEEP, pxi_xform(&b->pose, b->sc));
+    double r[9]; /* SWEEP * R */
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r[3 * i + j] = SWEEP[3 * i] * b->pose.r[j] + SWEEP[3 * i + 1] * b->pose.r[3 + j] +
+                           SWEEP[3 * i + 2] * b->pose.r[6 + j];
     double wc3[3] = {wc.x, wc.y, wc.z}, ws3[3] = {ws.x, ws.y, ws.z};
     for (int i = 0; i < 3; ++i) {
         double e = fabs(r[3 * i]) * h.x + fabs(r[3 * i + 1]) * h.y + fabs(r[3 * i + 2]) * h.z;
-        /* Rounding of the centres and extents: a few ulps of the coordinates. */
-        e += 8.0 * DBL_EPSILON * (fabs(wc3[i]) + e);
-        double es = b->sr + 8.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
+        /* Rounding of the centres, extents and the frame (its rows are unit
+         * within a few ulps): a few ulps of the coordinates. */
+        e += 16.0 * DBL_EPSILON * (fabs(wc3[i]) + e);
+        double es = b->sr + 16.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
         out[i] = pxi_max2(wc3[i] - e, ws3[i] - es);
         out[3 + i] = pxi_min2(wc3[i] + e, ws3[i] + es);
     }

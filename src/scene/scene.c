@@ -1124,11 +1124,15 @@ static int cmp_event(const void *x, const void *y) {
 static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err) {
     spair *q = &s->pair[p];
     s->stats.pairs_due++;
-    double moved = (s->body[q->a].travel - q->snap_a) + (s->body[q->b].travel - q->snap_b);
+    const double ta = s->body[q->a].travel, tb = s->body[q->b].travel;
+    /* The subtractions round: a few ulps of the travels (long runs make
+     * them large) are added, so that `moved` never falls short. */
+    double moved = (ta - q->snap_a) + (tb - q->snap_b);
+    if (moved > 0.0) moved += 4.0 * DBL_EPSILON * (ta + tb);
     if (q->measured && moved < q->gap) {
         q->gap -= moved;
-        q->snap_a = s->body[q->a].travel;
-        q->snap_b = s->body[q->b].travel;
+        q->snap_a = ta;
+        q->snap_b = tb;
         q->due = time + safe_time(s, q, q->gap);
         return PX_OK;
     }

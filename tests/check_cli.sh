@@ -161,6 +161,15 @@ if [ -n "$A" ]; then
   expect 2 "takes one assembly" -- "$B" check "$T/stl" "$T/boxes.obj"
   expect 2 "takes one assembly" -- "$B" check
   expect 2 "no -o" -- "$B" check "$T/stl" --pose-a 1,0,0
+  # The commands README.md and docs/check.md show, as written (from the
+  # repository's root).
+  R="$M/.."
+  expect 1 "found: +5 pairs: 2 interfering, 2 inside another part, 1 closer than 0.75" -- \
+    bash -c "cd '$R' && '$B' check models/assembly/boxes.dae --clearance 0.75"
+  expect 1 '"counts": \{"interference": 0, "inside": 2, "clearance": 0, "possible": 0\}' -- \
+    bash -c "cd '$R' && '$B' check models/assembly/boxes.dae --clearance 0.25 --json --ignore a_overlap,b_overlap --ignore c_touch,d_touch"
+  expect 0 "closest: +0.5 between e_gap and f_gap" -- \
+    bash -c "cd '$R' && '$B' check models/assembly/boxes.dae --clearance 0.25 --ignore a_overlap,b_overlap --ignore c_touch,d_touch --ignore g_shell,h_inner --ignore g_shell,i_sheet"
   expect 0 "found: +nothing \(one part only\)" -- "$B" check "$M/puma560/rtb_puma560_description/meshes/puma560_link3.dae"
 
   # The Puma 560 (SOURCE.md table 1) at joint configurations, a folder of

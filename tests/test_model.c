@@ -16,6 +16,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <threads.h>
 
 #include "model/model.h"    /* pxi_tri_tri, tested directly below */
 #include "narrow/closest.h" /* pxi_segment_closest, likewise */
@@ -816,6 +817,107 @@ static int stop_at_half(void *user, double fraction) {
     return fraction >= 0.5;
 }
 
+/* Progress seen by a build: the calls, whether the fraction ever went back
+ * or was called off the building thread, the last fraction below 1, and a
+ * fraction at which to cancel (above 1: never). */
+typedef struct progress_log {
+    thrd_t owner;
+    int calls, back, foreign;
+    double last, last_below_one, cancel_at;
+} progress_log;
+
+static int log_progress(void *user, double fraction) {
+    progress_log *l = user;
+    ++l->calls;
+    l->back += fraction < l->last;
+    l->foreign += !thrd_equal(thrd_current(), l->owner);
+    l->last = fraction;
+    if (fraction < 1.0) l->last_below_one = fraction;
+    return fraction >= l->cancel_at;
+}
+
+/* An allocator that counts calls made off the thread that owns it. */
+typedef struct owned_alloc {
+    thrd_t owner;
+    int calls, foreign;
+} owned_alloc;
+
+static void *owned_malloc(void *user, size_t size) {
+    owned_alloc *a = user;
+    ++a->calls;
+    a->foreign += !thrd_equal(thrd_current(), a->owner);
+    return malloc(size);
+}
+
+static void owned_free(void *user, void *ptr, size_t size) {
+    owned_alloc *a = user;
+    (void)size;
+    a->foreign += !thrd_equal(thrd_current(), a->owner);
+    free(ptr);
+}
+
+/* The approximate models of `mesh` built on 1, 2 and 3 threads have the
+ * same leaves, h for h (more than one piece: the pieces are certified in
+ * parallel), the allocator and progress are called on the building thread
+ * only, and progress never goes back; a cancel during the certification of
+ * the last pieces stops the build. */
+static void check_threads(const char *name, const px_mesh *mesh, const px_model_options *base) {
+    px_model *x[3] = {NULL, NULL, NULL};
+    owned_alloc al = {thrd_current(), 0, 0};
+    px_allocator alloc = {owned_malloc, owned_free, &al};
+    progress_log pl[3];
+    px_error e;
+    for (int k = 0; k < 3; ++k) {
+        px_model_options o = *base;
+        o.threads = (uint32_t)(k + 1);
+        o.allocator = &alloc;
+        pl[k] = (progress_log){thrd_current(), 0, 0, 0, 0.0, 0.0, 2.0};
+        o.progress = log_progress;
+        o.progress_user = &pl[k];
+        x[k] = px_model_create_from_mesh(mesh, &o, &e);
+        CHECK(x[k] != NULL, "%s: threads %d: %s", name, k + 1, e.message);
+        CHECK(pl[k].back == 0 && pl[k].foreign == 0 && pl[k].last == 1.0,
+              "%s: threads %d: progress went back %d times, called off the building thread %d times, ended "
+              "at %g",
+              name, k + 1, pl[k].back, pl[k].foreign, pl[k].last);
+    }
+    CHECK(al.calls > 0 && al.foreign == 0, "%s: allocator called %d times off the building thread (of %d)",
+          name, al.foreign, al.calls);
+    if (!x[0] || !x[1] || !x[2]) goto done;
+    px_model_info info;
+    px_model_get_info(x[0], &info);
+    CHECK(info.leaves > 1, "%s: %u pieces (want several certified in parallel)", name, info.leaves);
+    int same = 1;
+    for (int k = 1; k < 3; ++k) {
+        px_model_info ik;
+        px_model_get_info(x[k], &ik);
+        same &= ik.leaves == info.leaves && ik.max_h == info.max_h;
+        for (uint32_t i = 0; same && i < info.leaves; ++i) {
+            px_model_leaf l0, lk;
+            same = px_model_get_leaf(x[0], i, &l0) == PX_OK && px_model_get_leaf(x[k], i, &lk) == PX_OK &&
+                   l0.part == lk.part && l0.h == lk.h && l0.h_overlap == lk.h_overlap;
+        }
+    }
+    CHECK(same, "%s: threads 1, 2 and 3 give other leaf bounds h", name);
+    printf("approximate: %s: %u pieces, the same h on 1, 2 and 3 threads, %d progress calls\n", name,
+           info.leaves, pl[1].calls);
+    /* Cancelled while the last pieces are certified (the last fraction
+     * below 1 that the two-thread build reported). */
+    {
+        px_model_options o = *base;
+        o.threads = 2;
+        progress_log c = {thrd_current(), 0, 0, 0, 0.0, 0.0, pl[1].last_below_one};
+        o.progress = log_progress;
+        o.progress_user = &c;
+        px_model *none = px_model_create_from_mesh(mesh, &o, &e);
+        CHECK(none == NULL && e.code == PX_ERR_CANCELLED && c.foreign == 0,
+              "%s: cancel at %g while certifying: %s", name, c.cancel_at, none ? "built" : e.message);
+        px_model_destroy(none);
+    }
+done:
+    for (int k = 0; k < 3; ++k) px_model_destroy(x[k]);
+}
+
 /* One piece's hull sampled (vertices, edge points, points inside faces):
  * the largest brute-force distance to its part. */
 static double sampled_reach(const px_model *m, uint32_t node, const tri_mesh *part, int solid, pg_rng *rng) {
@@ -982,6 +1084,8 @@ static void test_approximate(void) {
         CHECK(same, "approximate: threads 2 gives another model: %s", x2 ? "" : e.message);
         px_model_destroy(x2);
     }
+    check_threads("torus and sphere (closed)", ma, &ao);
+    check_threads("half cylinder (open)", mc, &ao);
     /* Saved and loaded, it answers the same. */
     roundtrip("approximate", xb, xa, 0);
     /* Cancelling stops the build; bad tolerances are refused. */

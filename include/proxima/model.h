@@ -78,9 +78,13 @@ typedef struct px_model_options {
     /// px_model_create_from_mesh: a px_pieces value (PARTS, TRIANGLES or
     /// APPROXIMATE).
     uint32_t pieces;
-    /// PX_PIECES_APPROXIMATE: threads the decomposition may use (0 or 1:
-    /// the calling thread only). The model is the same bit for bit for any
-    /// value. Must be 0 otherwise.
+    /// PX_PIECES_APPROXIMATE: threads the build may use, the calling one
+    /// included (0 or 1: the calling thread only; at most 64 are used): the
+    /// decomposition's candidate cuts and merges, then the certification
+    /// of the pieces' bounds h, one piece per thread at a time. The model
+    /// is the same bit for bit for any value. The other threads never call
+    /// `allocator` (the hulls and each thread's scratch are allocated on
+    /// the calling thread first) nor `progress`. Must be 0 otherwise.
     uint32_t threads;
     uint32_t reserved[4]; ///< must be zero
     /// PX_PIECES_APPROXIMATE: the largest distance a piece's hull may reach

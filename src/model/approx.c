@@ -8,10 +8,21 @@
  * measured again here by reach.c, against the part's solid when the part is
  * closed (cut caps lie inside it: distance 0) and against its triangles
  * when it is open. A piece whose certified h exceeds the tolerance is kept
- * (the bracket stays true, only wider) and counted in the model's max_h. */
+ * (the bracket stays true, only wider) and counted in the model's max_h.
+ *
+ * The pieces of a part are certified on options.threads threads (the
+ * calling thread and helpers; C11 <threads.h>). Each piece's h depends on
+ * its hull and the part alone, so the results, stored by piece index, are
+ * the same for any thread count. Helpers call no allocator (the user's may
+ * not be thread-safe): the hulls and every helper's scratch are made on
+ * the calling thread first. Only the calling thread reports progress; a
+ * cancel it sees stops the helpers within a thousand or so evaluations. */
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <string.h>
+#include <threads.h>
+#include <time.h>
 
 #include "convex/convex.h"
 #include "core/core.h"
@@ -26,15 +37,22 @@ typedef struct progress {
     int cancelled;
 } progress;
 
-static int part_progress(void *user, int stage, double fraction) {
-    progress *p = user;
-    /* Cutting is most of the work; merging and hulls share the rest. */
-    double f = stage == PXCD_STAGE_CUT     ? 0.8 * fraction
-               : stage == PXCD_STAGE_MERGE ? 0.8 + 0.15 * fraction
-                                           : 0.95 + 0.05 * fraction;
+/* Reports fraction f of the current part; returns nonzero once cancelled. */
+static int report(progress *p, double f) {
     p->last = fmax(p->last, fmin(1.0, p->done + p->share * f));
     if (p->o->progress && p->o->progress(p->o->progress_user, p->last)) p->cancelled = 1;
     return p->cancelled;
+}
+
+/* A part's share: the decomposer's stages (cutting is most of it), then
+ * certifying the pieces from R_CERTIFY on. */
+#define R_CERTIFY 0.7
+
+static int part_progress(void *user, int stage, double fraction) {
+    double f = stage == PXCD_STAGE_CUT     ? 0.55 * fraction
+               : stage == PXCD_STAGE_MERGE ? 0.55 + 0.1 * fraction
+                                           : 0.65 + 0.05 * fraction;
+    return report(user, f);
 }
 
 /* The part's triangle tree for measuring h, with its solid when closed. */
@@ -124,6 +142,119 @@ static px_convex *piece_hull(const double *xyz, size_t n, double max_s, const px
     return c;
 }
 
+/* Certifying one part's pieces on the calling thread and its helpers. */
+typedef struct certify {
+    const px_model *tree;
+    px_convex *const *hulls;
+    pxi_mleaf *leaves; /* results, by piece index */
+    px_error *errs;    /* each piece's status (code) and message */
+    uint32_t n;
+    int solid;
+    double floor;
+    atomic_uint next;     /* the next piece to take */
+    atomic_uint done;     /* pieces finished */
+    atomic_uint finished; /* helpers that returned */
+    atomic_int cancel;
+    progress *pr; /* the calling thread's only */
+} certify;
+
+typedef struct worker {
+    certify *c;
+    void *scratch;
+    size_t bytes;
+    int caller; /* the calling thread: reports progress */
+} worker;
+
+/* Calling thread: reports the pieces done; nonzero once cancelled. */
+static int certify_report(certify *c) {
+    double f = R_CERTIFY + (1.0 - R_CERTIFY) * (double)atomic_load(&c->done) / (double)c->n;
+    if (report(c->pr, f)) atomic_store(&c->cancel, 1);
+    return atomic_load(&c->cancel);
+}
+
+static int certify_stop(void *user) {
+    worker *w = user;
+    return w->caller ? certify_report(w->c) : atomic_load(&w->c->cancel);
+}
+
+static void certify_run(worker *w) {
+    certify *c = w->c;
+    while (!atomic_load(&c->cancel)) {
+        unsigned i = atomic_fetch_add(&c->next, 1u);
+        if (i >= c->n) break;
+        pxi_mleaf *leaf = &c->leaves[i];
+        c->errs[i].code = pxi_part_reach_in(w->scratch, w->bytes, c->hulls[i], c->tree, c->solid, c->floor,
+                                            certify_stop, w, &leaf->h, &leaf->h_overlap, &c->errs[i]);
+        atomic_fetch_add(&c->done, 1u);
+    }
+}
+
+static int certify_helper(void *user) {
+    worker *w = user;
+    certify_run(w);
+    atomic_fetch_add(&w->c->finished, 1u);
+    return 0;
+}
+
+/* Certifies the n hulls of part p (leaves m->leaves[m->n_leaves ..], which
+ * get h and h_overlap) on up to `threads` threads. */
+static px_status certify_pieces(px_model *m, const px_model *tree, px_convex *const *hulls, uint32_t n,
+                                int solid, double floor, unsigned threads, progress *pr, uint32_t p,
+                                const px_mesh_part *mp, px_error *err) {
+    enum { MAX_THREADS = 64 };
+    unsigned nt = threads < 1 ? 1 : threads > MAX_THREADS ? MAX_THREADS : threads;
+    if (nt > n) nt = n;
+    uint32_t faces = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        uint32_t f = px_convex_face_count(hulls[i]);
+        faces = f > faces ? f : faces;
+        m->leaves[m->n_leaves + i] = (pxi_mleaf){p, PXI_NONE, 0.0, 0.0};
+    }
+    if (n == 0) return PX_OK;
+    const size_t bytes = pxi_part_reach_scratch_bytes(faces);
+    worker w[MAX_THREADS];
+    thrd_t helper[MAX_THREADS];
+    certify c = {tree, hulls, m->leaves + m->n_leaves, NULL, n, solid, floor, 0, 0, 0, 0, pr};
+    c.errs = pxi_alloc_array(&m->alloc, n, sizeof *c.errs);
+    /* Every thread's scratch, here: as many threads as scratches made. */
+    unsigned nw = 0;
+    for (; c.errs && nw < nt; ++nw) {
+        w[nw] = (worker){&c, pxi_alloc(&m->alloc, bytes), bytes, nw == 0};
+        if (!w[nw].scratch) break;
+    }
+    px_status st = PX_OK;
+    if (!c.errs || nw == 0) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    } else {
+        for (uint32_t i = 0; i < n; ++i) c.errs[i] = (px_error){0};
+        unsigned started = 0;
+        while (1 + started < nw &&
+               thrd_create(&helper[started], certify_helper, &w[1 + started]) == thrd_success)
+            ++started;
+        certify_run(&w[0]);
+        /* Waits for the helpers, reporting progress now and then. */
+        while (atomic_load(&c.finished) < started) {
+            certify_report(&c);
+            thrd_sleep(&(struct timespec){.tv_nsec = 10 * 1000 * 1000}, NULL);
+        }
+        for (unsigned k = 0; k < started; ++k) thrd_join(helper[k], NULL);
+        if (atomic_load(&c.cancel) || certify_report(&c)) {
+            st = pxi_error(err, PX_ERR_CANCELLED,
+                           "px_model_create_from_mesh: cancelled by the progress callback");
+        } else {
+            /* The first failing piece, whatever thread measured it. */
+            for (uint32_t i = 0; i < n && st == PX_OK; ++i)
+                if (c.errs[i].code != PX_OK)
+                    st = pxi_error(err, c.errs[i].code,
+                                   "px_model_create_from_mesh: part %u ('%s'), piece %u: %s", p, mp->name, i,
+                                   c.errs[i].message);
+        }
+    }
+    for (unsigned k = 0; k < nw; ++k) pxi_free(&m->alloc, w[k].scratch, bytes);
+    pxi_free(&m->alloc, c.errs, (size_t)n * sizeof *c.errs);
+    return st;
+}
+
 /* Decomposes part p into leaves appended to m. */
 static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, double tolerance,
                                   unsigned threads, progress *pr, px_convex ***convex, uint32_t *cap,
@@ -192,31 +323,35 @@ static px_status approximate_part(px_model *m, const px_mesh *mesh, uint32_t p, 
     px_status st = PX_OK;
     px_model *tree = part_tree(&m->alloc, xyz, tri, &mp, err);
     if (!tree) st = err ? err->code : PX_ERR_OUT_OF_MEMORY;
+    uint32_t np = (uint32_t)res->piece_count, made = 0;
+    if (st == PX_OK &&
+        (res->piece_count > UINT32_MAX - m->n_leaves || !grow(m, convex, cap, m->n_leaves + np)))
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    /* The hulls, on this thread (they allocate). */
+    px_convex **hulls = st == PX_OK ? *convex + m->n_leaves : NULL;
+    for (; st == PX_OK && made < np; ++made) {
+        const pxcd_decomp_piece *pc = &res->pieces[made];
+        hulls[made] =
+            piece_hull(pc->vertices, pc->vertex_count, 0.125 * tolerance * res->diagonal, &co, &m->alloc, &e);
+        if (!hulls[made]) {
+            st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'), piece %u: %s", p, mp.name,
+                           made, e.message);
+            break;
+        }
+        if (report(pr, R_CERTIFY))
+            st = pxi_error(err, PX_ERR_CANCELLED,
+                           "px_model_create_from_mesh: cancelled by the progress callback");
+    }
     /* Bounds are refined to 5 % of the tolerance (absolute, in the part's
      * units), finer where a piece reaches farther. */
-    double floor = 0.05 * tolerance * res->diagonal;
-    for (size_t i = 0; st == PX_OK && i < res->piece_count; ++i) {
-        const pxcd_decomp_piece *pc = &res->pieces[i];
-        if (!grow(m, convex, cap, m->n_leaves + 1)) {
-            st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
-            break;
-        }
-        px_convex *c =
-            piece_hull(pc->vertices, pc->vertex_count, 0.125 * tolerance * res->diagonal, &co, &m->alloc, &e);
-        if (!c) {
-            st = pxi_error(err, e.code, "px_model_create_from_mesh: part %u ('%s'), piece %zu: %s", p,
-                           mp.name, i, e.message);
-            break;
-        }
-        pxi_mleaf leaf = {p, PXI_NONE, 0.0, 0.0};
-        st = pxi_part_reach(&m->alloc, c, tree, mp.closed != 0, floor, &leaf.h, &leaf.h_overlap, err);
-        if (st != PX_OK) {
-            px_convex_destroy(c);
-            break;
-        }
-        (*convex)[m->n_leaves] = c;
-        m->leaves[m->n_leaves++] = leaf;
-        m->max_h = fmax(m->max_h, leaf.h_overlap);
+    if (st == PX_OK)
+        st = certify_pieces(m, tree, hulls, np, mp.closed != 0, 0.05 * tolerance * res->diagonal, threads, pr,
+                            p, &mp, err);
+    if (st == PX_OK) {
+        for (uint32_t i = 0; i < np; ++i) m->max_h = fmax(m->max_h, m->leaves[m->n_leaves + i].h_overlap);
+        m->n_leaves += np;
+    } else {
+        for (uint32_t i = 0; i < made; ++i) px_convex_destroy(hulls[i]);
     }
     px_model_destroy(tree);
     pxcd_decomp_free(res);

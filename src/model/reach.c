@@ -25,7 +25,13 @@
  * triangles); a triangle or cell whose centre is inside and farther from
  * the triangles than its radius lies wholly inside (bound 0). Refinement
  * also stops once a bound is below `floor`, an absolute precision the
- * caller asks for (0 for part hulls). */
+ * caller asks for (0 for part hulls).
+ *
+ * pxi_part_reach_in computes in a scratch buffer the caller gives (the
+ * heap of triangles or cells and the hull's face planes) and calls no
+ * allocator, so that the pieces of a decomposition can be certified on
+ * worker threads, each with its own scratch (approx.c); the bounds depend
+ * on the hull, the tree and `floor` alone, not on the thread. */
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
@@ -91,6 +97,9 @@ typedef struct rtri {
 typedef struct rcell {
     px_vec3 c, half;
     double ub;
+    double ds; /* the centre's distance to the triangles */
+    int side;  /* the centre inside the solid (1), outside (0), not tested (-1) */
+    int in;    /* the cell lies wholly inside the hull */
 } rcell;
 
 /* A max-heap of fixed-size records keyed by their leading... ub field, kept
@@ -141,6 +150,13 @@ static void rh_pop(rheap *h, void *rec) {
     }
 }
 
+/* A face plane of the hull: n . p - off is the signed distance (body
+ * frame), as px_convex_face gives it. */
+typedef struct rplane {
+    px_vec3 n;
+    double off;
+} rplane;
+
 typedef struct reach {
     const px_model *tree;
     int solid;    /* distances to the tree's solid (0 inside), not its triangles */
@@ -148,25 +164,43 @@ typedef struct reach {
     double known; /* largest distance seen at a point of the set */
     double bound; /* largest bound of the parts refined so far */
     uint32_t evals;
+    const rplane *planes; /* the hull's nf face planes */
+    uint32_t nf;
+    int (*stop)(void *); /* polled every R_POLL evaluations; nonzero stops */
+    void *stop_user;
+    int stopped;
+    double slack; /* rounding of the distances: a few ulps of the hull's size */
 } reach;
 
-/* Refinement goes on while a bound exceeds this. */
-static double enough(const reach *r) { return fmax(r->known * 1.01, r->floor); }
+/* Evaluations between two calls of the stop hook (a few milliseconds). */
+enum { R_POLL = 1024 };
 
-static rpoint eval(reach *r, px_vec3 p) {
+/* Refinement goes on while a bound exceeds this. */
+static double enough(const reach *r) { return pxi_max2(r->known * 1.01, r->floor); }
+
+/* Evaluates p. `limit` (INFINITY: none) is a distance to the triangles
+ * that p is known to be within: the search for the nearest one starts from
+ * it. `side` (-1: unknown) is whether p is inside the solid, when known
+ * without a ray cast. */
+static rpoint eval_known(reach *r, px_vec3 p, double limit, int side) {
     rpoint out;
     out.p = p;
-    out.ds = out.d = pxi_model_nearest(r->tree, p, INFINITY, &out.tri);
+    out.ds = out.d = pxi_model_nearest(r->tree, p, limit, &out.tri);
+    if (out.tri == PXI_NONE && limit < INFINITY)
+        out.ds = out.d = pxi_model_nearest(r->tree, p, INFINITY, &out.tri);
     out.inside = 0;
     /* Near the triangles the distance to them is bound enough: the ray
      * cast is spent only where being inside matters. */
-    if (r->solid && out.ds > 0.5 * r->floor && pxi_model_point_inside(r->tree, p)) {
+    if (r->solid && out.ds > 0.5 * r->floor && (side >= 0 ? side : pxi_model_point_inside(r->tree, p))) {
         out.d = 0.0;
         out.inside = 1;
     }
     r->evals++;
+    if (r->stop && r->evals % R_POLL == 0 && r->stop(r->stop_user)) r->stopped = 1;
     return out;
 }
+
+static rpoint eval(reach *r, px_vec3 p) { return eval_known(r, p, INFINITY, -1); }
 
 static void tri_bound(reach *r, rtri *t) {
     double same = INFINITY;
@@ -198,7 +232,8 @@ static double refine_triangle(reach *r, rheap *h, const rtri *t0, uint32_t budge
     while (h->n > 0) {
         rtri t;
         rh_pop(h, &t);
-        if (t.ub <= enough(r) || r->evals - start + 3 > budget || h->n + 2 > h->cap) return t.ub;
+        if (t.ub <= enough(r) || r->evals - start + 3 > budget || h->n + 2 > h->cap || r->stopped)
+            return t.ub;
         int e = 0;
         double longest = -1.0;
         for (int k = 0; k < 3; ++k) {
@@ -228,7 +263,7 @@ static double boundary_reach(reach *r, const px_convex *hull, rheap *h) {
     px_convex_bounds(hull, NULL, &bd);
     const double res = 0.01 * bd.radius;
     for (int pass = 0; pass < 2; ++pass) {
-        for (uint32_t f = 0; f < nf; ++f) {
+        for (uint32_t f = 0; f < nf && !r->stopped; ++f) {
             uint32_t count, v0;
             px_convex_face(hull, f, NULL, NULL, &count);
             px_convex_face_vertex(hull, f, 0, &v0);
@@ -269,24 +304,45 @@ static double boundary_reach(reach *r, const px_convex *hull, rheap *h) {
     return fmax(r->bound, r->known);
 }
 
-static double plane_max(const px_convex *hull, px_vec3 p) {
+/* The largest signed distance of p to the hull's face planes, or any value
+ * above `above` once one exceeds it (the caller only asks whether it
+ * does). */
+static double plane_max(const reach *r, px_vec3 p, double above) {
     double worst = -INFINITY;
-    uint32_t nf = px_convex_face_count(hull);
-    for (uint32_t f = 0; f < nf; ++f) {
-        px_vec3 n;
-        double off;
-        px_convex_face(hull, f, &n, &off, NULL);
-        worst = fmax(worst, pxi_dot(n, p) - off);
+    for (uint32_t f = 0; f < r->nf; ++f) {
+        double s = pxi_dot(r->planes[f].n, p) - r->planes[f].off;
+        if (s > worst) {
+            worst = s;
+            if (worst > above) break;
+        }
     }
     return worst;
 }
 
-static int push_cell(reach *r, const px_convex *hull, rheap *h, px_vec3 c, px_vec3 half) {
-    double rad = pxi_len(half), pm = plane_max(hull, c);
+/* Pushes the cell of centre c and half extents `half`, a child of `parent`
+ * (NULL for none). The child lies in the parent, so in the hull when the
+ * parent does. The child's centre lies within |half| of the parent's:
+ * its distance to the triangles is at most the parent's plus |half|, and
+ * when the parent's is larger than |half| (less a rounding slack) the
+ * segment between the centres meets no triangle, so the child's centre is
+ * on the same side of the solid's surface. */
+static int push_cell(reach *r, rheap *h, px_vec3 c, px_vec3 half, const rcell *parent) {
+    /* A cell inside the hull holds its children: no plane to test. */
+    double rad = pxi_len(half), pm = parent && parent->in ? -INFINITY : plane_max(r, c, rad);
     if (pm > rad) return 1; /* the cell misses the hull */
-    rpoint e = eval(r, c);
-    if (pm <= 0.0) r->known = fmax(r->known, e.d);
-    rcell cell = {c, half, e.inside && e.ds > rad ? 0.0 : e.d + rad};
+    double limit = INFINITY;
+    int side = -1;
+    if (parent) {
+        limit = (parent->ds + rad) * (1.0 + 16.0 * DBL_EPSILON) + r->slack;
+        if (parent->side >= 0 && parent->ds > rad + r->slack) side = parent->side;
+    }
+    rpoint e = eval_known(r, c, limit, side);
+    if (pm <= 0.0) r->known = pxi_max2(r->known, e.d);
+    /* The side is known where it was tested (or inherited): solid mode,
+     * and the centre farther from the triangles than half the floor. */
+    int known_side = r->solid && e.ds > 0.5 * r->floor ? e.inside : -1;
+    rcell cell = {c,    half,       e.inside && e.ds > rad ? 0.0 : e.d + rad,
+                  e.ds, known_side, pm < -(rad + r->slack)};
     return rh_push(h, &cell);
 }
 
@@ -308,35 +364,53 @@ static double volume_reach(reach *r, const px_convex *hull, rheap *h) {
             for (int k = 0; k < k0; ++k) {
                 px_vec3 c = pxi_v(lo.x + (2 * i + 1) * half.x, lo.y + (2 * j + 1) * half.y,
                                   lo.z + (2 * k + 1) * half.z);
-                if (!push_cell(r, hull, h, c, half)) return INFINITY;
+                if (!push_cell(r, h, c, half, NULL)) return INFINITY;
             }
     while (h->n > 0) {
         rcell cell;
         rh_pop(h, &cell);
-        if (cell.ub <= enough(r) || r->evals + 8 > R_VOLUME_BUDGET || h->n + 8 > h->cap)
+        if (cell.ub <= enough(r) || r->evals + 8 > R_VOLUME_BUDGET || h->n + 8 > h->cap || r->stopped)
             return fmax(cell.ub, r->known);
         px_vec3 hh = pxi_scale(cell.half, 0.5);
         for (int s = 0; s < 8; ++s) {
             px_vec3 c = pxi_v(cell.c.x + ((s & 1) ? hh.x : -hh.x), cell.c.y + ((s & 2) ? hh.y : -hh.y),
                               cell.c.z + ((s & 4) ? hh.z : -hh.z));
-            push_cell(r, hull, h, c, hh);
+            push_cell(r, h, c, hh, &cell);
         }
     }
     return r->known;
 }
 
-px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, int solid,
-                         double floor, double *h, double *h_overlap, px_error *err) {
+enum { R_REC = sizeof(rtri) > sizeof(rcell) ? sizeof(rtri) : sizeof(rcell) };
+
+size_t pxi_part_reach_scratch_bytes(uint32_t max_faces) {
+    return (size_t)R_HEAP * R_REC + (size_t)max_faces * sizeof(rplane);
+}
+
+px_status pxi_part_reach_in(void *scratch, size_t scratch_bytes, const px_convex *hull, const px_model *tree,
+                            int solid, double floor, int (*stop)(void *), void *stop_user, double *h,
+                            double *h_overlap, px_error *err) {
     *h = *h_overlap = 0.0;
-    size_t rec = sizeof(rtri) > sizeof(rcell) ? sizeof(rtri) : sizeof(rcell);
-    rheap heap = {NULL, sizeof(rtri), offsetof(rtri, ub), 0, R_HEAP};
-    heap.data = pxi_alloc_array(alloc, R_HEAP, rec);
-    if (!heap.data) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    uint32_t nf = px_convex_face_count(hull);
+    if (!scratch || scratch_bytes < pxi_part_reach_scratch_bytes(nf))
+        return pxi_error(err, PX_ERR_INTERNAL, "px_model: reach scratch too small");
+    rheap heap = {scratch, sizeof(rtri), offsetof(rtri, ub), 0, R_HEAP};
+    rplane *planes = (rplane *)((unsigned char *)scratch + (size_t)R_HEAP * R_REC);
+    for (uint32_t f = 0; f < nf; ++f) px_convex_face(hull, f, &planes[f].n, &planes[f].off, NULL);
     /* Rounding of the nearest points: a few ulps of the hull's size. */
     px_bounds bd;
     px_convex_bounds(hull, NULL, &bd);
     double slack = 16.0 * DBL_EPSILON * (bd.radius + pxi_len(bd.center));
-    reach r = {tree, solid && tree->solid_parts > 0, floor > 0.0 ? floor : 0.0, 0.0, 0.0, 0};
+    reach r;
+    memset(&r, 0, sizeof r);
+    r.tree = tree;
+    r.solid = solid && tree->solid_parts > 0;
+    r.floor = floor > 0.0 ? floor : 0.0;
+    r.planes = planes;
+    r.nf = nf;
+    r.stop = stop;
+    r.stop_user = stop_user;
+    r.slack = slack;
     if (r.solid) {
         /* Against a solid the cells of space bound the boundary too (it
          * lies in the hull), and they stay fat where the fanned faces of a
@@ -345,25 +419,36 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
         heap.size = sizeof(rcell);
         heap.off = offsetof(rcell, ub);
         *h = *h_overlap = volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
-        pxi_free(alloc, heap.data, R_HEAP * rec);
-        if (!isfinite(*h)) return pxi_error(err, PX_ERR_INTERNAL, "px_model: piece bound h did not converge");
-        return PX_OK;
+    } else {
+        *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
+        if (px_convex_dimension(hull) < 3) {
+            /* A polygon, segment or point is its own boundary. */
+            *h_overlap = *h;
+        } else if (!r.stopped) {
+            heap.n = 0;
+            heap.size = sizeof(rcell);
+            heap.off = offsetof(rcell, ub);
+            r.evals = 0;
+            *h_overlap = fmax(*h, volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack);
+        }
     }
-    *h = boundary_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack;
-    if (px_convex_dimension(hull) < 3) {
-        /* A polygon, segment or point is its own boundary. */
-        *h_overlap = *h;
-        pxi_free(alloc, heap.data, R_HEAP * rec);
-        if (!isfinite(*h)) return pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
-        return PX_OK;
+    if (r.stopped) {
+        *h = *h_overlap = 0.0;
+        return pxi_error(err, PX_ERR_CANCELLED, "px_model: bound h stopped (cancelled)");
     }
-    heap.n = 0;
-    heap.size = sizeof(rcell);
-    heap.off = offsetof(rcell, ub);
-    r.evals = 0;
-    *h_overlap = fmax(*h, volume_reach(&r, hull, &heap) * (1.0 + 16.0 * DBL_EPSILON) + slack);
-    pxi_free(alloc, heap.data, R_HEAP * rec);
     if (!isfinite(*h) || !isfinite(*h_overlap))
-        return pxi_error(err, PX_ERR_INTERNAL, "px_model: part bound h did not converge");
+        return pxi_error(err, PX_ERR_INTERNAL, "px_model: %s bound h did not converge",
+                         solid ? "piece" : "part");
     return PX_OK;
+}
+
+px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const px_model *tree, int solid,
+                         double floor, double *h, double *h_overlap, px_error *err) {
+    *h = *h_overlap = 0.0;
+    size_t bytes = pxi_part_reach_scratch_bytes(px_convex_face_count(hull));
+    void *scratch = pxi_alloc(alloc, bytes);
+    if (!scratch) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
+    px_status st = pxi_part_reach_in(scratch, bytes, hull, tree, solid, floor, NULL, NULL, h, h_overlap, err);
+    pxi_free(alloc, scratch, bytes);
+    return st;
 }

@@ -27,7 +27,7 @@
 //            has no public accessor for a leaf's hull, so its pieces are
 //            built a second time with pxcd_decompose (same inputs and
 //            options as src/model/approx.c: the px_mesh's own vertices,
-//            each part alone, one thread) and hulled by px_convex_create, as
+//            each part alone, the same threads) and hulled by px_convex_create, as
 //            approx.c does; the piece counts must agree (a determinism
 //            check). decomp_s is that pxcd_decompose alone, build_s the
 //            whole px_model_create_from_mesh (decomposition, certification
@@ -47,6 +47,22 @@
 //            bracket_ok: d_model <= d_exact <= upper_bound on every pose
 //            (up to 1e-12 + 1e-9 d_exact); lower_ok: d_model <= d_exact on
 //            every pose (the hulls cover the mesh where it matters)
+//   probes   the approach sees the mesh along one line, where one hull is
+//            often as good as many; the probe error does not depend on a
+//            direction: max over a fixed set of probe points p of
+//            |d_model(p) - d_exact(p)|, each p a one-point px_convex and
+//            both distances px_model_distance_convex (cold, no cache).
+//            Probes (per mesh, seeded): 1000 far ones, along random
+//            directions from the box's centre, from the bounding box out to
+//            0.3 beyond it; 1000 near ones, at area-weighted random points
+//            of the triangles moved 0 to 0.1 along the triangle's normal,
+//            to the side outside the solid (closed meshes: a probe inside
+//            on both sides, or touching, is drawn again; open meshes: the
+//            normal's side as wound). Coverage error: max over up to 2000
+//            mesh vertices (every k-th) of d_model(vertex), 0 where the
+//            pieces cover the mesh
+//   threads  proxima's builds and pxcd_decompose use --threads (default 2,
+//            the machine's cores); Bullet's decomposers are single-threaded
 //
 // Bullet's decomposers run in a forked child (they may crash or run for a
 // long time on large meshes: HACD is quadratic-ish); the child sends its
@@ -55,7 +71,7 @@
 // (plot_decomposition.gp draws decomposition.png from it) into --out.
 //
 //   bench_decomp [--meshes DIR] [--models DIR] [--out DIR] [--passes N]
-//                [--only NAME] [--tolerances LIST] [--quick]
+//                [--only NAME] [--tolerances LIST] [--quick] [--threads N]
 //                [--bullet-timeout S] [--hacd-max-tris N]
 //                [--cd D:C,D:C] [--hacd C,C]
 // --quick: Puma link2 only, tolerances 0.1 and 0.05, two ConvexDecomposition
@@ -85,6 +101,11 @@ using rm::Mesh;
 
 // ---- Meshes -------------------------------------------------------------------
 
+struct ConvexDeleter {
+    void operator()(px_convex *c) const { px_convex_destroy(c); }
+};
+using ConvexPtr = std::unique_ptr<px_convex, ConvexDeleter>;
+
 struct Subject {
     std::string name;
     Mesh mesh;
@@ -92,6 +113,12 @@ struct Subject {
     rm::ModelPtr tri;              // exact reference
     std::vector<double> part_diag; // per part of px_mesh
     double radius = 0;
+    // Probe points (one-point polytopes) with their exact distances, and
+    // the mesh vertices sampled for coverage.
+    std::vector<ConvexPtr> probes, cover;
+    std::vector<double> probe_exact;
+    size_t probes_far = 0, probes_near = 0, probes_redrawn = 0;
+    bool closed = false;
 };
 
 // The px_mesh's part p as its own vertices and local triangles (what
@@ -144,6 +171,108 @@ bool prepare(Subject *s) {
     return true;
 }
 
+// ---- Probe points -----------------------------------------------------------------
+
+ConvexPtr point_convex(const double p[3]) {
+    px_error e{};
+    return ConvexPtr(px_convex_create(p, 1, nullptr, &e));
+}
+
+double point_distance(const px_model *m, const px_convex *pt) {
+    const px_pose id = px_pose_identity();
+    px_model_distance_result r;
+    if (px_model_distance_convex(m, &id, pt, &id, nullptr, &r) != PX_OK) return NAN;
+    return r.distance;
+}
+
+// 1 when the point lies in the triangle model's solid or touches it.
+bool point_hits(const px_model *m, const px_convex *pt) {
+    const px_pose id = px_pose_identity();
+    px_model_collide_result r;
+    return px_model_collide_convex(m, &id, pt, &id, nullptr, &r) == PX_OK && r.hit;
+}
+
+// The probe points of the header comment, seeded by the mesh's index.
+void make_probes(Subject *s, size_t n_far, size_t n_near, size_t n_cover, uint64_t seed) {
+    pg_sm rng = {seed};
+    const Mesh &m = s->mesh;
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (size_t i = 0; i < m.nv(); ++i)
+        for (int k = 0; k < 3; ++k)
+            lo[k] = std::min(lo[k], m.xyz[3 * i + k]), hi[k] = std::max(hi[k], m.xyz[3 * i + k]);
+    px_mesh_info mi;
+    px_mesh_get_info(s->px_mesh.get(), &mi);
+    s->closed = mi.closed_parts == px_mesh_part_count(s->px_mesh.get());
+    auto add = [&](const double p[3]) {
+        ConvexPtr c = point_convex(p);
+        if (!c) return false;
+        s->probe_exact.push_back(point_distance(s->tri.get(), c.get()));
+        s->probes.push_back(std::move(c));
+        return true;
+    };
+    // Far: from the box's boundary along u out to 0.3 beyond it.
+    for (size_t i = 0; i < n_far; ++i) {
+        const bench::V3 u = pg_sm_unit(&rng);
+        const double uu[3] = {u.x, u.y, u.z};
+        double to_box = HUGE_VAL;
+        for (int k = 0; k < 3; ++k)
+            if (uu[k] != 0) to_box = std::min(to_box, 0.5 * (hi[k] - lo[k]) / std::fabs(uu[k]));
+        const double t = to_box + 0.3 * pg_sm_uniform(&rng);
+        double p[3];
+        for (int k = 0; k < 3; ++k) p[k] = 0.5 * (lo[k] + hi[k]) + t * uu[k];
+        s->probes_far += add(p);
+    }
+    // Near: area-weighted points of the triangles, moved along the normal.
+    std::vector<double> cum(m.nt());
+    double total = 0;
+    for (size_t t = 0; t < m.nt(); ++t) {
+        const double *a = &m.xyz[3 * (size_t)m.tri[3 * t]], *b = &m.xyz[3 * (size_t)m.tri[3 * t + 1]],
+                     *c = &m.xyz[3 * (size_t)m.tri[3 * t + 2]];
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                     e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                             e1[0] * e2[1] - e1[1] * e2[0]};
+        total += 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        cum[t] = total;
+    }
+    for (size_t tries = 0; s->probes_near < n_near && tries < 20 * n_near && total > 0; ++tries) {
+        const size_t t = std::min<size_t>(
+            std::lower_bound(cum.begin(), cum.end(), pg_sm_uniform(&rng) * total) - cum.begin(), m.nt() - 1);
+        const double *a = &m.xyz[3 * (size_t)m.tri[3 * t]], *b = &m.xyz[3 * (size_t)m.tri[3 * t + 1]],
+                     *c = &m.xyz[3 * (size_t)m.tri[3 * t + 2]];
+        const double r1 = std::sqrt(pg_sm_uniform(&rng)), r2 = pg_sm_uniform(&rng);
+        const double wa = 1 - r1, wb = r1 * (1 - r2), wc = r1 * r2, delta = 0.1 * pg_sm_uniform(&rng);
+        const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                     e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(len > 0)) continue;
+        bool placed = false;
+        for (int side = 1; side >= -1 && !placed; side -= 2) {
+            double p[3];
+            for (int k = 0; k < 3; ++k) p[k] = wa * a[k] + wb * b[k] + wc * c[k] + side * delta * n[k] / len;
+            if (s->closed) {
+                ConvexPtr pc = point_convex(p);
+                if (!pc || point_hits(s->tri.get(), pc.get())) continue;
+            } else if (side < 0) {
+                break;
+            }
+            placed = add(p);
+        }
+        if (placed)
+            ++s->probes_near;
+        else
+            ++s->probes_redrawn;
+    }
+    // Coverage: every k-th vertex.
+    const size_t step = std::max<size_t>(1, m.nv() / n_cover);
+    for (size_t i = 0; i < m.nv(); i += step)
+        if (ConvexPtr c = point_convex(&m.xyz[3 * i])) s->cover.push_back(std::move(c));
+    fprintf(stderr, "  probes: %zu far, %zu near (%zu redrawn), %zu vertices for coverage\n", s->probes_far,
+            s->probes_near, s->probes_redrawn, s->cover.size());
+}
+
 // ---- The approach sequence and its measurement ----------------------------------
 
 struct Sequence {
@@ -192,9 +321,19 @@ Sequence make_sequence(const Subject &s, int n, int passes, uint64_t seed) {
 
 struct Measure {
     double median_ns = NAN, p90_ns = NAN, max_err = NAN, max_width = NAN;
+    double probe_err = NAN, cover_err = NAN; // over the probes and the sampled vertices
     int bracket_ok = -1, lower_ok = -1;
     size_t cache_bytes = 0;
 };
+
+// The probe and coverage errors of model m.
+void measure_probes(const px_model *m, const Subject &s, Measure *out) {
+    out->probe_err = 0, out->cover_err = 0;
+    for (size_t i = 0; i < s.probes.size(); ++i)
+        out->probe_err =
+            std::max(out->probe_err, std::fabs(point_distance(m, s.probes[i].get()) - s.probe_exact[i]));
+    for (auto &c : s.cover) out->cover_err = std::max(out->cover_err, point_distance(m, c.get()));
+}
 
 Measure measure(const px_model *m, const Sequence &q, int passes) {
     Measure out;
@@ -240,6 +379,7 @@ struct Row {
     // diagonal, and the largest h / (tolerance * part diagonal).
     size_t pieces_h_over_tol = 0;
     double worst_h_ratio = NAN;
+    unsigned threads = 0; // proxima-approx: options.threads (0: not threaded)
     Measure m;
     bool failed = false;
 };
@@ -293,7 +433,7 @@ void fill_info(Row *r, const px_model *m) {
     r->memory_bytes = info.memory_bytes;
 }
 
-Row run_approx(const Subject &s, double tol, const Sequence &q, int passes) {
+Row run_approx(const Subject &s, double tol, unsigned threads, const Sequence &q, int passes) {
     Row r;
     r.method = "proxima-approx";
     r.mesh = s.name;
@@ -305,6 +445,8 @@ Row run_approx(const Subject &s, double tol, const Sequence &q, int passes) {
     px_model_options o{};
     o.pieces = PX_PIECES_APPROXIMATE;
     o.tolerance = tol;
+    o.threads = threads;
+    r.threads = threads;
     px_error e{};
     double t0 = now_ns();
     rm::ModelPtr m(px_model_create_from_mesh(s.px_mesh.get(), &o, &e));
@@ -338,6 +480,7 @@ Row run_approx(const Subject &s, double tol, const Sequence &q, int passes) {
         }
         pxcd_decomp_options d{};
         d.tolerance = tol;
+        d.threads = threads;
         pxcd_decomp_result *res = nullptr;
         char msg[256] = "";
         t0 = now_ns();
@@ -368,11 +511,13 @@ Row run_approx(const Subject &s, double tol, const Sequence &q, int passes) {
                 r.pieces);
     }
     r.m = measure(m.get(), q, passes);
+    measure_probes(m.get(), s, &r.m);
     fprintf(stderr,
             "  approx tol %-5g %4zu pieces %6zu hull vertices, max_h %.4f (%zu over tol), build %.2f s "
-            "(decompose %.2f s), %s us, err %.4f, bracket %s\n",
+            "(decompose %.2f s), %s us, err %.4f, probe err %.4f, cover err %.4f, bracket %s\n",
             tol, r.pieces, r.hull_vertices, r.max_h, r.pieces_h_over_tol, r.build_s, r.decomp_s,
-            bench::fmt_us(r.m.median_ns).c_str(), r.m.max_err, r.m.bracket_ok ? "ok" : "BROKEN");
+            bench::fmt_us(r.m.median_ns).c_str(), r.m.max_err, r.m.probe_err, r.m.cover_err,
+            r.m.bracket_ok ? "ok" : "BROKEN");
     return r;
 }
 
@@ -398,8 +543,10 @@ Row run_builtin(const Subject &s, uint32_t pieces, const Sequence &q, int passes
         r.hull_vertices = hull_vertices(sets, &ok);
     }
     r.m = measure(m.get(), q, passes);
-    fprintf(stderr, "  %s: %zu pieces, %s us, err %.4f, bracket %s\n", r.method.c_str(), r.pieces,
-            bench::fmt_us(r.m.median_ns).c_str(), r.m.max_err, r.m.bracket_ok ? "ok" : "BROKEN");
+    measure_probes(m.get(), s, &r.m);
+    fprintf(stderr, "  %s: %zu pieces, %s us, err %.4f, probe err %.4f, cover err %.4f, bracket %s\n",
+            r.method.c_str(), r.pieces, bench::fmt_us(r.m.median_ns).c_str(), r.m.max_err, r.m.probe_err,
+            r.m.cover_err, r.m.bracket_ok ? "ok" : "BROKEN");
     return r;
 }
 
@@ -632,10 +779,14 @@ Row run_peer(const Subject &s, const std::string &method, const std::string &par
     }
     fill_info(&r, m.get());
     r.m = measure(m.get(), q, passes);
+    measure_probes(m.get(), s, &r.m);
     r.m.bracket_ok = -1; // no bound claimed (h = 0); lower_ok says whether the hulls cover
-    fprintf(stderr, "  %s %-24s %4zu pieces %6zu hull vertices, %.2f s, %s us, err %.4f, lower bound %s\n",
+    fprintf(stderr,
+            "  %s %-24s %4zu pieces %6zu hull vertices, %.2f s, %s us, err %.4f, probe err %.4f, cover err "
+            "%.4f, lower bound %s\n",
             method.c_str(), params.c_str(), r.pieces, r.hull_vertices, r.build_s,
-            bench::fmt_us(r.m.median_ns).c_str(), r.m.max_err, r.m.lower_ok ? "ok" : "broken");
+            bench::fmt_us(r.m.median_ns).c_str(), r.m.max_err, r.m.probe_err, r.m.cover_err,
+            r.m.lower_ok ? "ok" : "broken");
     return r;
 }
 
@@ -686,6 +837,7 @@ int main(int argc, char **argv) {
     bool quick = false;
     double bullet_timeout = 180;
     size_t hacd_max_tris = 4000;
+    unsigned threads = 2;
     std::vector<double> tols = {0.2, 0.1, 0.05, 0.02, 0.01};
     const char *cd_arg = nullptr, *hacd_arg = nullptr;
     for (int i = 1; i < argc; ++i) {
@@ -714,11 +866,13 @@ int main(int argc, char **argv) {
             g_cd_scale = atof(argv[++i]);
         else if (a == "--cd-maxv" && i + 1 < argc)
             g_cd_maxv = (unsigned)atoi(argv[++i]);
+        else if (a == "--threads" && i + 1 < argc)
+            threads = (unsigned)std::max(1, atoi(argv[++i]));
         else if (a == "--quick")
             quick = true;
         else {
             fprintf(stderr, "usage: bench_decomp [--meshes DIR] [--models DIR] [--out DIR] [--passes N] "
-                            "[--only NAME] [--tolerances LIST] [--quick] [--bullet-timeout S] "
+                            "[--only NAME] [--tolerances LIST] [--quick] [--threads N] [--bullet-timeout S] "
                             "[--hacd-max-tris N] [--cd D:C,D:C] [--hacd C,C]\n");
             return 2;
         }
@@ -782,6 +936,7 @@ int main(int argc, char **argv) {
             notes.push_back(name + ": no contact along the approach line.");
             continue;
         }
+        make_probes(&s, quick ? 200 : 1000, quick ? 200 : 1000, quick ? 400 : 2000, 1000 + k);
         std::vector<Row> mr;
         // The exact reference row.
         {
@@ -795,13 +950,14 @@ int main(int argc, char **argv) {
             r.memory_bytes = info.memory_bytes;
             r.m.median_ns = q.tri_median_ns;
             r.m.max_err = 0, r.m.max_width = 0, r.m.bracket_ok = 1, r.m.lower_ok = 1;
+            measure_probes(s.tri.get(), s, &r.m);
             r.note = "the reference";
             mr.push_back(r);
             fprintf(stderr, "  proxima-triangles: %u leaves, %s us\n", info.leaves,
                     bench::fmt_us(q.tri_median_ns).c_str());
         }
         mr.push_back(run_builtin(s, PX_PIECES_PARTS, q, passes));
-        for (double t : tols) mr.push_back(run_approx(s, t, q, passes));
+        for (double t : tols) mr.push_back(run_approx(s, t, threads, q, passes));
 #ifdef PROXIMA_BENCH_BULLET
         const px_mesh *pm = s.px_mesh.get();
         for (auto dc : cd) {
@@ -834,6 +990,7 @@ int main(int argc, char **argv) {
     notes.push_back("Built without Bullet's extras (libbullet-extras-dev): no Bullet rows.");
 #endif
     const double run_s = (now_ns() - run_t0) * 1e-9;
+    const size_t n_probes = quick ? 400 : 2000;
 
     // decomposition.csv
     const std::string csv = out_dir + "/decomposition.csv";
@@ -841,17 +998,18 @@ int main(int argc, char **argv) {
     if (!f) return fprintf(stderr, "cannot write %s\n", csv.c_str()), 1;
     fprintf(f, "method,mesh,tolerance,params,pieces,hull_vertices,max_h,pieces_h_over_tol,build_s,decomp_s,"
                "query_median_ns,query_p90_ns,max_dist_err,max_bracket_width,bracket_ok,lower_ok,memory_bytes,"
-               "cache_bytes,note\n");
+               "cache_bytes,note,threads,max_probe_err,max_cover_err\n");
     for (auto &r : rows)
-        fprintf(f, "%s,%s,%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,\"%s\"\n", r.method.c_str(),
-                r.mesh.c_str(), num(r.tolerance, "%g").c_str(), r.params.c_str(), r.pieces,
+        fprintf(f, "%s,%s,%s,%s,%zu,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%zu,%zu,\"%s\",%s,%s,%s\n",
+                r.method.c_str(), r.mesh.c_str(), num(r.tolerance, "%g").c_str(), r.params.c_str(), r.pieces,
                 r.hull_vertices ? std::to_string(r.hull_vertices).c_str() : "", num(r.max_h, "%.5g").c_str(),
                 r.method == "proxima-approx" ? std::to_string(r.pieces_h_over_tol).c_str() : "",
                 num(r.build_s, "%.4f").c_str(), num(r.decomp_s, "%.4f").c_str(),
                 num(r.m.median_ns, "%.0f").c_str(), num(r.m.p90_ns, "%.0f").c_str(),
                 num(r.m.max_err, "%.5g").c_str(), num(r.m.max_width, "%.5g").c_str(),
                 flag(r.m.bracket_ok).c_str(), flag(r.m.lower_ok).c_str(), r.memory_bytes, r.m.cache_bytes,
-                r.note.c_str());
+                r.note.c_str(), r.threads ? std::to_string(r.threads).c_str() : "",
+                num(r.m.probe_err, "%.5g").c_str(), num(r.m.cover_err, "%.5g").c_str());
     fclose(f);
 
     // decomposition_curves.dat: per mesh (fixed order), per curve of
@@ -863,7 +1021,7 @@ int main(int argc, char **argv) {
     if (!f) return fprintf(stderr, "cannot write %s\n", dat.c_str()), 1;
     fprintf(f, "# bench_decomp: blocks mesh-major (bunny00 elephant armadillo puma-link2 puma-link4 teapot), "
                "per mesh: proxima-approx bullet-cd bullet-hacd proxima-parts proxima-triangles;\n"
-               "# columns: max_dist_err query_median_us pieces\n");
+               "# columns: max_probe_err query_median_us pieces max_dist_err (the approach line's)\n");
     for (const char *mname : kMeshes) {
         const std::vector<Row> *mr = nullptr;
         for (auto &b : by_mesh)
@@ -874,11 +1032,12 @@ int main(int argc, char **argv) {
                 for (auto &r : *mr)
                     if (r.method == c && !r.failed) pts.push_back(&r);
             std::sort(pts.begin(), pts.end(),
-                      [](const Row *a, const Row *b) { return a->m.max_err < b->m.max_err; });
+                      [](const Row *a, const Row *b) { return a->m.probe_err < b->m.probe_err; });
             fprintf(f, "# %s %s\n", mname, c);
-            if (pts.empty()) fprintf(f, "NaN NaN NaN\n");
+            if (pts.empty()) fprintf(f, "NaN NaN NaN NaN\n");
             for (auto *r : pts)
-                fprintf(f, "%.6g %.4f %zu\n", std::max(r->m.max_err, 1e-5), r->m.median_ns * 1e-3, r->pieces);
+                fprintf(f, "%.6g %.4f %zu %.6g\n", std::max(r->m.probe_err, 1e-5), r->m.median_ns * 1e-3,
+                        r->pieces, r->m.max_err);
             fprintf(f, "\n\n");
         }
         double tri = NAN;
@@ -887,9 +1046,9 @@ int main(int argc, char **argv) {
                 if (r.method == "proxima-triangles") tri = r.m.median_ns * 1e-3;
         fprintf(f, "# %s proxima-triangles (exact: error 0, drawn across)\n", mname);
         if (tri == tri)
-            fprintf(f, "1e-5 %.4f 0\n1 %.4f 0\n\n\n", tri, tri);
+            fprintf(f, "1e-5 %.4f 0 0\n1 %.4f 0 0\n\n\n", tri, tri);
         else
-            fprintf(f, "NaN NaN NaN\n\n\n");
+            fprintf(f, "NaN NaN NaN NaN\n\n\n");
     }
     fclose(f);
 
@@ -905,25 +1064,36 @@ int main(int argc, char **argv) {
         "itself represented by the same method (the same model object for both bodies): %d poses from 0.30 "
         "before first contact of the triangle surfaces to 0.03 past it, turning 0.1 degree per pose. "
         "px_model_distance timed alone per pose, cache warm along the sequence, per pose the median of %d "
-        "passes, then the median over poses. Error: the largest |d_model - d_exact| over the poses, "
-        "d_exact from the triangle-leaf models at the same poses (diagonal 1). Bullet's hulls are wrapped "
+        "passes, then the median over poses. Approach error: the largest |d_model - d_exact| over the poses, "
+        "d_exact from the triangle-leaf models at the same poses (diagonal 1). Along one line one hull is "
+        "often as good as many, so the error that decides is the **probe error**, which does not depend "
+        "on a direction: the largest |d_model(p) - d_exact(p)| over %zu fixed probe points p per mesh "
+        "(a one-point px_convex each, px_model_distance_convex): half of them far, from the bounding box "
+        "out to 0.3 beyond it along random directions, half near, at random points of the surface moved 0 "
+        "to 0.1 along the normal to the outside (the teapot is open: the normal's side as wound). Cover "
+        "error: the largest distance from a mesh vertex (up to 2000, every k-th) to the pieces, 0 when "
+        "they cover it. Bullet's hulls are wrapped "
         "with px_model_create_from_points (h = 0, no bound claimed), so their bracket is not checked; "
-        "`lower ok` says whether d_model <= d_exact held on every pose. Machine: %s (%.2f at the start; "
+        "`lower ok` says whether d_model <= d_exact held on every pose. proxima's builds use %u threads "
+        "(`options.threads`, the decomposition and the certification of h); Bullet's decomposers run on "
+        "one. Machine: %s (%.2f at the start; "
         "other work shared the machine, so absolute times carry its noise). Whole run: %.0f s.\n\n",
-        n, passes, machine_line().c_str(), load0, run_s);
+        n, passes, n_probes, threads, machine_line().c_str(), load0, run_s);
     for (auto &nt : notes) fprintf(f, "%s\n\n", nt.c_str());
     fprintf(f, "| mesh | method | parameters | pieces | hull vertices | max h | pieces h > tol | build s | "
-               "decompose s | distance µs (median) | p90 µs | max error | bracket ok | lower ok | note |\n");
-    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+               "decompose s | distance µs (median) | p90 µs | approach error | probe error | cover error | "
+               "bracket ok | lower ok | note |\n");
+    fprintf(f, "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (auto &r : rows) {
-        fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+        fprintf(f, "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
                 r.mesh.c_str(), r.method.c_str(), r.params.c_str(),
                 r.pieces ? std::to_string(r.pieces).c_str() : "",
                 r.hull_vertices ? std::to_string(r.hull_vertices).c_str() : "", num(r.max_h, "%.4f").c_str(),
                 r.method == "proxima-approx" && !r.failed ? std::to_string(r.pieces_h_over_tol).c_str() : "",
                 num(r.build_s, "%.2f").c_str(), num(r.decomp_s, "%.2f").c_str(),
                 bench::fmt_us(r.m.median_ns).c_str(), bench::fmt_us(r.m.p90_ns).c_str(),
-                num(r.m.max_err, "%.4f").c_str(),
+                num(r.m.max_err, "%.4f").c_str(), num(r.m.probe_err, "%.4f").c_str(),
+                num(r.m.cover_err, "%.4f").c_str(),
                 r.m.bracket_ok < 0 ? "" : (r.m.bracket_ok ? "yes" : "**no**"),
                 r.m.lower_ok < 0 ? "" : (r.m.lower_ok ? "yes" : "**no**"), r.note.c_str());
     }
@@ -932,9 +1102,9 @@ int main(int argc, char **argv) {
         "\nmax h: the model's largest certified leaf bound (px_model_get_info; h_overlap, which bounds the "
         "whole hull); pieces h > tol: leaves whose certified boundary bound h exceeds tolerance × the "
         "part's diagonal. build s: px_model_create_from_mesh whole (proxima) or the peer's decomposition "
-        "(Bullet, in a child process); decompose s: pxcd_decompose alone, one thread (the rest of build s "
-        "is certifying h and building the tree). Hull vertices: px_convex_vertex_count of each piece's "
-        "hull, summed.\n\n");
+        "(Bullet, in a child process); decompose s: pxcd_decompose alone, on the same threads (the rest of "
+        "build s is certifying h and building the tree). Hull vertices: px_convex_vertex_count of each "
+        "piece's hull, summed.\n\n");
 
     // Targets.
     fprintf(f, "## Targets (issue 10)\n\n| target | mesh | measured | met |\n|---|---|---|---|\n");
@@ -942,9 +1112,9 @@ int main(int argc, char **argv) {
         for (auto &r : b.second)
             if (r.method == "proxima-approx" && r.tolerance == 0.01 && b.first == "bunny00")
                 fprintf(f,
-                        "| bunny00 at tolerance 0.01 decomposed in ≤ 60 s | bunny00 | %.1f s build (%.1f s "
-                        "pxcd_decompose alone), %zu pieces | %s |\n",
-                        r.build_s, r.decomp_s, r.pieces,
+                        "| bunny00 at tolerance 0.01 decomposed in ≤ 60 s | bunny00 | %.1f s build on %u "
+                        "threads (%.1f s pxcd_decompose alone), %zu pieces | %s |\n",
+                        r.build_s, r.threads, r.decomp_s, r.pieces,
                         r.failed ? "**failed**" : (r.build_s <= 60 ? "yes" : "**no**"));
     for (auto &b : by_mesh)
         for (auto &r : b.second)
@@ -955,31 +1125,43 @@ int main(int argc, char **argv) {
                         b.first.c_str(), bench::fmt_us(r.m.median_ns).c_str(),
                         bench::fmt_us(r.m.p90_ns).c_str(), r.m.median_ns <= 10000 ? "yes" : "**no**");
     // Fewer pieces at equal measured error: for every Bullet row, proxima's
-    // fewest pieces among its rows whose error is at most Bullet's.
-    for (auto &b : by_mesh) {
-        int compared = 0, fewer = 0, unreached = 0;
-        std::string detail;
-        for (auto &r : b.second) {
+    // fewest pieces among its rows whose probe error is at most Bullet's
+    // (and, for reference, the same by the approach line's error).
+    auto fewer_than_bullet = [](const std::vector<Row> &mr, double Measure::*err, int *compared, int *fewer,
+                                int *unreached) {
+        *compared = *fewer = *unreached = 0;
+        for (auto &r : mr) {
             if (r.failed || (r.method != "bullet-cd" && r.method != "bullet-hacd")) continue;
             const Row *best = nullptr;
-            for (auto &p : b.second)
-                if (p.method == "proxima-approx" && !p.failed && p.m.max_err <= r.m.max_err &&
+            for (auto &p : mr)
+                if (p.method == "proxima-approx" && !p.failed && p.m.*err <= r.m.*err &&
                     (!best || p.pieces < best->pieces))
                     best = &p;
             if (!best) {
-                ++unreached;
+                ++*unreached;
                 continue;
             }
-            ++compared;
-            if (best->pieces < r.pieces) ++fewer;
+            ++*compared;
+            if (best->pieces < r.pieces) ++*fewer;
         }
+    };
+    for (auto &b : by_mesh) {
+        int compared, fewer, unreached, c_line, f_line, u_line, uncovered = 0;
+        double worst_cover = 0;
+        fewer_than_bullet(b.second, &Measure::probe_err, &compared, &fewer, &unreached);
+        fewer_than_bullet(b.second, &Measure::max_err, &c_line, &f_line, &u_line);
+        for (auto &r : b.second)
+            if (!r.failed && (r.method == "bullet-cd" || r.method == "bullet-hacd") && r.m.cover_err > 1e-9)
+                ++uncovered, worst_cover = std::max(worst_cover, r.m.cover_err);
         if (compared + unreached == 0) continue;
-        char d[256];
-        snprintf(d, sizeof d, "fewer in %d of %d Bullet settings%s", fewer, compared,
-                 unreached
-                     ? (", " + std::to_string(unreached) + " more accurate than every proxima row").c_str()
-                     : "");
-        detail = d;
+        std::string detail = "by probe error: fewer in " + std::to_string(fewer) + " of " +
+                             std::to_string(compared) + " Bullet settings";
+        if (unreached) detail += ", " + std::to_string(unreached) + " more accurate than every proxima row";
+        detail += " (approach line: " + std::to_string(f_line) + " of " + std::to_string(c_line) +
+                  (u_line ? ", " + std::to_string(u_line) + " unreached" : std::string()) + ")";
+        if (uncovered)
+            detail += "; " + std::to_string(uncovered) + " Bullet settings leave vertices uncovered (up to " +
+                      num(worst_cover, "%.4f") + ")";
         fprintf(f, "| fewer pieces than Bullet at equal measured error | %s | %s | %s |\n", b.first.c_str(),
                 detail.c_str(),
                 compared > 0 && fewer == compared && unreached == 0
@@ -989,8 +1171,9 @@ int main(int argc, char **argv) {
     fprintf(
         f,
         "\n\"Fewer pieces at equal measured error\": for each Bullet row, proxima's fewest pieces among its "
-        "rows whose measured error is at most that row's; a Bullet row more accurate than every proxima row "
-        "is not comparable.\n\n![query time against distance error](decomposition.png)\n");
+        "rows whose probe error is at most that row's; a Bullet row more accurate than every proxima row "
+        "is not comparable. In parentheses the same count with the approach line's error, the measure of "
+        "earlier runs.\n\n![query time against probe error](decomposition.png)\n");
     fclose(f);
     fprintf(stderr, "wrote %s, %s, %s (%.0f s)\n", csv.c_str(), dat.c_str(), md.c_str(), run_s);
     return 0;

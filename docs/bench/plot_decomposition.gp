@@ -6,10 +6,12 @@
 # One panel per mesh (bunny00 elephant armadillo puma-link2 puma-link4
 # teapot, always in that order); per panel 5 blocks: proxima-approx,
 # bullet-cd, bullet-hacd, proxima-parts, proxima-triangles (the exact
-# reference: error 0, drawn as a horizontal line). Columns: max distance
-# error over the approach (bounding-box diagonal 1; errors below 1e-5 drawn
-# at 1e-5), median distance time per pose (µs), pieces. A method or mesh
-# missing from the run is a block of one NaN line.
+# reference: error 0, drawn as a horizontal line). Columns: probe error
+# (the largest |d_model - d_exact| over 2000 fixed probe points around and
+# near the mesh; bounding-box diagonal 1; errors below 1e-5 drawn at 1e-5),
+# median distance time per pose on the approach (µs), pieces, and the
+# approach line's own error (not drawn). A method or mesh missing from the
+# run is a block of one NaN line.
 
 dir = system("dirname '" . ARG0 . "'")
 dat = dir . "/decomposition_curves.dat"
@@ -19,14 +21,14 @@ nblk = 5
 
 set terminal pngcairo size 1500,900 font "DejaVu Sans,10"
 set output dir . "/decomposition.png"
-set multiplot layout 2,3 title "Model distance on the coherent approach: time per pose against distance error (each mesh against a copy of itself)"
+set multiplot layout 2,3 title "Model distance on the coherent approach (each mesh against a copy of itself): time per pose against probe error"
 set logscale xy
 set xrange [1e-5:1]
 # Fixed, so that the panels compare and a mesh missing from the run leaves
 # an empty panel rather than an error.
 set yrange [0.1:300]
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
-set xlabel "max |d_{model} - d_{exact}| over the approach (diagonal 1)"
+set xlabel "probe error: max |d_{model}(p) - d_{exact}(p)| over 2000 points p (diagonal 1)"
 set ylabel "distance time per pose, median (µs)"
 set format x "10^{%T}"
 set key top right font ",8" spacing 0.9

@@ -57,6 +57,7 @@
 //   bench_scene [--out DIR] [--models DIR] [--mesh FILE] [--sizes 100,1000,10000]
 //               [--model-sizes 100,1000] [--warm 20] [--steps 200] [--bf-seconds 20] [--quick]
 // --quick: 60 convex bodies and 20 models, 5 + 20 steps (the smoke test).
+// --proxima-only: px_scene alone, no comparison, nothing written (profiling).
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/detail/node_base.h>
 #include <fcl/geometry/shape/convex.h>
@@ -413,7 +414,7 @@ std::string fmt_bytes(size_t b, bool estimate) {
 }
 
 std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int timed, double bf_budget_s,
-                           std::vector<std::string> *notes) {
+                           bool proxima_only, std::vector<std::string> *notes) {
     const uint64_t seed = 0x5ce11 + cfg.n * 7 + (cfg.models ? 1 : 0);
     const char *kind = cfg.models ? "model" : "convex";
     Shapes shapes;
@@ -473,8 +474,9 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
             }
         }
         std::vector<double> t;
-        double checked = 0, cand = 0;
-        uint64_t violations = 0;
+        double checked = 0, cand = 0, swaps = 0, box_updates = 0;
+        uint64_t violations = 0, touching = 0, contacts = 0;
+        std::vector<std::array<double, 5>> slow; // time, step, pairs checked, box updates, swaps
         px_scene_stats st{};
         for (int k = 0; k <= total; ++k) {
             if (k > 0) sim.advance();
@@ -490,11 +492,19 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
                 t.push_back(t1 - t0);
                 checked += (double)st.pairs_checked;
                 cand += (double)st.candidate_pairs;
+                swaps += (double)st.swaps;
+                box_updates += (double)st.box_updates;
+                slow.push_back(
+                    {t1 - t0, (double)k, (double)st.pairs_checked, (double)st.box_updates, (double)st.swaps});
             }
             size_t np = 0;
             const px_scene_pair *p = px_scene_pairs(sc, &np);
             for (size_t q = 0; q < np; ++q)
-                if (p[q].contact) px_sets[k].emplace_back(key(p[q].body_a, p[q].body_b), p[q].distance);
+                if (p[q].contact) {
+                    px_sets[k].emplace_back(key(p[q].body_a, p[q].body_b), p[q].distance);
+                    ++contacts;
+                    touching += p[q].distance == 0;
+                }
         }
         r.median_ns = percentile(t, 0.5);
         r.p90_ns = percentile(t, 0.9);
@@ -508,10 +518,24 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
             notes->push_back(b);
         }
         px_scene_destroy(sc);
-        fprintf(stderr, "  proxima: median %.1f us, p90 %.1f us, %.1f pairs checked / step, %s bytes\n",
-                r.median_ns * 1e-3, r.p90_ns * 1e-3, r.pairs_checked, r.memory.c_str());
+        fprintf(stderr,
+                "  proxima: median %.1f us, p90 %.1f us, %.1f pairs checked / step, %s bytes; per step: %.1f "
+                "candidate pairs, %.1f box updates, %.1f swaps, %llu violations in all\n",
+                r.median_ns * 1e-3, r.p90_ns * 1e-3, r.pairs_checked, r.memory.c_str(), r.candidates,
+                box_updates / timed, swaps / timed, (unsigned long long)violations);
+        std::sort(slow.begin(), slow.end());
+        std::reverse(slow.begin(), slow.end());
+        fprintf(stderr,
+                "  proxima: %.1f %% of the contacts at distance 0; slowest steps (us, step, checked, box "
+                "updates, swaps):",
+                100.0 * (double)touching / (double)std::max<uint64_t>(contacts, 1));
+        for (size_t q = 0; q < slow.size() && q < 6; ++q)
+            fprintf(stderr, " (%.0f, %.0f, %.0f, %.0f, %.0f)", slow[q][0] * 1e-3, slow[q][1], slow[q][2],
+                    slow[q][3], slow[q][4]);
+        fprintf(stderr, "\n");
         rows.push_back(r);
     }
+    if (proxima_only) return rows;
 
     // FCL.
     {
@@ -690,6 +714,25 @@ std::string machine_cpu() {
     return cpu;
 }
 
+// The tree the run measured: HEAD's short hash, "+ uncommitted changes in
+// src/ or include/" when there are some ("unknown" outside a git tree).
+std::string source_version() {
+    std::string v;
+    if (FILE *p = popen("git rev-parse --short HEAD 2>/dev/null", "r")) {
+        char b[64];
+        if (fgets(b, sizeof b, p)) v = b;
+        pclose(p);
+    }
+    v.erase(v.find_last_not_of("\n") + 1);
+    if (v.empty()) return "unknown";
+    if (FILE *p = popen("git status --porcelain -- src include 2>/dev/null", "r")) {
+        char b[256];
+        if (fgets(b, sizeof b, p)) v += " + uncommitted changes in src/ or include/";
+        pclose(p);
+    }
+    return v;
+}
+
 double load_average() {
     double l = NAN;
     if (FILE *f = fopen("/proc/loadavg", "r")) {
@@ -713,7 +756,7 @@ int main(int argc, char **argv) {
     std::vector<size_t> sizes = {100, 1000, 10000}, model_sizes = {100, 1000};
     int warm = 20, timed = 200;
     double bf_budget_s = 20;
-    bool quick = false;
+    bool quick = false, proxima_only = false; // --proxima-only: no FCL, brute force nor check (profiling)
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--out" && i + 1 < argc)
@@ -734,9 +777,13 @@ int main(int argc, char **argv) {
             bf_budget_s = std::strtod(argv[++i], nullptr);
         else if (a == "--quick")
             quick = true;
+        else if (a == "--proxima-only")
+            proxima_only = true;
         else {
-            fprintf(stderr, "usage: bench_scene [--out DIR] [--models DIR] [--mesh FILE] [--sizes N,...] "
-                            "[--model-sizes N,...] [--warm K] [--steps K] [--bf-seconds S] [--quick]\n");
+            fprintf(
+                stderr,
+                "usage: bench_scene [--out DIR] [--models DIR] [--mesh FILE] [--sizes N,...] "
+                "[--model-sizes N,...] [--warm K] [--steps K] [--bf-seconds S] [--quick] [--proxima-only]\n");
             return 2;
         }
     }
@@ -744,18 +791,19 @@ int main(int argc, char **argv) {
     if (mesh.empty()) mesh = models + "/puma560/nimasarli_puma560_description/meshes/puma_link3.stl";
 
     const double load0 = load_average();
+    const std::string version = source_version();
     const double wall0 = now_ns();
     std::vector<Row> rows;
     std::vector<std::string> notes;
     for (size_t n : sizes) {
-        auto r = run_scene(Config{false, n}, nullptr, warm, timed, bf_budget_s, &notes);
+        auto r = run_scene(Config{false, n}, nullptr, warm, timed, bf_budget_s, proxima_only, &notes);
         rows.insert(rows.end(), r.begin(), r.end());
     }
     Link link;
     if (!model_sizes.empty()) {
         if (load_link(mesh, &link)) {
             for (size_t n : model_sizes) {
-                auto r = run_scene(Config{true, n}, &link, warm, timed, bf_budget_s, &notes);
+                auto r = run_scene(Config{true, n}, &link, warm, timed, bf_budget_s, proxima_only, &notes);
                 rows.insert(rows.end(), r.begin(), r.end());
             }
         } else {
@@ -764,6 +812,8 @@ int main(int argc, char **argv) {
     }
     const double load1 = load_average();
     const double wall_s = (now_ns() - wall0) * 1e-9;
+
+    if (proxima_only) return 0;
 
     // scene.csv
     const std::string csv = out_dir + "/scene.csv";
@@ -809,8 +859,8 @@ int main(int argc, char **argv) {
         f,
         "Machine: %s, %ld cores online; load average %.2f at the start and %.2f at the end of the run "
         "(%.0f s; other work shared the machine, so absolute times carry its noise, ratios measured in the "
-        "same run less so).\n\n",
-        machine_cpu().c_str(), sysconf(_SC_NPROCESSORS_ONLN), load0, load1, wall_s);
+        "same run less so; a step preempted by other work shows in the p90). Source: %s.\n\n",
+        machine_cpu().c_str(), sysconf(_SC_NPROCESSORS_ONLN), load0, load1, wall_s, version.c_str());
     for (auto &nt : notes) fprintf(f, "%s\n\n", nt.c_str());
     fprintf(f, "| kind | bodies | box side | method | median µs / step | p90 µs / step | steps timed | pairs "
                "checked / step | contacts | contacts brute force | steps differing | memory bytes |\n");

@@ -521,7 +521,7 @@ static void test_containment(void) {
         int inside = fabs(p.t.x) < h && r.distance > 0;
         double want = inside ? 0.0 : r.distance;
         if (want <= o.report_distance) {
-            CHECK(n == 1 && pr[0].distance == want && pr[0].contained == (uint32_t)inside &&
+            CHECK(n == 1 && pr[0].distance == want && pr[0].contained == (uint32_t)(inside ? 2 : 0) &&
                       pr[0].contact == (want <= o.margin),
                   "containment: x %.2f: %zu pairs, distance %g (want %g), contained %u", p.t.x, n,
                   n ? pr[0].distance : -1.0, want, n ? pr[0].contained : 9u);

@@ -170,10 +170,12 @@ typedef struct px_scene_pair {
     uint32_t leaf_a, leaf_b;
     /// 1 when distance <= margin.
     uint32_t contact;
-    /// 1 when one body lies inside a closed part of the other without
-    /// touching its surface: distance (and upper_bound) is then 0, as
-    /// between solids, and the witness points are the closest points of
-    /// the two surfaces.
+    /// Nonzero when one body lies inside a closed part of the other
+    /// without touching its surface: bit 0 (1) when a piece of body_a lies
+    /// inside body_b, bit 1 (2) when a piece of body_b lies inside body_a
+    /// (3: both, for bodies of several pieces). Distance (and upper_bound)
+    /// is then 0, as between solids, and the witness points are the
+    /// closest points of the two surfaces.
     uint32_t contained;
 } px_scene_pair;
 

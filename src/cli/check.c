@@ -425,11 +425,6 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
 
 /* ---- the check ------------------------------------------------------- */
 
-static int box_within(const part *p, const part *q) {
-    return p->lo.x >= q->lo.x && p->hi.x <= q->hi.x && p->lo.y >= q->lo.y && p->hi.y <= q->hi.y &&
-           p->lo.z >= q->lo.z && p->hi.z <= q->hi.z;
-}
-
 static int cmp_finding(const void *x, const void *y) {
     const finding *f = x, *g = y;
     if (f->a != g->a) return f->a < g->a ? -1 : 1;
@@ -636,14 +631,9 @@ int check_run(const check_opts *o) {
             f->status = F_POSSIBLE;
         else if (p->upper_bound > 0.0 && f->status == F_INTERFERENCE)
             f->status = F_CLEARANCE;
-        if (p->contained) {
-            /* Which one is inside: a connected part inside another's solid,
-             * its surface apart, has its box within the other's box. */
-            const part *pa = &as.parts[f->a], *pb = &as.parts[f->b];
-            f->inside = box_within(pa, pb) && !box_within(pb, pa)   ? 1
-                        : box_within(pb, pa) && !box_within(pa, pb) ? 2
-                                                                    : 0;
-        }
+        /* Which one is inside: the scene says (1: a inside b, 2: b inside
+         * a; 3, pieces of each inside the other, names neither). */
+        f->inside = p->contained == 1 ? 1 : p->contained == 2 ? 2 : 0;
         f->distance = p->distance;
         f->upper = p->upper_bound;
         f->pa = p->point_a;

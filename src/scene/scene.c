@@ -796,7 +796,7 @@ static px_status query(px_scene *s, spair *q, px_error *err) {
             r->leaf_a = swap ? d.leaf_b : d.leaf_a;
             r->leaf_b = swap ? d.leaf_a : d.leaf_b;
             /* Solids: a body inside the other's closed part touches it. */
-            r->contained = d.distance > 0.0 && (inside_solid(x, y) || inside_solid(y, x));
+            if (d.distance > 0.0) r->contained = (uint32_t)(inside_solid(x, y) | inside_solid(y, x) << 1);
             if (r->contained) r->distance = r->upper_bound = 0.0;
         }
     }

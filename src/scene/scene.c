@@ -83,6 +83,7 @@ typedef struct spair {
         px_pair_cache convex;
         px_model_cache model;
     } cache;
+    px_pair_cache root; /* model pairs: the two root hulls' (or a model's root and the polytope) */
 } spair;
 
 typedef struct sep {
@@ -763,14 +764,41 @@ static int inside_solid(const sbody *in, const sbody *out) {
     return 0;
 }
 
-static px_status query(px_scene *s, spair *q, px_error *err) {
+/* A lower bound on the distance of a model pair: between the hulls of the
+ * models' roots (a polytope is its own), else between their bounding
+ * spheres; may be negative. */
+static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
+    const px_convex *hx = x->model ? x->model->nodes[0].hull : x->convex;
+    const px_convex *hy = y->model ? y->model->nodes[0].hull : y->convex;
+    if (hx && hy) {
+        px_distance_result d;
+        if (px_distance(hx, &x->pose, hy, &y->pose, NULL, cache, &d) == PX_OK) return d.distance;
+    }
+    px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
+    return pxi_len(pxi_sub(cx, cy)) - x->sr - y->sr;
+}
+
+/* Measures pair q. Unless `exact`, a model pair whose root hulls are
+ * farther apart than the report distance is not descended: the hull
+ * distance, a lower bound, keys it (the pair is not reported, and a
+ * hierarchy descent costs far more than the hulls' distance). */
+static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
     const sbody *x = &s->body[q->a], *y = &s->body[q->b];
     px_scene_pair *r = &q->res;
     r->body_a = q->a;
     r->body_b = q->b;
-    px_status st;
+    px_status st = PX_OK;
     r->contained = 0;
-    if (q->kind == K_CONVEX) {
+    /* Error of a distance: a few ulps of the pair's size and place. */
+    const double place = x->size + y->size + pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t);
+    double lb = -INFINITY;
+    if (q->kind != K_CONVEX && !exact) lb = root_gap(x, y, &q->root);
+    if (lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report) {
+        r->distance = lb;
+        r->upper_bound = INFINITY;
+        r->point_a = r->point_b = pxi_v(0.0, 0.0, 0.0);
+        r->leaf_a = r->leaf_b = UINT32_MAX;
+    } else if (q->kind == K_CONVEX) {
         px_distance_result d;
         st = px_distance(x->convex, &x->pose, y->convex, &y->pose, NULL, &q->cache.convex, &d);
         if (st == PX_OK) {
@@ -807,9 +835,7 @@ static px_status query(px_scene *s, spair *q, px_error *err) {
     if (!(r->distance >= 0.0) || !isfinite(r->distance))
         return pxi_error(err, PX_ERR_INTERNAL, "px_scene_step: bodies %u and %u: distance %g", q->a, q->b,
                          r->distance);
-    /* Error of the distance: a few ulps of the pair's size and place. */
-    double eps = 64.0 * DBL_EPSILON *
-                 (x->size + y->size + pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + r->distance);
+    double eps = 64.0 * DBL_EPSILON * (place + r->distance);
     q->gap = r->distance - s->report - eps;
     q->snap_a = x->travel;
     q->snap_b = y->travel;
@@ -1137,7 +1163,7 @@ static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err
         return PX_OK;
     }
     if (!q->measured || moved > 0.0) {
-        px_status st = query(s, q, err);
+        px_status st = query(s, q, 0, err);
         if (st != PX_OK) {
             q->due = -INFINITY;
             return st;
@@ -1339,7 +1365,7 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
             /* query() records events on contact changes: this pair starts
              * with contact = the result's own, so no event is made. */
             int was = s->n_pending;
-            st = query(s, &tmp, err);
+            st = query(s, &tmp, 1, err);
             s->n_pending = (uint32_t)was;
             s->stats.pairs_checked--;
             if (tmp.kind != K_CONVEX) px_model_cache_release(&tmp.cache.model);

@@ -537,6 +537,64 @@ static void test_containment(void) {
     px_mesh_destroy(mesh);
 }
 
+/* Allocation: bodies moving periodically meet the same pairs every period,
+ * so once the first period is over, steps allocate nothing. */
+static size_t n_allocs;
+static void *count_alloc(void *user, size_t size) {
+    (void)user;
+    ++n_allocs;
+    return malloc(size);
+}
+static void count_free(void *user, void *p, size_t size) {
+    (void)user;
+    (void)size;
+    free(p);
+}
+
+static void test_no_allocation(void) {
+    px_allocator al = {count_alloc, count_free, NULL};
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    o.allocator = &al;
+    o.margin = 0.1;
+    o.report_distance = 0.3;
+    px_error e;
+    px_scene *s = px_scene_create(&o, &e);
+    enum { N = 60, PERIOD = 40 };
+    px_convex *h[N];
+    px_vec3 c[N], amp[N];
+    uint32_t id[N];
+    rng_state = 99;
+    for (int i = 0; i < N; ++i) {
+        h[i] = random_hull(16, 0.5 + 0.3 * urand());
+        c[i] = (px_vec3){6 * urand(), 6 * urand(), 6 * urand()};
+        amp[i] = (px_vec3){srand1(), srand1(), srand1()};
+        px_body_desc d;
+        memset(&d, 0, sizeof d);
+        d.convex = h[i];
+        d.pose = px_pose_identity();
+        d.pose.t = c[i];
+        d.max_speed = 0.2;
+        CHECK(px_scene_add_body(s, &d, &id[i], &e) == PX_OK, "add");
+    }
+    size_t before = 0;
+    for (int k = 0; k < 3 * PERIOD; ++k) {
+        if (k == PERIOD) before = n_allocs;
+        double ph = sin(2 * 3.14159265358979 * (k % PERIOD) / PERIOD);
+        for (int i = 0; i < N; ++i) {
+            px_pose p = px_pose_identity();
+            p.t = (px_vec3){c[i].x + ph * amp[i].x, c[i].y + ph * amp[i].y, c[i].z + ph * amp[i].z};
+            px_scene_set_pose(s, id[i], &p, NULL);
+        }
+        CHECK(px_scene_step(s, k, &e) == PX_OK, "step");
+    }
+    size_t np;
+    px_scene_pairs(s, &np);
+    CHECK(n_allocs == before, "steps after the first period allocated %zu times", n_allocs - before);
+    px_scene_destroy(s);
+    for (int i = 0; i < N; ++i) px_convex_destroy(h[i]);
+}
+
 int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
@@ -558,6 +616,7 @@ int main(void) {
     }
     test_savings();
     test_containment();
+    test_no_allocation();
     test_bad_inputs();
     return tu_finish();
 }

@@ -32,7 +32,6 @@
 
 #include <float.h>
 #include <math.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "core/core.h"
@@ -151,6 +150,40 @@ static int grow(px_scene *s, void **arr, uint32_t *cap, uint32_t need, size_t si
     return 1;
 }
 #define GROW(s, arr, cap, need) grow((s), (void **)&(arr), &(cap), (need), sizeof *(arr))
+
+/* ---- sorting without allocation ------------------------------------------
+ * An in-place heapsort (Williams 1964): the C library's qsort may allocate
+ * a buffer behind the scene's allocator. Every key sorted here is unique,
+ * so stability does not matter. Elements up to 128 bytes. */
+
+static void elem_swap(unsigned char *a, unsigned char *b, size_t size) {
+    unsigned char t[128];
+    memcpy(t, a, size);
+    memcpy(a, b, size);
+    memcpy(b, t, size);
+}
+
+static void sift_down(unsigned char *v, size_t size, size_t i, size_t n,
+                      int (*cmp)(const void *, const void *)) {
+    for (;;) {
+        size_t k = 2 * i + 1;
+        if (k >= n) return;
+        if (k + 1 < n && cmp(v + (k + 1) * size, v + k * size) > 0) ++k;
+        if (cmp(v + k * size, v + i * size) <= 0) return;
+        elem_swap(v + k * size, v + i * size, size);
+        i = k;
+    }
+}
+
+static void sort(void *base, size_t n, size_t size, int (*cmp)(const void *, const void *)) {
+    unsigned char *v = base;
+    if (n < 2) return;
+    for (size_t i = n / 2; i-- > 0;) sift_down(v, size, i, n, cmp);
+    for (size_t end = n - 1; end > 0; --end) {
+        elem_swap(v, v + end * size, size);
+        sift_down(v, size, 0, end, cmp);
+    }
+}
 
 /* ---- hash of pairs ----------------------------------------------------- */
 
@@ -601,7 +634,7 @@ static int rebuild(px_scene *s) {
     }
     s->n_ep = n;
     for (int k = 0; k < 3; ++k) {
-        qsort(s->axis[k], n, sizeof(sep), cmp_sep);
+        sort(s->axis[k], n, sizeof(sep), cmp_sep);
         for (uint32_t i = 0; i < n; ++i) EP(s, s->axis[k][i].id >> 1, k, s->axis[k][i].id & 1) = i;
     }
     /* Active bodies along x: those whose min was passed and max not yet. */
@@ -1257,12 +1290,12 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_rep; ++i) s->out[n++] = s->pair[s->rep[i]].res;
     s->n_rep = n;
-    qsort(s->out, n, sizeof *s->out, cmp_pair_out);
+    sort(s->out, n, sizeof *s->out, cmp_pair_out);
     /* Events, in (a, b) order. */
     if (!GROW(s, s->ev, s->cap_ev, s->n_pending))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     for (uint32_t i = 0; i < s->n_pending; ++i) s->pending[i].reserved = i;
-    qsort(s->pending, s->n_pending, sizeof *s->pending, cmp_event);
+    sort(s->pending, s->n_pending, sizeof *s->pending, cmp_event);
     for (uint32_t i = 0; i < s->n_pending; ++i) {
         s->ev[i] = s->pending[i];
         s->ev[i].reserved = 0;
@@ -1339,7 +1372,7 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
         world_box(&s->body[i], bx[n].b);
         bx[n++].id = i;
     }
-    qsort(bx, n, sizeof *bx, cmp_sbox);
+    sort(bx, n, sizeof *bx, cmp_sbox);
     px_status st = PX_OK;
     spair tmp;
     for (uint32_t i = 0; i < n && st == PX_OK; ++i)

@@ -148,7 +148,10 @@ if [ -n "$A" ]; then
   # Errors: exit 2, naming the file and the problem.
   expect 2 "nonexistent.dae" -- "$B" check /nonexistent.dae
   expect 2 "empty'?: the folder holds no mesh file" -- "$B" check "$T/empty"
-  printf 'solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 zz\n' >"$T/bad/broken.stl"
+  # A binary STL that declares 5 triangles and holds 20 bytes of them.
+  # (An ASCII STL with a bad number is refused too, but Assimp 5.2 leaks
+  # 2.4 KB on that path, which LeakSanitizer fails under make test.)
+  { head -c 80 /dev/zero; printf '\005\000\000\000'; head -c 20 /dev/zero; } >"$T/bad/broken.stl"
   cp "$T/stl/a_overlap.stl" "$T/bad/"
   expect 2 "broken.stl" -- "$B" check "$T/bad"
   expect 2 "broken.stl" -- "$B" check "$T/bad/broken.stl"

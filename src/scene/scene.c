@@ -811,10 +811,10 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
     return pxi_len(pxi_sub(cx, cy)) - x->sr - y->sr;
 }
 
-/* Measures pair q. Unless `exact`, a model pair whose root hulls are
- * farther apart than the report distance is not descended: the hull
- * distance, a lower bound, keys it (the pair is not reported, and a
- * hierarchy descent costs far more than the hulls' distance). */
+/* Measures pair q. Unless `exact`, a pair whose bounding spheres, or for
+ * models whose root hulls, are farther apart than the report distance is
+ * not measured further: that lower bound keys it (the pair is not
+ * reported; a cold query or a hierarchy descent costs far more). */
 static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
     const sbody *x = &s->body[q->a], *y = &s->body[q->b];
     px_scene_pair *r = &q->res;
@@ -825,7 +825,14 @@ static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
     /* Error of a distance: a few ulps of the pair's size and place. */
     const double place = x->size + y->size + pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t);
     double lb = -INFINITY;
-    if (q->kind != K_CONVEX && !exact) lb = root_gap(x, y, &q->root);
+    if (!exact) {
+        /* The bounding spheres first (a pair entering the sweep would
+         * otherwise start with a cold query), then the root hulls. */
+        px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
+        lb = pxi_len(pxi_sub(cx, cy)) - x->sr - y->sr;
+        if (q->kind != K_CONVEX && !(lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report))
+            lb = pxi_max2(lb, root_gap(x, y, &q->root));
+    }
     if (lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report) {
         r->distance = lb;
         r->upper_bound = INFINITY;
@@ -833,6 +840,7 @@ static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
         r->leaf_a = r->leaf_b = UINT32_MAX;
     } else if (q->kind == K_CONVEX) {
         px_distance_result d;
+        s->stats.pairs_checked++;
         st = px_distance(x->convex, &x->pose, y->convex, &y->pose, NULL, &q->cache.convex, &d);
         if (st == PX_OK) {
             r->distance = r->upper_bound = d.distance;
@@ -842,6 +850,7 @@ static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
         }
     } else {
         px_model_distance_result d;
+        s->stats.pairs_checked++;
         if (q->kind == K_MODEL_MODEL)
             st = px_model_distance(x->model, &x->pose, y->model, &y->pose, &q->cache.model, &d);
         else if (q->kind == K_MODEL_CONVEX)
@@ -861,7 +870,6 @@ static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
             if (r->contained) r->distance = r->upper_bound = 0.0;
         }
     }
-    s->stats.pairs_checked++;
     if (st != PX_OK)
         return pxi_error(err, st, "px_scene_step: bodies %u and %u: the distance query failed (%s)", q->a,
                          q->b, px_status_string(st));
@@ -1400,7 +1408,7 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
             int was = s->n_pending;
             st = query(s, &tmp, 1, err);
             s->n_pending = (uint32_t)was;
-            s->stats.pairs_checked--;
+            s->stats.pairs_checked--; /* the minimum's queries are not the step's */
             if (tmp.kind != K_CONVEX) px_model_cache_release(&tmp.cache.model);
             if (st == PX_OK && tmp.res.distance < out->distance) *out = tmp.res;
         }

@@ -78,7 +78,7 @@ build: configure
 
 demo: deps
 	$(MAKE) build
-	./$(BUILD)/examples/proxima_puma_cell --models models --out $(BUILD)
+	./$(BUILD)/examples/proxima_puma_cell --models models --out $(BUILD) --pieces approximate --exact-every 5
 	./$(BUILD)/examples/proxima_demo --models models
 	./$(BUILD)/examples/proxima_model_demo --models models
 

@@ -1,10 +1,15 @@
 /* The Puma 560 arm: kinematics, link models, scene bodies (puma560.h has
  * the frames and the sources). */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L /* stat */
+#endif
 #include "puma560.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
 
 #include "proxima/io.h"
 
@@ -244,7 +249,78 @@ void puma_arm_destroy(puma_arm *arm) {
     memset(arm, 0, sizeof *arm);
 }
 
+static double wall_seconds(void) {
+    struct timespec t;
+    timespec_get(&t, TIME_UTC);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* A model of `mesh` (read from `file`) as `b` says; approximate ones go
+ * through the cache folder under `name`. */
+static px_model *build_model(const px_mesh *mesh, const char *file, const char *name, puma_build *b,
+                             px_error *err) {
+    px_model_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = b->pieces;
+    if (b->pieces != PX_PIECES_APPROXIMATE) return px_model_create_from_mesh(mesh, &o, err);
+    o.tolerance = b->tolerance > 0 ? b->tolerance : PX_MODEL_DEFAULT_TOLERANCE;
+    o.threads = b->threads;
+    char path[1200] = "";
+    if (b->cache_dir) {
+        snprintf(path, sizeof path, "%s/%s_approx_tol%g.pxm", b->cache_dir, name, o.tolerance);
+        struct stat sm, sc;
+        if (stat(file, &sm) == 0 && stat(path, &sc) == 0 && sc.st_mtime >= sm.st_mtime) {
+            px_error e2;
+            px_model *m = px_model_load(path, NULL, &e2);
+            px_model_info info;
+            if (m && px_model_get_info(m, &info) == PX_OK && info.pieces == PX_PIECES_APPROXIMATE) {
+                b->loaded++;
+                if (b->verbose)
+                    printf("        %-22s loaded from %s (%u piece%s)\n", name, path, info.leaves,
+                           info.leaves == 1 ? "" : "s");
+                return m;
+            }
+            px_model_destroy(m);
+            printf("        %s: cache %s unusable (%s); building\n", name, path,
+                   m ? "not approximate" : e2.message);
+        }
+    }
+    double t0 = wall_seconds();
+    px_model *m = px_model_create_from_mesh(mesh, &o, err);
+    double t = wall_seconds() - t0;
+    if (!m) return NULL;
+    b->built++;
+    b->build_seconds += t;
+    px_model_info info;
+    px_model_get_info(m, &info);
+    if (b->verbose)
+        printf("        %-22s built in %.2f s: %u piece%s, largest h %.2f mm%s%s\n", name, t, info.leaves,
+               info.leaves == 1 ? "" : "s", 1e3 * info.max_h, path[0] ? ", saved as " : "", path);
+    if (path[0]) {
+        /* Written under another name and renamed: a run stopped midway
+         * leaves no truncated cache file (px_model_load would refuse it). */
+        char tmp[1300];
+        snprintf(tmp, sizeof tmp, "%s.tmp", path);
+        px_error e2;
+        memset(&e2, 0, sizeof e2);
+        if (px_model_save(m, tmp, &e2) != PX_OK || rename(tmp, path) != 0) {
+            printf("        %s: cannot save the cache %s (%s)\n", name, path, e2.message);
+            remove(tmp);
+        }
+    }
+    return m;
+}
+
 px_status puma_arm_load(puma_arm *arm, const char *models, puma_meshes set, uint32_t pieces, px_error *err) {
+    puma_build b;
+    memset(&b, 0, sizeof b);
+    b.pieces = pieces;
+    return puma_arm_load_with(arm, models, set, &b, err);
+}
+
+px_status puma_arm_load_with(puma_arm *arm, const char *models, puma_meshes set, puma_build *b,
+                             px_error *err) {
+    static const char *set_tag[PUMA_MESH_SETS] = {"nimasarli", "rtb", "rtb-collision"};
     memset(arm, 0, sizeof *arm);
     arm->set = set;
     for (int k = 0; k < PUMA_LINKS; ++k) {
@@ -257,11 +333,10 @@ px_status puma_arm_load(puma_arm *arm, const char *models, puma_meshes set, uint
             puma_arm_destroy(arm);
             return err ? err->code : PX_ERR_IO;
         }
-        px_model_options o;
-        memset(&o, 0, sizeof o);
-        o.pieces = pieces;
+        char name[64];
+        snprintf(name, sizeof name, "puma_%s_link%d", set_tag[set], k + 1);
         arm->triangles[k] = px_mesh_triangle_count(mesh);
-        arm->link[k] = px_model_create_from_mesh(mesh, &o, err);
+        arm->link[k] = build_model(mesh, path, name, b, err);
         arm->mesh[k] = mesh;
         if (!arm->link[k]) {
             puma_arm_destroy(arm);
@@ -443,20 +518,23 @@ static px_status arm_distance(const puma_arm *arm, int w, const puma_cell_body *
 /* Where the teapot sits before it is moved to touch the gripper. */
 #define TEAPOT_SCALE 0.004 /* the trimesh teapot is 63 units long: 25 cm */
 
+/* Table: a top 0.6 x 0.9 x 0.04 m, 0.42 m high, on four legs. */
+static const double cell_table[5][6] = {{0.30, -0.45, 0.38, 0.90, 0.45, 0.42},
+                                        {0.33, -0.42, 0.00, 0.37, -0.38, 0.38},
+                                        {0.83, -0.42, 0.00, 0.87, -0.38, 0.38},
+                                        {0.33, 0.38, 0.00, 0.37, 0.42, 0.38},
+                                        {0.83, 0.38, 0.00, 0.87, 0.42, 0.38}};
+/* Fixture: a base plate and an upright, an L on the table. */
+static const double cell_fixture[2][6] = {{0.42, -0.34, 0.42, 0.64, -0.14, 0.45},
+                                          {0.60, -0.34, 0.45, 0.64, -0.14, 0.62}};
+/* Pillar: a column beside the arm, floor to 1.6 m. */
+static const double cell_pillar[1][6] = {{-0.10, 0.55, 0.00, 0.06, 0.71, 1.60}};
+static const char *cell_names[PUMA_CELL_BODIES] = {"table", "fixture", "teapot", "pillar"};
+
 px_status puma_cell_build(puma_cell *cell, const char *models, const puma_arm *arm, px_error *err) {
     memset(cell, 0, sizeof *cell);
-    /* Table: a top 0.6 x 0.9 x 0.04 m, 0.42 m high, on four legs. */
-    static const double table[5][6] = {{0.30, -0.45, 0.38, 0.90, 0.45, 0.42},
-                                       {0.33, -0.42, 0.00, 0.37, -0.38, 0.38},
-                                       {0.83, -0.42, 0.00, 0.87, -0.38, 0.38},
-                                       {0.33, 0.38, 0.00, 0.37, 0.42, 0.38},
-                                       {0.83, 0.38, 0.00, 0.87, 0.42, 0.38}};
-    /* Fixture: a base plate and an upright, an L on the table. */
-    static const double fixture[2][6] = {{0.42, -0.34, 0.42, 0.64, -0.14, 0.45},
-                                         {0.60, -0.34, 0.45, 0.64, -0.14, 0.62}};
-    /* Pillar: a column beside the arm, floor to 1.6 m. */
-    static const double pillar[1][6] = {{-0.10, 0.55, 0.00, 0.06, 0.71, 1.60}};
-    const char *names[PUMA_CELL_BODIES] = {"table", "fixture", "teapot", "pillar"};
+    const double(*table)[6] = cell_table, (*fixture)[6] = cell_fixture, (*pillar)[6] = cell_pillar;
+    const char *const *names = cell_names;
     px_status st;
     if ((st = boxes(table, 5, &cell->body[0].model, &cell->body[0].mesh, err)) != PX_OK ||
         (st = boxes(fixture, 2, &cell->body[1].model, &cell->body[1].mesh, err)) != PX_OK ||
@@ -514,6 +592,55 @@ px_status puma_cell_build(puma_cell *cell, const char *models, const puma_arm *a
         if (h == 0 || fabs(move) < 1e-5) break;
         cell->body[3].pose.t.x += move * dx / h;
         cell->body[3].pose.t.y += move * dy / h;
+    }
+    return PX_OK;
+}
+
+/* n boxes as a model of n point-set pieces (their corners): exact convex leaves. */
+static px_model *box_pieces(const double (*lohi)[6], uint32_t n, px_error *err) {
+    double xyz[8 * 3 * 8];
+    uint32_t end[8];
+    for (uint32_t b = 0; b < n; ++b) {
+        for (int c = 0; c < 8; ++c)
+            for (int k = 0; k < 3; ++k) xyz[3 * (8 * b + c) + k] = (c >> k) & 1 ? lohi[b][3 + k] : lohi[b][k];
+        end[b] = 8 * (b + 1);
+    }
+    return px_model_create_from_points(xyz, end, n, NULL, err);
+}
+
+px_status puma_cell_build_coarse(puma_cell *cell, const char *models, const puma_cell *exact,
+                                 puma_build *build, px_error *err) {
+    memset(cell, 0, sizeof *cell);
+    if (build->pieces != PX_PIECES_APPROXIMATE) {
+        if (err) {
+            memset(err, 0, sizeof *err);
+            err->code = PX_ERR_INVALID_ARGUMENT;
+            snprintf(err->message, sizeof err->message, "puma_cell_build_coarse: pieces must be approximate");
+        }
+        return PX_ERR_INVALID_ARGUMENT;
+    }
+    for (int i = 0; i < PUMA_CELL_BODIES; ++i) {
+        cell->body[i].name = cell_names[i];
+        cell->body[i].pose = exact->body[i].pose;
+    }
+    cell->body[0].model = box_pieces(cell_table, 5, err);
+    cell->body[1].model = cell->body[0].model ? box_pieces(cell_fixture, 2, err) : NULL;
+    cell->body[3].model = cell->body[1].model ? box_pieces(cell_pillar, 1, err) : NULL;
+    if (!cell->body[3].model) {
+        puma_cell_destroy(cell);
+        return err ? err->code : PX_ERR_INTERNAL;
+    }
+    char path[1024];
+    snprintf(path, sizeof path, "%s/teapot/trimesh_mit/teapot.stl", models);
+    px_mesh_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.scale = TEAPOT_SCALE;
+    px_mesh *mesh = px_mesh_load(path, &mo, err);
+    if (mesh) cell->body[2].model = build_model(mesh, path, "puma_cell_teapot", build, err);
+    px_mesh_destroy(mesh);
+    if (!cell->body[2].model) {
+        puma_cell_destroy(cell);
+        return err ? err->code : PX_ERR_INTERNAL;
     }
     return PX_OK;
 }

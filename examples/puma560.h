@@ -85,10 +85,32 @@ typedef struct puma_arm {
     uint32_t triangles[PUMA_LINKS];
 } puma_arm;
 
+/* How the link (and cell) models are built. PX_PIECES_APPROXIMATE takes
+ * seconds per link: with a cache folder, each built model is saved there
+ * as a .pxm (px_model_save) named after the body, the mesh set and the
+ * tolerance, e.g. puma_nimasarli_link5_approx_tol0.02.pxm, and loaded
+ * (px_model_load) instead of built when that file exists, is at least as
+ * new as the mesh file and holds approximate pieces. px_model_load does
+ * not re-certify the bounds h: a cache file edited by hand gives a wrong
+ * bracket (never a wrong distance); delete the files to rebuild. */
+typedef struct puma_build {
+    uint32_t pieces;       /* px_pieces */
+    double tolerance;      /* PX_PIECES_APPROXIMATE (0: PX_MODEL_DEFAULT_TOLERANCE) */
+    uint32_t threads;      /* PX_PIECES_APPROXIMATE: px_model_options.threads */
+    const char *cache_dir; /* PX_PIECES_APPROXIMATE: where the .pxm files are kept (NULL: none) */
+    int verbose;           /* print a line per approximate model built or loaded */
+    /* Filled in (added to) by the loaders: */
+    int built, loaded;    /* approximate models built, and loaded from the cache */
+    double build_seconds; /* wall time spent building them */
+} puma_build;
+
 /* Loads the seven link meshes of `set` from `models` (the folder holding
  * puma560/) and builds one model each (pieces: px_pieces). Returns PX_OK,
  * or an error naming the file (the arm is then empty). */
 px_status puma_arm_load(puma_arm *arm, const char *models, puma_meshes set, uint32_t pieces, px_error *err);
+/* The same, built as `build` says (approximate pieces, cached). */
+px_status puma_arm_load_with(puma_arm *arm, const char *models, puma_meshes set, puma_build *build,
+                             px_error *err);
 void puma_arm_destroy(puma_arm *arm);
 
 /* Adds the arm to a scene at joint angles q: link 0 static, links
@@ -126,6 +148,16 @@ typedef struct puma_cell {
  * puma_touch_time()). Returns PX_OK or an error. */
 px_status puma_cell_build(puma_cell *cell, const char *models, const puma_arm *arm, px_error *err);
 void puma_cell_destroy(puma_cell *cell);
+
+/* The same cell with convex leaves only, for a scene whose arm has convex
+ * leaves too (a triangle leaf met with a convex leaf costs a px_convex per
+ * visited triangle): the boxes as point-set pieces (one exact convex piece
+ * per box, h = 0), the teapot as approximate pieces built as `build` says
+ * (pieces must be PX_PIECES_APPROXIMATE; cached as the links are), every
+ * body at the pose of `exact` (itself placed with exact models). The
+ * bodies' meshes are NULL: draw the exact cell. */
+px_status puma_cell_build_coarse(puma_cell *cell, const char *models, const puma_cell *exact,
+                                 puma_build *build, px_error *err);
 
 /* Adds the cell's bodies to a scene, static; ids[i] = body of cell body i. */
 px_status puma_cell_add(const puma_cell *cell, px_scene *scene, uint32_t group, uint32_t mask,

@@ -4,8 +4,16 @@
  * brute force: at every step, cold px_model_distance over every pair the
  * scene may pair (non-adjacent links, link-cell) must give exactly the
  * reported pairs, their distances and contacts, and the scene's minimum.
- * Known configurations: the gripper touches the teapot at the touching
+ * A second scene of the same arm and cell with approximate models (links
+ * and teapot as PX_PIECES_APPROXIMATE pieces, boxes as point-set pieces,
+ * as the demo's timed run) moves along with it: at every step each
+ * reported pair's bracket [distance, upper_bound] holds the exact
+ * distance, and every pair not reported is exactly farther than the
+ * report distance (tolerance 0.05, 532 steps; under the sanitizers, which
+ * slow the decomposition 10-20 times, 0.1 and 267 steps). Known
+ * configurations: the gripper touches the teapot at the touching
  * waypoint; READY is clear of the cell. */
+#define _POSIX_C_SOURCE 200809L /* examples/puma560.c: stat */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -142,29 +150,85 @@ static void poses_at(const world *w, const double q[PUMA_JOINTS], px_pose pose[N
     for (int c = 0; c < PUMA_CELL_BODIES; ++c) pose[PUMA_LINKS + c] = w->cell.body[c].pose;
 }
 
-/* Pairs the scene may pair: non-adjacent links, and link-cell. */
-static int paired(int x, int y) { return x < PUMA_LINKS && y >= x + 2; }
+/* Pairs the scene may pair (x < y): non-adjacent links, and link-cell. */
+static int paired(int x, int y) { return x < PUMA_LINKS && (y >= x + 2 || y >= PUMA_LINKS); }
 
-/* The scene along the trajectory against brute force (cold), every step. */
-static void test_scene(world *w, double dt) {
+/* A scene of the arm and cell of w (bodies numbered as the demo's). */
+static px_scene *make_scene(world *w) {
     px_scene_options so;
     memset(&so, 0, sizeof so);
     so.margin = MARGIN;
     so.report_distance = REPORT;
     px_error err;
+    memset(&err, 0, sizeof err);
     px_scene *scene = px_scene_create(&so, &err);
     uint32_t ids[NBODY];
     double q[PUMA_JOINTS];
     puma_trajectory(0, q);
-    CHECK(scene && puma_arm_add(&w->arm, scene, q, NULL, 1, 3, ids, &err) == PX_OK &&
-              puma_cell_add(&w->cell, scene, 2, 1, ids + PUMA_LINKS, &err) == PX_OK,
-          "scene setup: %s", err.message);
-    if (!scene) return;
+    int ok = scene && puma_arm_add(&w->arm, scene, q, NULL, 1, 3, ids, &err) == PX_OK &&
+             puma_cell_add(&w->cell, scene, 2, 1, ids + PUMA_LINKS, &err) == PX_OK;
+    CHECK(ok, "scene setup: %s", err.message);
+    if (!ok) {
+        px_scene_destroy(scene);
+        return NULL;
+    }
     for (int b = 0; b < NBODY; ++b) CHECK(ids[b] == (uint32_t)b, "body %d got id %u", b, ids[b]);
+    return scene;
+}
+
+/* The approximate scene's reports at one step against the exact distances
+ * exact[x][y] of every paired (x, y): the bracket holds each reported
+ * pair's, and the others are farther than the report distance. Returns
+ * the number of failures; adds the bracket widths to *width. */
+static int check_brackets(const px_scene *scene, int step, double exact[NBODY][NBODY], double *width,
+                          double *worst) {
+    size_t np;
+    const px_scene_pair *pairs = px_scene_pairs(scene, &np);
+    int bad = 0, seen[NBODY][NBODY];
+    memset(seen, 0, sizeof seen);
+    const double slack = 1e-9; /* the two queries round differently */
+    for (size_t k = 0; k < np; ++k) {
+        int x = (int)pairs[k].body_a, y = (int)pairs[k].body_b;
+        if (x >= NBODY || y >= NBODY || x >= y || !paired(x, y)) {
+            if (bad++ < 5) fprintf(stderr, "step %d: approximate scene reports pair %d-%d\n", step, x, y);
+            continue;
+        }
+        seen[x][y] = 1;
+        double e = exact[x][y], d = pairs[k].distance, u = pairs[k].upper_bound;
+        *width += u - d;
+        *worst = fmax(*worst, u - d);
+        if (!(d - slack <= e && e <= u + slack) && bad++ < 5)
+            fprintf(stderr, "step %d: pair %d-%d: exact %.17g outside the bracket [%.17g, %.17g]\n", step, x,
+                    y, e, d, u);
+    }
+    for (int x = 0; x < NBODY; ++x)
+        for (int y = x + 1; y < NBODY; ++y)
+            if (paired(x, y) && !seen[x][y] && !(exact[x][y] > REPORT) && bad++ < 5)
+                fprintf(stderr, "step %d: pair %d-%d at exact %.17g not reported by the approximate scene\n",
+                        step, x, y, exact[x][y]);
+    return bad;
+}
+
+/* The scene along the trajectory against brute force (cold), every step;
+ * the approximate scene of `coarse` (if not NULL) against the same. */
+static void test_scene(world *w, world *coarse, double dt) {
+    px_error err;
+    memset(&err, 0, sizeof err);
+    px_scene *scene = make_scene(w), *fast = coarse ? make_scene(coarse) : NULL;
+    if (!scene || (coarse && !fast)) {
+        px_scene_destroy(scene);
+        px_scene_destroy(fast);
+        return;
+    }
+    uint32_t ids[NBODY];
+    for (int b = 0; b < NBODY; ++b) ids[b] = (uint32_t)b;
+    double q[PUMA_JOINTS];
     double touch = puma_touch_time(), T = puma_trajectory_duration();
     int touch_step = (int)(touch / dt + 0.5), steps = 0, touched = 0, bad_pairs = 0, bad_min = 0;
+    int bad_brackets = 0, fast_touched = 0;
     dt = touch / touch_step;
-    uint64_t checked = 0;
+    uint64_t checked = 0, fast_checked = 0, fast_reported = 0;
+    double width = 0, worst = 0;
     for (int i = 0; i * dt <= T; ++i, ++steps) {
         double t = i * dt;
         puma_trajectory(t, q);
@@ -174,11 +238,17 @@ static void test_scene(world *w, double dt) {
         px_scene_stats stats;
         px_scene_get_stats(scene, &stats);
         checked += stats.pairs_checked;
+        if (fast) {
+            CHECK(puma_arm_set(&coarse->arm, fast, ids, q, &err) == PX_OK, "set: %s", err.message);
+            CHECK(px_scene_step(fast, t, &err) == PX_OK, "approximate step %d: %s", i, err.message);
+            px_scene_get_stats(fast, &stats);
+            fast_checked += stats.pairs_checked;
+        }
         size_t np;
         const px_scene_pair *pairs = px_scene_pairs(scene, &np);
         px_pose pose[NBODY];
         poses_at(w, q, pose);
-        double best = INFINITY;
+        double best = INFINITY, exact[NBODY][NBODY];
         size_t k = 0;
         for (int x = 0; x < NBODY; ++x)
             for (int y = x + 1; y < NBODY; ++y) {
@@ -186,6 +256,7 @@ static void test_scene(world *w, double dt) {
                 px_model_distance_result d;
                 CHECK(px_model_distance(w->model[x], &pose[x], w->model[y], &pose[y], NULL, &d) == PX_OK,
                       "brute force %d-%d", x, y);
+                exact[x][y] = d.distance;
                 best = fmin(best, d.distance);
                 if (d.distance > REPORT) continue;
                 /* the next reported pair must be this one, same distance */
@@ -204,6 +275,15 @@ static void test_scene(world *w, double dt) {
         CHECK(px_scene_min_distance(scene, &mp, &err) == PX_OK, "min_distance: %s", err.message);
         if (fabs(mp.distance - best) > 1e-12 && bad_min++ < 10)
             fprintf(stderr, "step %d: scene minimum %.17g, brute force %.17g\n", i, mp.distance, best);
+        if (fast) {
+            bad_brackets += check_brackets(fast, i, exact, &width, &worst) > 0;
+            pairs = px_scene_pairs(fast, &np);
+            fast_reported += np;
+            if (i == touch_step)
+                for (size_t m = 0; m < np; ++m)
+                    fast_touched |=
+                        pairs[m].body_a == 6 && pairs[m].body_b == PUMA_LINKS + 2 && pairs[m].contact;
+        }
     }
     CHECK(bad_pairs == 0, "%d steps reported other pairs than brute force", bad_pairs);
     CHECK(bad_min == 0, "%d steps gave another minimum than brute force", bad_min);
@@ -212,7 +292,20 @@ static void test_scene(world *w, double dt) {
         "scene: %d steps of %.4f s, reports and minimum equal to brute force (%d pairs, cold) at every step; "
         "%.2f narrow-phase queries per step\n",
         steps, dt, 15 + 4 * PUMA_LINKS, (double)checked / steps);
+    if (fast) {
+        CHECK(bad_brackets == 0, "%d steps where the approximate scene's brackets miss the exact distance",
+              bad_brackets);
+        CHECK(fast_touched, "the approximate scene has no gripper-teapot contact at the touching waypoint");
+        printf(
+            "approximate scene: brackets hold the exact distance of all %llu reported pairs, the %llu others "
+            "beyond %g m; widths mean %.2f mm, max %.2f mm; %.2f narrow-phase queries per step\n",
+            (unsigned long long)fast_reported,
+            (unsigned long long)(steps * (15 + 4 * PUMA_LINKS) - fast_reported), REPORT,
+            fast_reported ? 1e3 * width / (double)fast_reported : 0.0, 1e3 * worst,
+            (double)fast_checked / steps);
+    }
     px_scene_destroy(scene);
+    px_scene_destroy(fast);
 }
 
 /* Known configurations: touching at the touching waypoint (the gripper,
@@ -254,7 +347,27 @@ int main(void) {
     for (int k = 0; k < PUMA_LINKS; ++k) w.model[k] = w.arm.link[k];
     for (int c = 0; c < PUMA_CELL_BODIES; ++c) w.model[PUMA_LINKS + c] = w.cell.body[c].model;
     test_known(&w);
-    test_scene(&w, 0.02 / tu_scale());
+    /* The approximate models: a coarser tolerance under the sanitizers,
+     * which slow the decomposition (CGAL) 10-20 times; no cache. */
+    world c;
+    memset(&c, 0, sizeof c);
+    puma_build b;
+    memset(&b, 0, sizeof b);
+    b.pieces = PX_PIECES_APPROXIMATE;
+    b.tolerance = tu_sanitized() ? 0.1 : 0.05;
+    b.threads = 2;
+    int have_coarse =
+        puma_arm_load_with(&c.arm, PX_SOURCE_DIR "/models", PUMA_NIMASARLI, &b, &err) == PX_OK &&
+        puma_cell_build_coarse(&c.cell, PX_SOURCE_DIR "/models", &w.cell, &b, &err) == PX_OK;
+    CHECK(have_coarse, "approximate models: %s", err.message);
+    if (have_coarse) {
+        printf("approximate models at tolerance %g built in %.1f s\n", b.tolerance, b.build_seconds);
+        for (int k = 0; k < PUMA_LINKS; ++k) c.model[k] = c.arm.link[k];
+        for (int k = 0; k < PUMA_CELL_BODIES; ++k) c.model[PUMA_LINKS + k] = c.cell.body[k].model;
+    }
+    test_scene(&w, have_coarse ? &c : NULL, (tu_sanitized() ? 0.04 : 0.02) / tu_scale());
+    puma_cell_destroy(&c.cell);
+    puma_arm_destroy(&c.arm);
     puma_cell_destroy(&w.cell);
     puma_arm_destroy(&w.arm);
     return tu_finish();

@@ -76,6 +76,7 @@ typedef struct spair {
     uint8_t measured, contact, where;
     double due;
     double snap_a, snap_b; /* travels at the last query */
+    px_pose rel;           /* a's pose in b's frame at the last query */
     double gap;            /* distance - report - eps at the last query */
     px_scene_pair res;
     union {
@@ -880,6 +881,7 @@ static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
     q->gap = r->distance - s->report - eps;
     q->snap_a = x->travel;
     q->snap_b = y->travel;
+    q->rel = pxi_relative(&x->pose, &y->pose);
     q->measured = 1;
     int contact = r->distance <= s->margin;
     r->contact = (uint32_t)contact;
@@ -1190,17 +1192,27 @@ static int cmp_event(const void *x, const void *y) {
  * last one, measured again otherwise (not when neither body moved). */
 static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err) {
     spair *q = &s->pair[p];
+    const sbody *x = &s->body[q->a], *y = &s->body[q->b];
     s->stats.pairs_due++;
-    const double ta = s->body[q->a].travel, tb = s->body[q->b].travel;
-    /* The subtractions round: a few ulps of the travels (long runs make
-     * them large) are added, so that `moved` never falls short. */
+    const double ta = x->travel, tb = y->travel;
+    /* How far the pair's distance may have moved since its query: the two
+     * travels (the subtractions round: a few ulps of the travels, which long
+     * runs make large, are added so that `moved` never falls short), or
+     * when that uses the gap up, the motion of a's points in b's frame
+     * between the two relative poses, which is far smaller for bodies that
+     * move together (links of one arm). Both bound the change of the
+     * distance between the poses then and now. */
     double moved = (ta - q->snap_a) + (tb - q->snap_b);
     if (moved > 0.0) moved += 4.0 * DBL_EPSILON * (ta + tb);
+    if (q->measured && moved >= q->gap && moved > 0.0) {
+        px_pose rel = pxi_relative(&x->pose, &y->pose);
+        double mr =
+            displacement(x, &q->rel, &rel) +
+            16.0 * DBL_EPSILON * (pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + pxi_max_abs(rel.t));
+        moved = pxi_min2(moved, mr);
+    }
     if (q->measured && moved < q->gap) {
-        q->gap -= moved;
-        q->snap_a = ta;
-        q->snap_b = tb;
-        q->due = time + safe_time(s, q, q->gap);
+        q->due = time + safe_time(s, q, q->gap - moved);
         return PX_OK;
     }
     if (!q->measured || moved > 0.0) {

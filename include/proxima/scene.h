@@ -71,7 +71,7 @@ typedef struct px_scene_options {
     /// witness points. Larger values report more pairs and check them more
     /// often.
     double report_distance;
-    /// Node-pair cache budget per model pair in bytes (0: 32 KiB), see
+    /// Node-pair cache budget per model pair in bytes (0: 256 KiB), see
     /// px_model_cache.max_bytes.
     size_t model_cache_bytes;
     uint32_t reserved[8]; ///< must be zero

@@ -930,7 +930,7 @@ px_scene *px_scene_create(const px_scene_options *options, px_error *err) {
     s->alloc = a;
     s->margin = o.margin;
     s->report = o.report_distance;
-    s->model_cache_bytes = o.model_cache_bytes ? o.model_cache_bytes : (size_t)32 << 10;
+    s->model_cache_bytes = o.model_cache_bytes ? o.model_cache_bytes : (size_t)256 << 10;
     s->time = -INFINITY;
     s->free_pair = S_NONE;
     s->bytes = sizeof *s;

@@ -595,6 +595,125 @@ static void test_no_allocation(void) {
     for (int i = 0; i < N; ++i) px_convex_destroy(h[i]);
 }
 
+/* Review cases (issue 11's review; the configurations are recorded here).
+ * Each one once made px_scene_step miss a pair with PX_OK. */
+static px_convex *box3(double hx, double hy, double hz) {
+    double p[24];
+    for (int c = 0; c < 8; ++c) {
+        p[3 * c] = (c & 1) ? hx : -hx;
+        p[3 * c + 1] = (c & 2) ? hy : -hy;
+        p[3 * c + 2] = (c & 4) ? hz : -hz;
+    }
+    return px_convex_create(p, 8, NULL, NULL);
+}
+
+static px_pose at3(double x, double y, double z) {
+    px_pose p = px_pose_identity();
+    p.t = (px_vec3){x, y, z};
+    return p;
+}
+
+static void test_review_cases(void) {
+    px_error e;
+    size_t n;
+    /* 1. A 2 mm part parked 1e12 away and brought back, then moving 0.1 mm
+     *    per step within its bounds onto another: a running sum of its
+     *    motion had grown so large that the small moves rounded away. */
+    {
+        px_scene_options so = {0};
+        so.report_distance = 1e-3;
+        px_scene *s = px_scene_create(&so, &e);
+        px_convex *c = box3(1e-3, 1e-3, 1e-3);
+        px_body_desc d = {0};
+        d.convex = c;
+        d.max_speed = 1.0;
+        d.max_angular_speed = 1.0;
+        uint32_t a, b;
+        d.pose = at3(0, 0, 0);
+        px_scene_add_body(s, &d, &a, &e);
+        d.pose = at3(0.01, 0, 0);
+        px_scene_add_body(s, &d, &b, &e);
+        double t = 0;
+        px_scene_step(s, t, &e);
+        px_pose far = at3(1e12, 0, 0), home = at3(0, 0, 0);
+        px_scene_set_pose(s, a, &far, &e);
+        px_scene_step(s, t += 1, &e);
+        px_scene_set_pose(s, a, &home, &e);
+        px_scene_step(s, t += 1, &e);
+        int missed = 0;
+        for (int i = 1; i <= 100; ++i) {
+            px_pose p = at3(i * 1e-4, 0, 0);
+            px_scene_set_pose(s, a, &p, &e);
+            CHECK(px_scene_step(s, t += 1e-3, &e) == PX_OK, "step");
+            px_distance_result r;
+            px_distance(c, &p, c, &d.pose, NULL, NULL, &r);
+            px_scene_pairs(s, &n);
+            missed += r.distance <= so.report_distance && n == 0;
+        }
+        CHECK(missed == 0, "review 1: a part back from 1e12 missed at %d steps", missed);
+        px_scene_destroy(s);
+        px_convex_destroy(c);
+    }
+    /* 2. A rod of half-length 1000 turned by a matrix px_pose_check accepts
+     *    (x scaled by 1 + 4.9e-7): its tip moves sqrt 2 farther than the
+     *    angle of a true rotation says. */
+    {
+        px_scene_options so = {0};
+        so.report_distance = 0.1;
+        px_scene *s = px_scene_create(&so, &e);
+        px_convex *rod = box3(1000, 0.5, 0.5), *c = box3(0.5, 0.5, 0.5);
+        px_body_desc d = {0};
+        d.max_speed = INFINITY;
+        d.max_angular_speed = INFINITY;
+        uint32_t a, b;
+        d.convex = rod;
+        d.pose = at3(0, 0, 0);
+        px_scene_add_body(s, &d, &a, &e);
+        px_pose pb = at3(1000 + 0.5 + 0.1 + 4e-4, 0, 0);
+        d.convex = c;
+        d.pose = pb;
+        px_scene_add_body(s, &d, &b, &e);
+        px_scene_step(s, 0, &e);
+        px_pose q = px_pose_identity();
+        q.r[0] = 1.0 + 4.9e-7;
+        CHECK(px_pose_check(&q, &e) == PX_OK, "the skewed pose is accepted");
+        px_scene_set_pose(s, a, &q, &e);
+        px_scene_step(s, 1, &e);
+        px_distance_result r;
+        px_distance(rod, &q, c, &pb, NULL, NULL, &r);
+        px_scene_pairs(s, &n);
+        CHECK((r.distance <= 0.1) == (n == 1), "review 2: skewed rotation: distance %.9g, %zu pairs",
+              r.distance, n);
+        px_scene_destroy(s);
+        px_convex_destroy(rod);
+        px_convex_destroy(c);
+    }
+    /* 3. Steps at t = -1e308 then 1e308: the time step overflows to
+     *    infinity, once read as "before the first step"; a body with zero
+     *    speed bounds teleported onto another must be seen. */
+    {
+        px_scene_options so = {0};
+        so.report_distance = 0.1;
+        px_scene *s = px_scene_create(&so, &e);
+        px_convex *c = box3(0.5, 0.5, 0.5);
+        px_body_desc d = {0};
+        d.convex = c;
+        uint32_t a, b;
+        d.pose = at3(0, 0, 0);
+        px_scene_add_body(s, &d, &a, &e);
+        d.pose = at3(1.5, 0, 0);
+        px_scene_add_body(s, &d, &b, &e);
+        px_scene_step(s, -1e308, &e);
+        px_pose p = at3(1.2, 0, 0);
+        px_scene_set_pose(s, a, &p, &e);
+        CHECK(px_scene_step(s, 1e308, &e) == PX_OK, "step");
+        px_scene_pairs(s, &n);
+        CHECK(n == 1, "review 3: overflowing time step: %zu pairs", n);
+        px_scene_destroy(s);
+        px_convex_destroy(c);
+    }
+}
+
 int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
@@ -617,6 +736,7 @@ int main(void) {
     test_savings();
     test_containment();
     test_no_allocation();
+    test_review_cases();
     test_bad_inputs();
     return tu_finish();
 }

@@ -21,13 +21,14 @@
  * g. An indexed binary heap on (due, a, b) pops the due pairs.
  *
  * Safety does not rest on the declared bounds: every pose set is measured
- * (the largest displacement of any point of the body, |dc| + theta R,
- * theta the rotation angle), summed per body into its travel, and each pair
- * keeps both travels at its last query. A due pair whose bodies travelled
- * less than its gap since is re-keyed without a query; a body that moved
- * more than its bounds allow in a step makes all its pairs due now. So a
- * pair is measured before its distance can fall to the report distance,
- * whatever the poses do. */
+ * (a bound on the largest displacement of any point of the body, |dc| +
+ * theta R, theta the rotation angle), and a body that moved more than its
+ * bounds allow in a step makes all its pairs due now. A due pair compares
+ * the poses now with those of its last query: while no point can have
+ * moved as far as its gap, it is re-keyed without a query. So a pair is
+ * measured before its distance can fall to the report distance, whatever
+ * the poses do. (Bounds between two poses, never running sums: a sum that
+ * once grew large would round small moves away.) */
 #include "proxima/scene.h"
 
 #include <float.h>
@@ -60,9 +61,12 @@ typedef struct sbody {
     double accel;         /* amax + alphamax * radius: bound on a point's acceleration (0: none) */
     double speed;         /* vmax + wmax * radius: bound on a point's speed */
     double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
-    double travel;        /* sum of the displacement bounds of every pose change */
-    double fit_travel;    /* travel when the fat box was last fitted */
-    double fat[6];        /* the fat box in the sweep: lo xyz, hi xyz */
+    double travel;        /* sum of the displacement bounds of its pose changes, rounded up */
+    double fit_travel;    /* travel when the fat box was fitted */
+    px_pose fit;          /* the pose its fat box was fitted at */
+    double sk, sk_last;   /* skews (how far from rotations) of pose and last */
+    int fitted;
+    double fat[6]; /* the fat box in the sweep: lo xyz, hi xyz */
     uint32_t group, mask, flags;
     uint32_t first_pair; /* head of its list of pairs */
     uint8_t alive, dirty, added, vel_now, chain;
@@ -75,9 +79,9 @@ typedef struct spair {
     uint32_t kind;
     uint8_t measured, contact, where;
     double due;
-    double snap_a, snap_b; /* travels at the last query */
-    px_pose rel;           /* a's pose in b's frame at the last query */
-    double gap;            /* distance - report - eps at the last query */
+    px_pose pose_a, pose_b; /* the bodies' poses at the last query */
+    double snap_a, snap_b;  /* and their travels */
+    double gap;             /* distance - report - eps at the last query */
     px_scene_pair res;
     union {
         px_pair_cache convex;
@@ -474,6 +478,72 @@ static void remove_pair(px_scene *s, uint32_t a, uint32_t b) {
     if (p != S_NONE) free_pair(s, p, 0);
 }
 
+/* ---- motion bounds ----------------------------------------------------- */
+
+/* x >= 0 rounded up: at least the exact value of the operation that gave
+ * x (rounding to nearest is off by at most half an ulp, and x eps is at
+ * least one ulp of x; the smallest subnormal covers 0 and subnormals). */
+static double up(double x) { return x + (x * DBL_EPSILON + 0x1p-1074); }
+
+/* Travel since a snapshot, rounded up (0 when none). */
+static double since(double travel, double snap) { return travel == snap ? 0.0 : up(travel - snap); }
+
+/* How far a matrix is from a rotation: |R^T R - I|_F bounds |R - Q| for Q
+ * the nearest rotation (R = Q (I + S), S symmetric: R^T R - I = 2S + S^2,
+ * so |S| <= |R^T R - I| while |S| <= 1). px_pose_check lets rows be
+ * orthonormal within 1e-6 only. */
+static double skew(const double r[9]) {
+    double f = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double d = r[i] * r[j] + r[3 + i] * r[3 + j] + r[6 + i] * r[6 + j] - (i == j ? 1.0 : 0.0);
+            f += d * d;
+        }
+    return sqrt(f);
+}
+
+/* A bound on how far any point of a body of radius `radius` about `center`
+ * (body frame) moved from pose p to pose q: the reference point's
+ * displacement plus the chord of the rotation times the radius. The angle
+ * comes from the Frobenius norm of the difference of the nearest rotations,
+ * |Qq - Qp|_F = 2 sqrt 2 sin(theta/2), bounded by |Rq - Rp|_F plus `sk`,
+ * the sum of both matrices' skews; the skews are added once more for the
+ * points themselves. */
+static double displacement(px_vec3 center, double radius, const px_pose *p, const px_pose *q, double sk) {
+    int origin = center.x == 0.0 && center.y == 0.0 && center.z == 0.0;
+    px_vec3 cp = origin ? p->t : pxi_xform(p, center), cq = origin ? q->t : pxi_xform(q, center);
+    double f = 0.0;
+    for (int i = 0; i < 9; ++i) f += (q->r[i] - p->r[i]) * (q->r[i] - p->r[i]);
+    double sn = (sqrt(f) + sk) * 0.35355339059327379; /* 1 / (2 sqrt 2), rounded up */
+    /* theta = 2 asin(sn) <= 2 sn / sqrt(1 - sn^2) (asin x <= x / sqrt(1 - x^2)),
+     * without the libm call; capped at pi. */
+    double theta = sn < 0.7071 ? 2.0 * sn / sqrt(1.0 - sn * sn) : S_PI;
+    double d = pxi_len(pxi_sub(cq, cp)) + (theta + sk) * radius;
+    /* Rounding of the points and of theta: a few ulps of the coordinates. */
+    return d * (1.0 + 16.0 * DBL_EPSILON) + 16.0 * DBL_EPSILON * (pxi_len(cp) + pxi_len(cq) + radius);
+}
+
+/* The same bound by a matrix norm, for any two matrices (no rotation
+ * assumed, so no skew): every point moved at most |dc| + |Rq - Rp|_2 r, and
+ * |M|_2 <= min(|M|_F, sqrt(|M|_1 |M|_inf)). Tight for turns about an axis
+ * of the frame, at most 15 % above the chord otherwise; cheaper than the
+ * angle. Used where a looser bound costs only a query or a refit. */
+static double moved_points(px_vec3 center, double radius, const px_pose *p, const px_pose *q) {
+    int origin = center.x == 0.0 && center.y == 0.0 && center.z == 0.0;
+    px_vec3 cp = origin ? p->t : pxi_xform(p, center), cq = origin ? q->t : pxi_xform(q, center);
+    double f = 0.0, row[3] = {0, 0, 0}, col[3] = {0, 0, 0};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double m = q->r[3 * i + j] - p->r[3 * i + j];
+            f += m * m;
+            row[i] += fabs(m);
+            col[j] += fabs(m);
+        }
+    double n1 = pxi_max2(col[0], pxi_max2(col[1], col[2])), ni = pxi_max2(row[0], pxi_max2(row[1], row[2]));
+    double d = pxi_len(pxi_sub(cq, cp)) + sqrt(pxi_min2(f, n1 * ni)) * radius;
+    return d * (1.0 + 16.0 * DBL_EPSILON) + 16.0 * DBL_EPSILON * (pxi_len(cp) + pxi_len(cq) + radius);
+}
+
 /* ---- sweep and prune ------------------------------------------------------ */
 
 /* The sort's total order: value, then min before max (touching boxes
@@ -586,10 +656,12 @@ static void world_box(const sbody *b, double out[6]) {
 
 /* New fat box when the grown world box leaves the old one; 1 when moved. */
 static int refit(px_scene *s, sbody *b) {
-    /* Every point moved at most the travel since the last fit, so the body
-     * grown by g is still inside the fat box while that travel is below the
-     * slack: no box to compute. */
-    if (b->travel - b->fit_travel <= 0.99 * S_SLACK * b->size) return 0;
+    /* No point moved farther than the slack since the fit: the body grown
+     * by g is still inside the fat box, no box to compute. */
+    const double slack0 = 0.99 * S_SLACK * b->size;
+    if (b->fitted && (since(b->travel, b->fit_travel) <= slack0 ||
+                      moved_points(b->center, b->radius, &b->fit, &b->pose) <= slack0))
+        return 0;
     double w[6], g = 0.5 * s->report;
     world_box(b, w);
     int inside = 1;
@@ -601,7 +673,9 @@ static int refit(px_scene *s, sbody *b) {
         b->fat[i] = w[i] - slack;
         b->fat[3 + i] = w[3 + i] + slack;
     }
+    b->fit = b->pose;
     b->fit_travel = b->travel;
+    b->fitted = 1;
     return 1;
 }
 
@@ -701,43 +775,31 @@ static void extract(px_scene *s, uint32_t id) {
 
 /* ---- motion ------------------------------------------------------------ */
 
-/* A bound on how far any point of the body moved from pose p to pose q:
- * the reference point's displacement plus the rotation angle times the
- * radius (a chord is shorter than its arc). theta from the Frobenius norm
- * of the difference of the rotations: |Rq - Rp|_F = 2 sqrt 2 sin(theta/2). */
-static double displacement(const sbody *b, const px_pose *p, const px_pose *q) {
-    int origin = b->center.x == 0.0 && b->center.y == 0.0 && b->center.z == 0.0;
-    px_vec3 cp = origin ? p->t : pxi_xform(p, b->center), cq = origin ? q->t : pxi_xform(q, b->center);
-    double f = 0.0;
-    for (int i = 0; i < 9; ++i) f += (q->r[i] - p->r[i]) * (q->r[i] - p->r[i]);
-    double sn = sqrt(f) * 0.35355339059327379; /* 1 / (2 sqrt 2), rounded up */
-    /* theta = 2 asin(sn) <= 2 sn / sqrt(1 - sn^2) (asin x <= x / sqrt(1 - x^2)),
-     * without the libm call; capped at pi. */
-    double theta = sn < 0.7071 ? 2.0 * sn / sqrt(1.0 - sn * sn) : S_PI;
-    double d = pxi_len(pxi_sub(cq, cp)) + theta * b->radius;
-    /* Rounding of the points and of theta: a few ulps of the coordinates. */
-    return d * (1.0 + 16.0 * DBL_EPSILON) + 16.0 * DBL_EPSILON * (pxi_len(cp) + pxi_len(cq) + b->radius);
-}
-
 /* Makes all pairs of body id due now. */
 static void all_due(px_scene *s, uint32_t id) {
     for (uint32_t p = s->body[id].first_pair; p != S_NONE; p = next_of(s, p, id)) make_due(s, p);
 }
 
-/* Measures a moved body: travel, bounds, and its chain of known
- * velocities (with acceleration bounds). */
-static void measure(px_scene *s, uint32_t id, double dt) {
+/* Measures a moved body: its bounds, and its chain of known velocities
+ * (with acceleration bounds). `first`: the scene's first step, before which
+ * poses are free. */
+static void measure(px_scene *s, uint32_t id, double dt, int first) {
     sbody *b = &s->body[id];
-    double d = memcmp(&b->pose, &b->last, sizeof b->pose) ? displacement(b, &b->last, &b->pose) : 0.0;
-    b->travel += d;
-    /* Poses set before the first step (dt infinite) are free. */
-    double allowed = isinf(b->speed) || isinf(dt) ? INFINITY : dt > 0.0 ? b->speed * dt : 0.0;
+    double d = memcmp(&b->pose, &b->last, sizeof b->pose)
+                   ? displacement(b->center, b->radius, &b->last, &b->pose, b->sk_last + b->sk)
+                   : 0.0;
+    /* The running sum is a fast first test; it is rounded up at every step
+     * so that it never falls short (when it has grown large it only stops
+     * being useful: the poses are then compared directly). */
+    if (d > 0.0) b->travel = up(b->travel + d);
+    double allowed = first || isinf(b->speed) ? INFINITY : b->speed > 0.0 ? b->speed * dt : 0.0;
     int violated = d > allowed;
     if (b->chain) {
         /* Known speed s_prev at the last step: this step moved at most
          * s_prev dt + a dt^2 / 2, and the new speed is at most s_prev + a dt. */
         double a = b->accel;
-        if (!b->vel_now || d > b->s_prev * dt + 0.5 * a * dt * dt || b->s_now > b->s_prev + a * dt) {
+        if (!b->vel_now || !isfinite(dt) || d > b->s_prev * dt + 0.5 * a * dt * dt ||
+            b->s_now > b->s_prev + a * dt) {
             b->chain = 0;
             s->chains--;
             if (b->vel_now) violated = 1;
@@ -754,6 +816,7 @@ static void measure(px_scene *s, uint32_t id, double dt) {
         all_due(s, id);
     }
     b->last = b->pose;
+    b->sk_last = b->sk;
 }
 
 /* Earliest time after a query the gap g can close: u t (+ a t^2 / 2). */
@@ -879,9 +942,10 @@ static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
                          r->distance);
     double eps = 64.0 * DBL_EPSILON * (place + r->distance);
     q->gap = r->distance - s->report - eps;
+    q->pose_a = x->pose;
+    q->pose_b = y->pose;
     q->snap_a = x->travel;
     q->snap_b = y->travel;
-    q->rel = pxi_relative(&x->pose, &y->pose);
     q->measured = 1;
     int contact = r->distance <= s->margin;
     r->contact = (uint32_t)contact;
@@ -1045,6 +1109,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->model = d->model;
     b->convex = d->convex;
     b->pose = b->last = d->pose;
+    b->sk = b->sk_last = skew(d->pose.r);
     b->center = d->center;
     b->lo = lo;
     b->hi = hi;
@@ -1084,7 +1149,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->alive = 1;
     b->added = 1;
     for (int k = 0; k < 3; ++k) b->fat[k] = INFINITY, b->fat[3 + k] = -INFINITY;
-    b->fit_travel = -INFINITY; /* no fit yet */
+    b->fitted = 0;
     refit(s, b);
     s->alive++;
     s->added++;
@@ -1152,6 +1217,7 @@ px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_er
     if (st != PX_OK) return st;
     pxi_error_clear(err);
     s->body[id].pose = *pose;
+    s->body[id].sk = skew(pose->r);
     return mark_dirty(s, id);
 }
 
@@ -1188,28 +1254,41 @@ static int cmp_event(const void *x, const void *y) {
 }
 
 /* Brings pair p up to date at `time` and sets its next due time: re-keyed
- * without a query while its bodies travelled less than its gap since the
- * last one, measured again otherwise (not when neither body moved). */
+ * without a query while its bodies moved less than its gap since the last
+ * one, measured again otherwise (not when neither body moved). */
 static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err) {
     spair *q = &s->pair[p];
     const sbody *x = &s->body[q->a], *y = &s->body[q->b];
     s->stats.pairs_due++;
-    const double ta = x->travel, tb = y->travel;
-    /* How far the pair's distance may have moved since its query: the two
-     * travels (the subtractions round: a few ulps of the travels, which long
-     * runs make large, are added so that `moved` never falls short), or
-     * when that uses the gap up, the motion of a's points in b's frame
-     * between the two relative poses, which is far smaller for bodies that
-     * move together (links of one arm). Both bound the change of the
-     * distance between the poses then and now. */
-    double moved = (ta - q->snap_a) + (tb - q->snap_b);
-    if (moved > 0.0) moved += 4.0 * DBL_EPSILON * (ta + tb);
-    if (q->measured && moved >= q->gap && moved > 0.0) {
-        px_pose rel = pxi_relative(&x->pose, &y->pose);
-        double mr =
-            displacement(x, &q->rel, &rel) +
-            16.0 * DBL_EPSILON * (pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + pxi_max_abs(rel.t));
-        moved = pxi_min2(moved, mr);
+    /* How far the distance may have moved since the query: the bodies'
+     * travels since then (a running sum, rounded up, cheap); when that uses
+     * the gap up, each body's displacement between its pose then and now
+     * (the sum stops being useful once it has grown large), and the motion
+     * of a's points in b's frame between the two relative poses, far
+     * smaller for bodies that move together (links of one arm). Each bounds
+     * the change of the distance between the poses then and now. */
+    double moved = 0.0;
+    if (q->measured) {
+        double ma = since(x->travel, q->snap_a), mb = since(y->travel, q->snap_b);
+        moved = ma + mb > 0.0 ? up(ma + mb) : 0.0;
+        /* Once the travels are large against the bodies (a long run, a far
+         * excursion), their rounding makes the sum coarse: compare poses. */
+        if (moved >= q->gap && moved > 0.0 && x->travel + y->travel > 0x1p20 * (x->size + y->size)) {
+            double m2 = 0.0;
+            if (memcmp(&x->pose, &q->pose_a, sizeof x->pose))
+                m2 += moved_points(x->center, x->radius, &q->pose_a, &x->pose);
+            if (memcmp(&y->pose, &q->pose_b, sizeof y->pose))
+                m2 += moved_points(y->center, y->radius, &q->pose_b, &y->pose);
+            moved = pxi_min2(moved, m2);
+        }
+        if (moved >= q->gap && moved > 0.0) {
+            px_pose then = pxi_relative(&q->pose_a, &q->pose_b), now = pxi_relative(&x->pose, &y->pose);
+            double mr = moved_points(x->center, x->radius, &then, &now) +
+                        16.0 * DBL_EPSILON *
+                            (pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + pxi_max_abs(q->pose_a.t) +
+                             pxi_max_abs(q->pose_b.t));
+            moved = pxi_min2(moved, mr);
+        }
     }
     if (q->measured && moved < q->gap) {
         q->due = time + safe_time(s, q, q->gap - moved);
@@ -1250,7 +1329,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         uint32_t id = s->dirty[i];
         sbody *b = &s->body[id];
         b->dirty = 0;
-        measure(s, id, dt);
+        measure(s, id, dt, !s->stepped);
         /* A body added since the last step is sorted in below, at its
          * refitted box. */
         if (!refit(s, b) || b->added) continue;

@@ -714,6 +714,76 @@ static void test_review_cases(void) {
     }
 }
 
+/* Out of memory inside px_scene_step (review): 20 cubes moved onto one
+ * point while the allocator fails from the k-th call; once memory is back,
+ * every pair must be there. Also px_scene_add_body failing: no ghost body,
+ * and every free gets the size that was allocated. */
+static long fail_after = -1; /* allocations left before failing; -1: never */
+static size_t bad_frees;
+typedef struct sized {
+    size_t size;
+    double align;
+} sized;
+static void *failing_alloc(void *user, size_t size) {
+    (void)user;
+    if (fail_after == 0) return NULL;
+    if (fail_after > 0) --fail_after;
+    sized *p = malloc(sizeof(sized) + size);
+    if (!p) return NULL;
+    p->size = size;
+    return p + 1;
+}
+static void failing_free(void *user, void *ptr, size_t size) {
+    (void)user;
+    if (!ptr) return;
+    sized *p = (sized *)ptr - 1;
+    bad_frees += p->size != size;
+    free(p);
+}
+
+static void test_out_of_memory(void) {
+    px_allocator al = {failing_alloc, failing_free, NULL};
+    px_convex *c = box3(0.5, 0.5, 0.5);
+    for (long k = 0; k < 60; ++k) {
+        px_scene_options o;
+        memset(&o, 0, sizeof o);
+        o.allocator = &al;
+        o.report_distance = 0.1;
+        fail_after = -1;
+        px_error e;
+        px_scene *s = px_scene_create(&o, &e);
+        enum { N = 20 };
+        uint32_t id[N];
+        int added = 0;
+        fail_after = k; /* from the k-th allocation on, while adding and stepping */
+        for (int i = 0; i < N; ++i) {
+            px_body_desc d;
+            memset(&d, 0, sizeof d);
+            d.convex = c;
+            d.pose = at3(3.0 * i, 0, 0);
+            d.max_speed = INFINITY;
+            if (px_scene_add_body(s, &d, &id[added], &e) == PX_OK) ++added;
+        }
+        px_scene_step(s, 0, &e);
+        for (int i = 0; i < added; ++i) {
+            px_pose p = at3(0.01 * i, 0, 0);
+            px_scene_set_pose(s, id[i], &p, &e);
+        }
+        px_scene_step(s, 1, &e);
+        fail_after = -1;
+        CHECK(px_scene_step(s, 2, &e) == PX_OK, "k %ld: step once memory is back: %s", k, e.message);
+        size_t n;
+        const px_scene_pair *pr = px_scene_pairs(s, &n);
+        CHECK(n == (size_t)added * (size_t)(added - 1) / 2, "k %ld: %zu pairs of %d bodies on one point", k,
+              n, added);
+        for (size_t i = 0; i < n; ++i)
+            CHECK(pr[i].body_a < pr[i].body_b && pr[i].body_b < (uint32_t)N, "ids");
+        px_scene_destroy(s);
+    }
+    CHECK(bad_frees == 0, "%zu frees with a size other than the allocation's", bad_frees);
+    px_convex_destroy(c);
+}
+
 int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
@@ -737,6 +807,7 @@ int main(void) {
     test_containment();
     test_no_allocation();
     test_review_cases();
+    test_out_of_memory();
     test_bad_inputs();
     return tu_finish();
 }

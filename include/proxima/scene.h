@@ -203,7 +203,9 @@ typedef struct px_scene_stats {
 /// Advances to `time` (>= the last step's time; the first step may use any
 /// finite time): measures each moved body, updates the broad phase, and
 /// checks every pair that is due. Afterwards px_scene_pairs and
-/// px_scene_events hold this step's results. PX_ERR_INVALID_ARGUMENT for a
+/// px_scene_events hold this step's results. PX_ERR_OUT_OF_MEMORY leaves
+/// the scene consistent: the next step sorts the broad phase anew and
+/// finds every pair the failure could have lost. PX_ERR_INVALID_ARGUMENT for a
 /// time that goes back or is not finite; a query error (PX_ERR_RANGE for
 /// bodies placed more than 2^250 apart) stops the step with the pair named
 /// in `err`, and the next step checks again.
@@ -222,7 +224,8 @@ PX_API const px_scene_event *px_scene_events(const px_scene *scene, size_t *coun
 PX_API px_status px_scene_get_stats(const px_scene *scene, px_scene_stats *out);
 
 /// The smallest distance over all pairs of the scene (filters applied) at
-/// the last step's poses, with its pair, or PX_OK with body_a = body_b =
+/// the last step's poses (poses set since are not looked at; bodies
+/// removed or added since are left out), with its pair, or PX_OK with body_a = body_b =
 /// UINT32_MAX and distance INFINITY when no two bodies can be paired.
 /// Exact: when no pair is within the report distance, the bodies' boxes
 /// order the search and each pair is measured only if its boxes are closer

@@ -116,7 +116,7 @@ struct px_scene {
     sep *axis[3];
     uint32_t *ep; /* per body, 6 positions: its min and max on each axis (apart from
                    * the bodies, so that sifting touches little memory) */
-    uint32_t n_ep, cap_ep;
+    uint32_t n_ep, cap_axis[3];
     spair *pair;
     uint32_t n_pair, cap_pair, free_pair, live_pairs;
     shash pairs, excluded;
@@ -133,6 +133,7 @@ struct px_scene {
     px_scene_event *ev, *pending;
     uint32_t n_ev, cap_ev, n_pending, cap_pending;
     uint32_t added, chains;
+    int resync; /* the sweep's pair set may lack pairs: sort and sweep anew */
     px_scene_stats stats;
     size_t bytes;
 };
@@ -879,8 +880,7 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
  * models whose root hulls, are farther apart than the report distance is
  * not measured further: that lower bound keys it (the pair is not
  * reported; a cold query or a hierarchy descent costs far more). */
-static px_status query(px_scene *s, spair *q, int exact, px_error *err) {
-    const sbody *x = &s->body[q->a], *y = &s->body[q->b];
+static px_status query(px_scene *s, spair *q, const sbody *x, const sbody *y, int exact, px_error *err) {
     px_scene_pair *r = &q->res;
     r->body_a = q->a;
     r->body_b = q->b;
@@ -1009,7 +1009,7 @@ void px_scene_destroy(px_scene *s) {
     px_allocator a = s->alloc;
     pxi_free(&a, s->body, (size_t)s->cap_body * sizeof *s->body);
     pxi_free(&a, s->ep, (size_t)s->cap_bep * sizeof *s->ep);
-    for (int k = 0; k < 3; ++k) pxi_free(&a, s->axis[k], (size_t)s->cap_ep * sizeof(sep));
+    for (int k = 0; k < 3; ++k) pxi_free(&a, s->axis[k], (size_t)s->cap_axis[k] * sizeof(sep));
     pxi_free(&a, s->pair, (size_t)s->cap_pair * sizeof *s->pair);
     hash_free(s, &s->pairs);
     hash_free(s, &s->excluded);
@@ -1088,22 +1088,17 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     /* The smallest free id, for determinism (no id below the hint is free). */
     uint32_t i = s->free_hint;
     while (i < s->n_body && s->body[i].alive) ++i;
-    if (i == s->n_body) {
-        if (s->n_body >= (UINT32_MAX >> 3) || !GROW(s, s->body, s->cap_body, s->n_body + 1) ||
-            !grow(s, (void **)&s->ep, &s->cap_bep, 6 * (s->n_body + 1), sizeof *s->ep))
+    /* Every array grows first; the scene changes only once all did. */
+    const int fresh = i == s->n_body;
+    if (fresh && (s->n_body >= (UINT32_MAX >> 3) || !GROW(s, s->body, s->cap_body, s->n_body + 1) ||
+                  !grow(s, (void **)&s->ep, &s->cap_bep, 6 * (s->n_body + 1), sizeof *s->ep)))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
+    for (int k = 0; k < 3; ++k)
+        if (!grow(s, (void **)&s->axis[k], &s->cap_axis[k], 2 * (s->alive + 1), sizeof(sep)))
             return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
-        s->n_body++;
-    }
-    uint32_t need = 2 * (s->alive + 1);
-    uint32_t cap = s->cap_ep;
-    for (int k = 0; k < 3; ++k) {
-        uint32_t c = cap;
-        if (!grow(s, (void **)&s->axis[k], &c, need, sizeof(sep)))
-            return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
-        if (k == 2) s->cap_ep = c;
-    }
     if (!GROW(s, s->dirty, s->cap_dirty, s->alive + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_add_body: out of memory");
+    if (fresh) s->n_body++;
     sbody *b = &s->body[i];
     memset(b, 0, sizeof *b);
     b->model = d->model;
@@ -1295,7 +1290,7 @@ static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err
         return PX_OK;
     }
     if (!q->measured || moved > 0.0) {
-        px_status st = query(s, q, 0, err);
+        px_status st = query(s, q, x, y, 0, err);
         if (st != PX_OK) {
             q->due = -INFINITY;
             return st;
@@ -1335,19 +1330,25 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         if (!refit(s, b) || b->added) continue;
         s->stats.box_updates++;
         write_ep(s, id);
-        for (int k = 0; k < 3 && ok; ++k) ok &= sift(s, id, k);
+        /* Every axis is sorted even when a pair could not be added. */
+        for (int k = 0; k < 3; ++k) ok &= sift(s, id, k);
     }
     s->n_dirty = 0;
-    if (ok && s->added) {
+    /* A pair the sweep could not add (out of memory) would be lost for
+     * good: the scene then sorts everything anew and adds every missing
+     * pair, now or at the next step, and reports the failure meanwhile. */
+    if (!ok) s->resync = 1;
+    if (!s->resync && s->added) {
         if (s->added > 16 && s->added * 4 > s->alive) {
-            ok = rebuild(s);
+            if (!rebuild(s)) s->resync = 1;
         } else {
-            for (uint32_t id = 0; id < s->n_body && ok; ++id)
-                if (s->body[id].alive && s->body[id].added) ok = insert(s, id);
+            for (uint32_t id = 0; id < s->n_body; ++id)
+                if (s->body[id].alive && s->body[id].added && !insert(s, id)) s->resync = 1;
             s->added = 0;
         }
     }
-    if (!ok) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    if (s->resync && rebuild(s)) s->resync = 0;
+    if (s->resync) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     s->time = time;
     s->stepped = 1;
     /* Due pairs. */
@@ -1457,18 +1458,24 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
     out->body_a = out->body_b = UINT32_MAX;
     out->distance = out->upper_bound = INFINITY;
     if (!s->stepped) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_min_distance: no step yet");
-    /* A reported pair is nearer than every pair not reported. */
-    if (s->n_rep > 0) {
-        for (uint32_t i = 0; i < s->n_rep; ++i)
-            if (s->out[i].distance < out->distance) *out = s->out[i];
-        return PX_OK;
+    /* The last step's poses (`last`) of the bodies that took part in it
+     * and are still there. A reported pair is nearer than every pair not
+     * reported. */
+    for (uint32_t i = 0; i < s->n_rep; ++i) {
+        const px_scene_pair *r = &s->out[i];
+        if (r->distance < out->distance && s->body[r->body_a].alive && s->body[r->body_b].alive &&
+            !s->body[r->body_a].added && !s->body[r->body_b].added && !filtered(s, r->body_a, r->body_b))
+            *out = *r;
     }
+    if (out->body_a != UINT32_MAX) return PX_OK;
     sbox *bx = pxi_alloc_array(&s->alloc, s->alive ? s->alive : 1, sizeof *bx);
     if (!bx) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_min_distance: out of memory");
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_body; ++i) {
-        if (!s->body[i].alive) continue;
-        world_box(&s->body[i], bx[n].b);
+        if (!s->body[i].alive || s->body[i].added) continue;
+        sbody last = s->body[i];
+        last.pose = last.last;
+        world_box(&last, bx[n].b);
         bx[n++].id = i;
     }
     sort(bx, n, sizeof *bx, cmp_sbox);
@@ -1483,7 +1490,10 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
             memset(&tmp, 0, sizeof tmp);
             tmp.a = a;
             tmp.b = b;
-            const sbody *x = &s->body[a], *y = &s->body[b];
+            sbody x0 = s->body[a], y0 = s->body[b];
+            x0.pose = x0.last;
+            y0.pose = y0.last;
+            const sbody *x = &x0, *y = &y0;
             tmp.kind = x->convex && y->convex ? K_CONVEX
                        : x->model && y->model ? K_MODEL_MODEL
                        : x->model             ? K_MODEL_CONVEX
@@ -1497,7 +1507,7 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
             /* query() records events on contact changes: this pair starts
              * with contact = the result's own, so no event is made. */
             int was = s->n_pending;
-            st = query(s, &tmp, 1, err);
+            st = query(s, &tmp, x, y, 1, err);
             s->n_pending = (uint32_t)was;
             s->stats.pairs_checked--; /* the minimum's queries are not the step's */
             if (tmp.kind != K_CONVEX) px_model_cache_release(&tmp.cache.model);

@@ -155,6 +155,7 @@ if [ -n "$A" ]; then
   cp "$T/stl/a_overlap.stl" "$T/bad/"
   expect 2 "broken.stl" -- "$B" check "$T/bad"
   expect 2 "broken.stl" -- "$B" check "$T/bad/broken.stl"
+  expect 2 "a part and itself are no pair" -- "$B" check "$T/stl" --ignore a_overlap.stl,a_overlap.stl
   expect 2 "finite number >= 0, not '-1'" -- "$B" check "$T/stl" --clearance -1
   expect 2 "finite number >= 0, not 'nan'" -- "$B" check "$T/stl" --clearance nan
   expect 2 "finite number >= 0, not 'inf'" -- "$B" check "$T/stl" --clearance inf

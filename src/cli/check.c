@@ -401,6 +401,11 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
             return -1;
         }
         size_t la = (size_t)(split - s), lb = strlen(split + 1);
+        if (la == lb && !strncmp(s, split + 1, la)) {
+            note("--ignore '%s': a part and itself are no pair", s);
+            free(v);
+            return -1;
+        }
         for (uint32_t i = 0; i < as->count; ++i) {
             if (!named(as, s, la, i)) continue;
             for (uint32_t j = 0; j < as->count; ++j) {
@@ -415,7 +420,10 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
                     }
                     v = nv;
                 }
-                v[n++] = (ipair){i < j ? i : j, i < j ? j : i};
+                ipair pr = {i < j ? i : j, i < j ? j : i};
+                int seen = 0; /* the same pair named twice, or as B,A, counts once */
+                for (size_t k = 0; k < n && !seen; ++k) seen = v[k].a == pr.a && v[k].b == pr.b;
+                if (!seen) v[n++] = pr;
             }
         }
     }

@@ -10,8 +10,8 @@
 /// began or ended.
 ///
 /// How only close pairs are checked:
-/// - Broad phase: sweep-and-prune over axis-aligned boxes, kept sorted by
-///   insertion sort (coherence). Each box is fattened by the report
+/// - Broad phase: sweep-and-prune over boxes (axis-aligned in a fixed,
+///   generic frame), kept sorted by insertion sort (coherence). Each box is fattened by the report
 ///   distance and by some slack, so a box is moved only when its body
 ///   leaves the fat box, and a pair whose boxes are apart is farther than
 ///   the report distance.
@@ -41,7 +41,8 @@
 ///
 /// Memory grows with the bodies and the pairs whose boxes overlap, never
 /// with all pairs; once warm, a step allocates only when that set grows
-/// beyond what it held before. Not thread-safe: one scene per thread. The
+/// beyond what it held before, or when a model pair that came close again
+/// rebuilds the node-pair cache it gave back while far. Not thread-safe: one scene per thread. The
 /// models and polytopes bodies point to are shared, read only, and must
 /// outlive the bodies.
 #ifndef PROXIMA_SCENE_H

@@ -46,7 +46,17 @@
 
 enum { K_CONVEX = 0, K_MODEL_MODEL = 1, K_MODEL_CONVEX = 2, K_CONVEX_MODEL = 3 };
 
+/* Fields are in the order a due pair reads them: its re-key touches the
+ * first cache line of each record only. */
 typedef struct sbody {
+    double travel;        /* sum of the displacement bounds of its pose changes, rounded up */
+    double speed;         /* vmax + wmax * radius: bound on a point's speed */
+    double accel;         /* amax + alphamax * radius: bound on a point's acceleration (0: none) */
+    double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
+    double size;          /* half-diagonal of the body-frame box */
+    uint8_t alive, dirty, added, vel_now, chain;
+    double fit_travel; /* travel when the fat box was last checked */
+    double fit_room;   /* how far the body could then move and stay in it */
     const px_model *model;
     const px_convex *convex;
     px_pose pose;   /* the pose the next step measures */
@@ -56,32 +66,26 @@ typedef struct sbody {
     double radius;  /* largest distance from center to the body */
     px_vec3 sc;     /* bounding sphere: centre (body frame) and radius */
     double sr;
-    double size;          /* half-diagonal of the body-frame box */
-    double vmax, wmax;    /* speed bounds */
-    double accel;         /* amax + alphamax * radius: bound on a point's acceleration (0: none) */
-    double speed;         /* vmax + wmax * radius: bound on a point's speed */
-    double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
-    double travel;        /* sum of the displacement bounds of its pose changes, rounded up */
-    double fit_travel;    /* travel when the fat box was fitted */
-    px_pose fit;          /* the pose its fat box was fitted at */
-    double sk, sk_last;   /* skews (how far from rotations) of pose and last */
+    double vmax, wmax;  /* speed bounds */
+    double sk, sk_last; /* skews (how far from rotations) of pose and last */
     int fitted;
     double fat[6]; /* the fat box in the sweep: lo xyz, hi xyz */
     uint32_t group, mask, flags;
     uint32_t first_pair; /* head of its list of pairs */
-    uint8_t alive, dirty, added, vel_now, chain;
     void *user;
 } sbody;
 
 typedef struct spair {
     uint32_t a, b;
+    uint8_t measured, contact, where;
+    uint8_t rel_miss, rel_skip; /* the relative-pose test's failures in a row, and
+                                 * how many due updates skip it still */
+    double due;
+    double snap_a, snap_b;     /* the bodies' travels at the last query */
+    double gap;                /* distance - report - eps at the last query */
     uint32_t next[2], prev[2]; /* lists of a ([0]) and b ([1]) */
     uint32_t kind;
-    uint8_t measured, contact, where;
-    double due;
     px_pose pose_a, pose_b; /* the bodies' poses at the last query */
-    double snap_a, snap_b;  /* and their travels */
-    double gap;             /* distance - report - eps at the last query */
     px_scene_pair res;
     union {
         px_pair_cache convex;
@@ -96,6 +100,7 @@ typedef struct sep {
 } sep;
 
 typedef struct shent shent;
+typedef struct snear snear;
 
 /* Open addressing on 64-bit keys (a << 32 | b), linear probing, deletion by
  * backward shift (no tombstones, so the layout depends only on the set). */
@@ -122,8 +127,10 @@ struct px_scene {
     shash pairs, excluded;
     shent *heap;
     uint32_t cap_heap, n_heap;
-    uint32_t *close, cap_close, n_close;
-    uint32_t *slot, cap_slot; /* per pair: its position in the heap or the close list
+    snear *near;
+    uint32_t cap_near, n_near;
+    double horizon;           /* pairs due within this long wait in the near list */
+    uint32_t *slot, cap_slot; /* per pair: its position in the heap or the near list
                                * (apart from the pair records: sifting touches only these) */
     uint32_t *dirty, n_dirty, cap_dirty;
     uint32_t *later, n_later, cap_later;
@@ -273,13 +280,24 @@ static void hash_free(px_scene *s, shash *h) {
     memset(h, 0, sizeof *h);
 }
 
-/* ---- the queue: a heap on (due, a, b), and the close pairs ----------------
+/* ---- the queue: a heap on (due, a, b), and the near pairs ----------------
  *
  * Heap entries carry their key, so sifting touches only the heap array.
- * Pairs within the report distance are due at every step: they sit in a
- * plain list instead (where = Q_CLOSE), which costs no sifting. */
+ * Pairs due within a few steps (those within the report distance are due
+ * at every step) sit in a plain list instead (where = Q_NEAR), which the
+ * step scans: a pair that is due again soon costs a comparison per step
+ * rather than a pop and a push. */
 
-enum { Q_NONE = 0, Q_HEAP = 1, Q_CLOSE = 2 };
+enum { Q_NONE = 0, Q_HEAP = 1, Q_NEAR = 2 };
+
+/* How many of the last step's intervals ahead a pair may be due and still
+ * wait in the near list. */
+#define S_NEAR_STEPS 4.0
+
+struct snear {
+    double due;
+    uint32_t pair;
+};
 
 struct shent {
     double due;
@@ -319,14 +337,15 @@ static void heap_down(px_scene *s, uint32_t i) {
     heap_set(s, i, e);
 }
 
-/* Queues pair p at its `due`: in the close list when `close`, else in the
- * heap. Capacities follow the pair pool's, so this never fails. */
-static void enqueue(px_scene *s, uint32_t p, int close) {
+/* Queues pair p at its `due`: in the near list when due within the
+ * horizon, else in the heap. Capacities follow the pair pool's, so this
+ * never fails. */
+static void enqueue(px_scene *s, uint32_t p) {
     spair *q = &s->pair[p];
-    if (close) {
-        q->where = Q_CLOSE;
-        s->slot[p] = s->n_close;
-        s->close[s->n_close++] = p;
+    if (q->due <= s->time + s->horizon) {
+        q->where = Q_NEAR;
+        s->slot[p] = s->n_near;
+        s->near[s->n_near++] = (snear){q->due, p};
         return;
     }
     q->where = Q_HEAP;
@@ -337,10 +356,10 @@ static void enqueue(px_scene *s, uint32_t p, int close) {
 static void dequeue(px_scene *s, uint32_t p) {
     spair *q = &s->pair[p];
     uint32_t i = s->slot[p];
-    if (q->where == Q_CLOSE) {
-        uint32_t last = s->close[--s->n_close];
-        s->close[i] = last;
-        s->slot[last] = i;
+    if (q->where == Q_NEAR) {
+        snear last = s->near[--s->n_near];
+        s->near[i] = last;
+        s->slot[last.pair] = i;
     } else if (q->where == Q_HEAP) {
         shent last = s->heap[--s->n_heap];
         if (i != s->n_heap) {
@@ -352,10 +371,11 @@ static void dequeue(px_scene *s, uint32_t p) {
     q->where = Q_NONE;
 }
 
-/* Makes a queued pair due now (close pairs are due at every step). */
+/* Makes a queued pair due now. */
 static void make_due(px_scene *s, uint32_t p) {
     spair *q = &s->pair[p];
     q->due = -INFINITY;
+    if (q->where == Q_NEAR) s->near[s->slot[p]].due = -INFINITY;
     if (q->where == Q_HEAP) {
         s->heap[s->slot[p]].due = -INFINITY;
         heap_up(s, s->slot[p]);
@@ -430,7 +450,7 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
         s->free_pair = s->pair[p].next[0];
     } else {
         if (!GROW(s, s->pair, s->cap_pair, s->n_pair + 1)) return 0;
-        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair) || !GROW(s, s->close, s->cap_close, s->cap_pair) ||
+        if (!GROW(s, s->heap, s->cap_heap, s->cap_pair) || !GROW(s, s->near, s->cap_near, s->cap_pair) ||
             !GROW(s, s->slot, s->cap_slot, s->cap_pair))
             return 0;
         p = s->n_pair++;
@@ -456,7 +476,7 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
     }
     q->due = -INFINITY;
     link_pair(s, p);
-    enqueue(s, p, 0);
+    enqueue(s, p);
     s->live_pairs++;
     return 1;
 }
@@ -655,29 +675,39 @@ static void world_box(const sbody *b, double out[6]) {
     }
 }
 
-/* New fat box when the grown world box leaves the old one; 1 when moved. */
+/* The least clearance between box w grown by g and the fat box (negative
+ * when it sticks out), less the rounding of the differences. */
+static double room(const double fat[6], const double w[6], double g) {
+    double r = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        double lo = (w[i] - g) - fat[i], hi = fat[3 + i] - (w[3 + i] + g);
+        double e = 4.0 * DBL_EPSILON * (fabs(w[i]) + fabs(w[3 + i]) + fabs(fat[i]) + fabs(fat[3 + i]) + g);
+        r = pxi_min2(r, pxi_min2(lo, hi) - e);
+    }
+    return r;
+}
+
+/* New fat box when the grown world box leaves the old one; 1 when moved.
+ * Each check records the room left between the grown box and the fat box:
+ * until the body's travel since then uses that room up, no point of it can
+ * have left, and no box is computed. */
 static int refit(px_scene *s, sbody *b) {
-    /* No point moved farther than the slack since the fit: the body grown
-     * by g is still inside the fat box, no box to compute. */
-    const double slack0 = 0.99 * S_SLACK * b->size;
-    if (b->fitted && (since(b->travel, b->fit_travel) <= slack0 ||
-                      moved_points(b->center, b->radius, &b->fit, &b->pose) <= slack0))
-        return 0;
+    if (b->fitted && since(b->travel, b->fit_travel) <= b->fit_room) return 0;
     double w[6], g = 0.5 * s->report;
     world_box(b, w);
-    int inside = 1;
-    for (int i = 0; i < 3; ++i)
-        if (w[i] - g < b->fat[i] || w[3 + i] + g > b->fat[3 + i]) inside = 0;
-    if (inside) return 0;
-    double slack = g + S_SLACK * b->size;
-    for (int i = 0; i < 3; ++i) {
-        b->fat[i] = w[i] - slack;
-        b->fat[3 + i] = w[3 + i] + slack;
+    int moved = 0;
+    if (!b->fitted || room(b->fat, w, g) < 0.0) {
+        double slack = g + S_SLACK * b->size;
+        for (int i = 0; i < 3; ++i) {
+            b->fat[i] = w[i] - slack;
+            b->fat[3 + i] = w[3 + i] + slack;
+        }
+        b->fitted = 1;
+        moved = 1;
     }
-    b->fit = b->pose;
     b->fit_travel = b->travel;
-    b->fitted = 1;
-    return 1;
+    b->fit_room = pxi_max2(room(b->fat, w, g), 0.0);
+    return moved;
 }
 
 static void write_ep(px_scene *s, uint32_t id) {
@@ -1014,7 +1044,7 @@ void px_scene_destroy(px_scene *s) {
     hash_free(s, &s->pairs);
     hash_free(s, &s->excluded);
     pxi_free(&a, s->heap, (size_t)s->cap_heap * sizeof *s->heap);
-    pxi_free(&a, s->close, (size_t)s->cap_close * sizeof *s->close);
+    pxi_free(&a, s->near, (size_t)s->cap_near * sizeof *s->near);
     pxi_free(&a, s->slot, (size_t)s->cap_slot * sizeof *s->slot);
     pxi_free(&a, s->dirty, (size_t)s->cap_dirty * sizeof *s->dirty);
     pxi_free(&a, s->later, (size_t)s->cap_later * sizeof *s->later);
@@ -1276,12 +1306,24 @@ static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err
                 m2 += moved_points(y->center, y->radius, &q->pose_b, &y->pose);
             moved = pxi_min2(moved, m2);
         }
-        if (moved >= q->gap && moved > 0.0) {
+        /* The relative test pays for bodies that move together; for others
+         * it rarely beats the sums, so after failures in a row a pair of
+         * polytopes (whose query is cheap) tries it ever less often: after
+         * 1, 3, 7, ... 63 due updates. Model pairs always try it. */
+        if (moved >= q->gap && moved > 0.0 && q->rel_skip > 0) {
+            q->rel_skip--;
+        } else if (moved >= q->gap && moved > 0.0) {
             px_pose then = pxi_relative(&q->pose_a, &q->pose_b), now = pxi_relative(&x->pose, &y->pose);
             double mr = moved_points(x->center, x->radius, &then, &now) +
                         16.0 * DBL_EPSILON *
                             (pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + pxi_max_abs(q->pose_a.t) +
                              pxi_max_abs(q->pose_b.t));
+            if (mr < q->gap) {
+                q->rel_miss = 0;
+            } else {
+                if (q->rel_miss < 6 && q->kind == K_CONVEX) q->rel_miss++;
+                q->rel_skip = (uint8_t)((1u << q->rel_miss) - 1u);
+            }
             moved = pxi_min2(moved, mr);
         }
     }
@@ -1358,27 +1400,41 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         !GROW(s, s->rep, s->cap_rep, s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     px_status st = PX_OK;
-    /* The close pairs, then the heap's due ones; a pair that stays within
-     * the report distance goes (back) to the close list, the others to the
-     * heap once the loop is over. */
-    for (uint32_t i = s->n_close; i-- > 0 && st == PX_OK;) {
-        uint32_t p = s->close[i];
+    /* The near pairs that are due, then the heap's; a pair due again
+     * within the horizon goes (back) to the near list, the others to the
+     * heap once the loop is over. The list is scanned from its end, so that
+     * a removal (the last entry moves into the hole) skips nothing. */
+    s->horizon = dt > 0.0 && isfinite(dt) ? S_NEAR_STEPS * dt : 0.0;
+    if (!isfinite(time + s->horizon)) s->horizon = 0.0;
+    const double soon = time + s->horizon;
+    for (uint32_t i = s->n_near; i-- > 0 && st == PX_OK;) {
+        if (s->near[i].due > time) continue;
+        uint32_t p = s->near[i].pair;
         st = update_pair(s, p, time, err);
-        if (s->pair[p].due > time || st != PX_OK) {
+        if (s->pair[p].due > soon || st != PX_OK) {
             dequeue(s, p);
             s->later[s->n_later++] = p;
+        } else {
+            s->near[i].due = s->pair[p].due;
         }
     }
     while (st == PX_OK && s->n_heap > 0 && s->heap[0].due <= time) {
         uint32_t p = s->heap[0].pair;
         dequeue(s, p);
         st = update_pair(s, p, time, err);
-        if (s->pair[p].due <= time && st == PX_OK)
-            enqueue(s, p, 1);
+        if (st != PX_OK) s->pair[p].due = -INFINITY;
+        if (s->pair[p].due <= soon && st == PX_OK)
+            enqueue(s, p);
         else
             s->later[s->n_later++] = p;
     }
-    for (uint32_t i = 0; i < s->n_later; ++i) enqueue(s, s->later[i], 0);
+    for (uint32_t i = 0; i < s->n_later; ++i) {
+        uint32_t p = s->later[i];
+        spair *q = &s->pair[p];
+        q->where = Q_HEAP;
+        heap_set(s, s->n_heap++, (shent){q->due, pair_key(q->a, q->b), p});
+        heap_up(s, s->n_heap - 1);
+    }
     s->n_later = 0;
     if (st != PX_OK) {
         s->n_rep = 0;

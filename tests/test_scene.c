@@ -94,6 +94,7 @@ typedef struct sim {
     int statics;        /* some static bodies */
     int accel;          /* accelerating bodies with velocities */
     int flat;           /* every body on one floor (z fixed), no spin off it */
+    int threads;        /* px_scene_options.threads */
 } sim;
 
 static double pair_distance(const sim_body *x, const sim_body *y, px_vec3 *pa, px_vec3 *pb) {
@@ -185,6 +186,7 @@ static uint64_t run(const sim *c, int verbose) {
     memset(&o, 0, sizeof o);
     o.margin = c->margin;
     o.report_distance = c->report;
+    o.threads = (uint32_t)c->threads;
     px_error e;
     px_scene *s = px_scene_create(&o, &e);
     CHECK(s != NULL, "create: %s", e.message);
@@ -314,6 +316,9 @@ static uint64_t run(const sim *c, int verbose) {
         }
         for (size_t k = 0; k < ne; ++k)
             hash = (hash ^ (ev[k].body_a * 31u + ev[k].body_b * 7u + ev[k].began)) * 1099511628211ull;
+        /* The work done, too: the same on any number of threads. */
+        hash = (hash ^ stats.pairs_checked) * 1099511628211ull;
+        hash = (hash ^ stats.pairs_due) * 1099511628211ull;
         /* Global minimum now and then. */
         if (step % 10 == 3) {
             px_scene_pair m;
@@ -344,7 +349,7 @@ static uint64_t run(const sim *c, int verbose) {
 
 /* The scheduler must skip most pairs of a sparse, slow scene. */
 static void test_savings(void) {
-    sim c = {"savings", 80, 120, 0, 14.0, 0.02, 0.01, 0.05, 0.3, 0, 0, 0, 0, 0, 0};
+    sim c = {"savings", 80, 120, 0, 14.0, 0.02, 0.01, 0.05, 0.3, 0, 0, 0, 0, 0, 0, 0};
     rng_state = 7;
     run(&c, 1);
 }
@@ -788,20 +793,29 @@ int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
     sim cases[] = {
-        {"convex", 40, quick ? 60 : 200, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 0},
-        {"convex dense", 60, quick ? 40 : 150, 0, 5.0, 0.08, 0.1, 0.05, 0.25, 0, 0, 0, 0, 0, 0},
-        {"teleports", 40, quick ? 50 : 150, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 13, 0, 0, 0, 0, 0},
-        {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0, 0},
-        {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0, 0},
-        {"filters", 40, quick ? 60 : 150, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 1, 0, 0, 0},
-        {"statics", 40, quick ? 60 : 150, 4, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 1, 0, 0},
-        {"accel", 40, quick ? 60 : 200, 0, 8.0, 0.06, 0.02, 0.1, 0.4, 0, 0, 0, 0, 1, 0},
-        {"floor", 60, quick ? 40 : 120, 0, 9.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 1},
-        {"zero margin", 50, quick ? 60 : 150, 0, 6.0, 0.05, 0.05, 0.0, 0.0, 0, 0, 0, 0, 0, 0},
+        {"convex", 40, quick ? 60 : 200, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 0, 0},
+        {"convex dense", 60, quick ? 40 : 150, 0, 5.0, 0.08, 0.1, 0.05, 0.25, 0, 0, 0, 0, 0, 0, 0},
+        {"teleports", 40, quick ? 50 : 150, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 13, 0, 0, 0, 0, 0, 0},
+        {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0, 0, 0},
+        {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0, 0, 0},
+        {"filters", 40, quick ? 60 : 150, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 1, 0, 0, 0, 0},
+        {"statics", 40, quick ? 60 : 150, 4, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 1, 0, 0, 0},
+        {"accel", 40, quick ? 60 : 200, 0, 8.0, 0.06, 0.02, 0.1, 0.4, 0, 0, 0, 0, 1, 0, 0},
+        {"floor", 60, quick ? 40 : 120, 0, 9.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 1, 0},
+        {"zero margin", 50, quick ? 60 : 150, 0, 6.0, 0.05, 0.05, 0.0, 0.0, 0, 0, 0, 0, 0, 0, 0},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         uint64_t h1 = run(&cases[i], 1);
         if (i < 2) CHECK(run(&cases[i], 0) == h1, "%s: a second run reports the same", cases[i].name);
+    }
+    /* Helper threads: a crowded scene (hundreds of due pairs a step, so
+     * the helpers get work) with models, teleports and churn, against brute
+     * force and bit for bit against one thread. */
+    sim crowd = {"threads", 240, quick ? 12 : 40, 4, 12.0, 0.06, 0.06, 0.1, 0.3, 17, 1, 0, 0, 0, 0, 1};
+    uint64_t one = run(&crowd, 1);
+    for (int t = 2; t <= 3; ++t) {
+        crowd.threads = t;
+        CHECK(run(&crowd, 0) == one, "threads: %d threads report the same as one", t);
     }
     test_savings();
     test_containment();

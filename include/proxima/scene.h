@@ -75,7 +75,13 @@ typedef struct px_scene_options {
     /// Node-pair cache budget per model pair in bytes (0: 256 KiB), see
     /// px_model_cache.max_bytes.
     size_t model_cache_bytes;
-    uint32_t reserved[8]; ///< must be zero
+    /// Threads a step may use to bring its due pairs up to date, the
+    /// calling one included (0 or 1: the calling thread only; at most 64).
+    /// The others are started by px_scene_create and wait between steps;
+    /// they call the allocator (model pairs' caches), which must then be
+    /// thread-safe. Reports, events and errors are the same for any number.
+    uint32_t threads;
+    uint32_t reserved[7]; ///< must be zero
 } px_scene_options;
 
 /// A new empty scene, or NULL with PX_ERR_INVALID_ARGUMENT (bad options) or

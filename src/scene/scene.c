@@ -33,7 +33,10 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <string.h>
+#include <threads.h>
+#include <time.h>
 
 #include "core/core.h"
 #include "math/vec3.h"
@@ -77,7 +80,7 @@ typedef struct sbody {
 
 typedef struct spair {
     uint32_t a, b;
-    uint8_t measured, contact, where;
+    uint8_t measured, contact;
     uint8_t rel_miss, rel_skip; /* the relative-pose test's failures in a row, and
                                  * how many due updates skip it still */
     double due;
@@ -101,6 +104,15 @@ typedef struct sep {
 
 typedef struct shent shent;
 typedef struct snear snear;
+
+/* What became of a due pair in the step, for the step to collect without
+ * reading the pair's record (which another thread may have written). */
+typedef struct sdone {
+    double due;
+    uint8_t what;    /* U_* */
+    uint8_t report;  /* within the report distance */
+    uint8_t changed; /* its contact differs from the last one collected */
+} sdone;
 
 /* Open addressing on 64-bit keys (a << 32 | b), linear probing, deletion by
  * backward shift (no tombstones, so the layout depends only on the set). */
@@ -132,8 +144,13 @@ struct px_scene {
     double horizon;           /* pairs due within this long wait in the near list */
     uint32_t *slot, cap_slot; /* per pair: its position in the heap or the near list
                                * (apart from the pair records: sifting touches only these) */
+    uint8_t *where;           /* per pair: Q_* */
+    uint32_t cap_where;
     uint32_t *dirty, n_dirty, cap_dirty;
     uint32_t *later, n_later, cap_later;
+    sdone *done; /* per due pair of the step: what became of it */
+    uint32_t cap_done;
+    struct spool *pool; /* helper threads (NULL: the step runs on the caller's) */
     uint32_t *rep, n_rep, cap_rep;
     px_scene_pair *out;
     uint32_t cap_out;
@@ -340,27 +357,28 @@ static void heap_down(px_scene *s, uint32_t i) {
 /* Queues pair p at its `due`: in the near list when due within the
  * horizon, else in the heap. Capacities follow the pair pool's, so this
  * never fails. */
-static void enqueue(px_scene *s, uint32_t p) {
-    spair *q = &s->pair[p];
-    if (q->due <= s->time + s->horizon) {
-        q->where = Q_NEAR;
+static void enqueue_at(px_scene *s, uint32_t p, double due) {
+    if (due <= s->time + s->horizon) {
+        s->where[p] = Q_NEAR;
         s->slot[p] = s->n_near;
-        s->near[s->n_near++] = (snear){q->due, p};
+        s->near[s->n_near++] = (snear){due, p};
         return;
     }
-    q->where = Q_HEAP;
-    heap_set(s, s->n_heap++, (shent){q->due, pair_key(q->a, q->b), p});
+    const spair *q = &s->pair[p];
+    s->where[p] = Q_HEAP;
+    heap_set(s, s->n_heap++, (shent){due, pair_key(q->a, q->b), p});
     heap_up(s, s->n_heap - 1);
 }
 
+static void enqueue(px_scene *s, uint32_t p) { enqueue_at(s, p, s->pair[p].due); }
+
 static void dequeue(px_scene *s, uint32_t p) {
-    spair *q = &s->pair[p];
     uint32_t i = s->slot[p];
-    if (q->where == Q_NEAR) {
+    if (s->where[p] == Q_NEAR) {
         snear last = s->near[--s->n_near];
         s->near[i] = last;
         s->slot[last.pair] = i;
-    } else if (q->where == Q_HEAP) {
+    } else if (s->where[p] == Q_HEAP) {
         shent last = s->heap[--s->n_heap];
         if (i != s->n_heap) {
             heap_set(s, i, last);
@@ -368,15 +386,14 @@ static void dequeue(px_scene *s, uint32_t p) {
             heap_down(s, s->slot[last.pair]);
         }
     }
-    q->where = Q_NONE;
+    s->where[p] = Q_NONE;
 }
 
 /* Makes a queued pair due now. */
 static void make_due(px_scene *s, uint32_t p) {
-    spair *q = &s->pair[p];
-    q->due = -INFINITY;
-    if (q->where == Q_NEAR) s->near[s->slot[p]].due = -INFINITY;
-    if (q->where == Q_HEAP) {
+    s->pair[p].due = -INFINITY;
+    if (s->where[p] == Q_NEAR) s->near[s->slot[p]].due = -INFINITY;
+    if (s->where[p] == Q_HEAP) {
         s->heap[s->slot[p]].due = -INFINITY;
         heap_up(s, s->slot[p]);
     }
@@ -451,7 +468,7 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
     } else {
         if (!GROW(s, s->pair, s->cap_pair, s->n_pair + 1)) return 0;
         if (!GROW(s, s->heap, s->cap_heap, s->cap_pair) || !GROW(s, s->near, s->cap_near, s->cap_pair) ||
-            !GROW(s, s->slot, s->cap_slot, s->cap_pair))
+            !GROW(s, s->slot, s->cap_slot, s->cap_pair) || !GROW(s, s->where, s->cap_where, s->cap_pair))
             return 0;
         p = s->n_pair++;
     }
@@ -910,7 +927,8 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
  * models whose root hulls, are farther apart than the report distance is
  * not measured further: that lower bound keys it (the pair is not
  * reported; a cold query or a hierarchy descent costs far more). */
-static px_status query(px_scene *s, spair *q, const sbody *x, const sbody *y, int exact, px_error *err) {
+static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody *y, int exact,
+                       uint64_t *checked, px_error *err) {
     px_scene_pair *r = &q->res;
     r->body_a = q->a;
     r->body_b = q->b;
@@ -934,7 +952,7 @@ static px_status query(px_scene *s, spair *q, const sbody *x, const sbody *y, in
         r->leaf_a = r->leaf_b = UINT32_MAX;
     } else if (q->kind == K_CONVEX) {
         px_distance_result d;
-        s->stats.pairs_checked++;
+        (*checked)++;
         st = px_distance(x->convex, &x->pose, y->convex, &y->pose, NULL, &q->cache.convex, &d);
         if (st == PX_OK) {
             r->distance = r->upper_bound = d.distance;
@@ -944,7 +962,7 @@ static px_status query(px_scene *s, spair *q, const sbody *x, const sbody *y, in
         }
     } else {
         px_model_distance_result d;
-        s->stats.pairs_checked++;
+        (*checked)++;
         if (q->kind == K_MODEL_MODEL)
             st = px_model_distance(x->model, &x->pose, y->model, &y->pose, &q->cache.model, &d);
         else if (q->kind == K_MODEL_CONVEX)
@@ -977,16 +995,272 @@ static px_status query(px_scene *s, spair *q, const sbody *x, const sbody *y, in
     q->snap_a = x->travel;
     q->snap_b = y->travel;
     q->measured = 1;
-    int contact = r->distance <= s->margin;
-    r->contact = (uint32_t)contact;
-    if (contact != q->contact && !event(s, q->a, q->b, contact))
-        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
-    q->contact = (uint8_t)contact;
+    /* q->contact follows once the step collects the pair (an event when
+     * it changes). */
+    r->contact = r->distance <= s->margin;
     /* A model pair far apart for its size is queried rarely: its node-pair
      * cache is given back, so that memory follows the close pairs. */
     if (q->kind != K_CONVEX && q->gap > 0.5 * (x->size + y->size) && q->cache.model.memory_bytes > 0)
         px_model_cache_release(&q->cache.model);
     return PX_OK;
+}
+
+/* ---- due pairs ---------------------------------------------------------- */
+
+/* What became of a due pair in the step. */
+enum { U_REKEYED = 0, U_MEASURED = 1, U_FAILED = 2 };
+
+/* Brings pair p up to date at `time` and sets its next due time: re-keyed
+ * without a query while its bodies moved less than its gap since the last
+ * one, measured again otherwise (not when neither body moved). Touches
+ * only the pair's own record (and `checked`), so that pairs can be brought
+ * up to date on several threads. */
+static px_status update_pair(const px_scene *s, uint32_t p, double time, sdone *done, uint64_t *checked,
+                             px_error *err) {
+    spair *q = &s->pair[p];
+    const sbody *x = &s->body[q->a], *y = &s->body[q->b];
+    *done = (sdone){0.0, U_REKEYED, 0, 0};
+    /* How far the distance may have moved since the query: the bodies'
+     * travels since then (a running sum, rounded up, cheap); when that uses
+     * the gap up, each body's displacement between its pose then and now
+     * (the sum stops being useful once it has grown large), and the motion
+     * of a's points in b's frame between the two relative poses, far
+     * smaller for bodies that move together (links of one arm). Each bounds
+     * the change of the distance between the poses then and now. */
+    double moved = 0.0;
+    if (q->measured) {
+        double ma = since(x->travel, q->snap_a), mb = since(y->travel, q->snap_b);
+        moved = ma + mb > 0.0 ? up(ma + mb) : 0.0;
+        /* Once the travels are large against the bodies (a long run, a far
+         * excursion), their rounding makes the sum coarse: compare poses. */
+        if (moved >= q->gap && moved > 0.0 && x->travel + y->travel > 0x1p20 * (x->size + y->size)) {
+            double m2 = 0.0;
+            if (memcmp(&x->pose, &q->pose_a, sizeof x->pose))
+                m2 += moved_points(x->center, x->radius, &q->pose_a, &x->pose);
+            if (memcmp(&y->pose, &q->pose_b, sizeof y->pose))
+                m2 += moved_points(y->center, y->radius, &q->pose_b, &y->pose);
+            moved = pxi_min2(moved, m2);
+        }
+        /* The relative test pays for bodies that move together; for others
+         * it rarely beats the sums, so after failures in a row a pair of
+         * polytopes (whose query is cheap) tries it ever less often: after
+         * 1, 3, 7, ... 63 due updates. Model pairs always try it. */
+        if (moved >= q->gap && moved > 0.0 && q->rel_skip > 0) {
+            q->rel_skip--;
+        } else if (moved >= q->gap && moved > 0.0) {
+            px_pose then = pxi_relative(&q->pose_a, &q->pose_b), now = pxi_relative(&x->pose, &y->pose);
+            double mr = moved_points(x->center, x->radius, &then, &now) +
+                        16.0 * DBL_EPSILON *
+                            (pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + pxi_max_abs(q->pose_a.t) +
+                             pxi_max_abs(q->pose_b.t));
+            if (mr < q->gap) {
+                q->rel_miss = 0;
+            } else {
+                if (q->rel_miss < 6 && q->kind == K_CONVEX) q->rel_miss++;
+                q->rel_skip = (uint8_t)((1u << q->rel_miss) - 1u);
+            }
+            moved = pxi_min2(moved, mr);
+        }
+    }
+    if (q->measured && moved < q->gap) {
+        q->due = done->due = time + safe_time(s, q, q->gap - moved);
+        done->changed = q->res.contact != q->contact;
+        return PX_OK;
+    }
+    if (!q->measured || moved > 0.0) {
+        px_status st = query(s, q, x, y, 0, checked, err);
+        if (st != PX_OK) {
+            q->due = done->due = -INFINITY;
+            done->what = U_FAILED;
+            return st;
+        }
+    }
+    done->what = U_MEASURED;
+    done->report = q->res.distance <= s->report;
+    done->changed = q->res.contact != q->contact;
+    q->due = done->due = time + safe_time(s, q, q->gap);
+    return PX_OK;
+}
+
+/* ---- helper threads ------------------------------------------------------
+ *
+ * The due pairs of a step are independent: each update reads the bodies
+ * and writes only its pair. They are handed out in chunks from an atomic
+ * counter; the calling thread works too, and waits at the end only for the
+ * helpers that took a chunk (a helper still asleep when the work runs out
+ * is not waited for). Results do not depend on which thread updated which
+ * pair, and the step collects them in the due list's order, so reports,
+ * events and errors are the same for any number of threads. */
+
+#define S_MAX_THREADS 64
+#define S_CHUNK 8
+#define S_SPIN_NS 500000L
+
+typedef struct swork {
+    struct spool *pool;
+    uint64_t checked;
+    uint32_t first_failed; /* lowest index of a failed update (S_NONE: none) */
+    px_error err;          /* its error */
+} swork;
+
+typedef struct spool {
+    px_scene *s;
+    uint32_t n_helpers;
+    thrd_t th[S_MAX_THREADS - 1];
+    mtx_t m;
+    cnd_t go;
+    uint64_t gen; /* under m: bumped for each job */
+    int quit;     /* under m */
+    /* The job: set while no helper is in it, published by `open`. */
+    const uint32_t *items;
+    uint32_t n_items;
+    double time;
+    atomic_uint next;     /* next item to hand out */
+    atomic_int open;      /* a job is running */
+    atomic_uint inflight; /* helpers inside the job */
+    atomic_ullong agen;   /* gen, for the helpers' spin before they sleep */
+    swork work[S_MAX_THREADS];
+} spool;
+
+/* Updates due pairs from the job's counter until it runs dry. */
+static void run_chunks(spool *pl, swork *w) {
+    const px_scene *s = pl->s;
+    for (;;) {
+        uint32_t i0 = atomic_fetch_add(&pl->next, S_CHUNK);
+        if (i0 >= pl->n_items) return;
+        uint32_t i1 = i0 + S_CHUNK < pl->n_items ? i0 + S_CHUNK : pl->n_items;
+        for (uint32_t i = i0; i < i1; ++i) {
+            px_error e;
+            px_status st = update_pair(s, pl->items[i], pl->time, &s->done[i], &w->checked, &e);
+            if (st != PX_OK && i < w->first_failed) {
+                w->first_failed = i;
+                w->err = e;
+            }
+        }
+    }
+}
+
+static int helper_main(void *arg) {
+    swork *w = arg;
+    spool *pl = w->pool;
+    uint64_t seen = 0;
+    for (;;) {
+        /* Spin up to S_SPIN_NS for the next job before sleeping: steps
+         * come in quick succession, and a sleeping helper wakes late. */
+        struct timespec t0, t;
+        timespec_get(&t0, TIME_UTC);
+        for (unsigned i = 1; atomic_load_explicit(&pl->agen, memory_order_relaxed) == seen; ++i) {
+            thrd_yield();
+            if (i % 16 == 0) {
+                timespec_get(&t, TIME_UTC);
+                if ((t.tv_sec - t0.tv_sec) * 1000000000L + (t.tv_nsec - t0.tv_nsec) > S_SPIN_NS) break;
+            }
+        }
+        mtx_lock(&pl->m);
+        while (pl->gen == seen && !pl->quit) cnd_wait(&pl->go, &pl->m);
+        seen = pl->gen;
+        int quit = pl->quit;
+        mtx_unlock(&pl->m);
+        if (quit) return 0;
+        /* Enter, then look whether the job still runs: the caller closes
+         * it, then waits for those inside (both sequentially consistent,
+         * so either it sees this helper or this helper sees it closed). */
+        atomic_fetch_add(&pl->inflight, 1u);
+        if (atomic_load(&pl->open)) run_chunks(pl, w);
+        atomic_fetch_sub(&pl->inflight, 1u);
+    }
+}
+
+static void pool_destroy(px_allocator *a, spool *pl) {
+    if (!pl) return;
+    mtx_lock(&pl->m);
+    pl->quit = 1;
+    cnd_broadcast(&pl->go);
+    mtx_unlock(&pl->m);
+    for (uint32_t k = 0; k < pl->n_helpers; ++k) thrd_join(pl->th[k], NULL);
+    cnd_destroy(&pl->go);
+    mtx_destroy(&pl->m);
+    pxi_free(a, pl, sizeof *pl);
+}
+
+/* A pool of threads - 1 helpers, or NULL when they cannot all start. */
+static spool *pool_create(px_scene *s, uint32_t threads) {
+    spool *pl = pxi_alloc(&s->alloc, sizeof *pl);
+    if (!pl) return NULL;
+    memset(pl, 0, sizeof *pl);
+    pl->s = s;
+    atomic_init(&pl->next, 0u);
+    atomic_init(&pl->open, 0);
+    atomic_init(&pl->inflight, 0u);
+    atomic_init(&pl->agen, 0u);
+    if (mtx_init(&pl->m, mtx_plain) != thrd_success) {
+        pxi_free(&s->alloc, pl, sizeof *pl);
+        return NULL;
+    }
+    if (cnd_init(&pl->go) != thrd_success) {
+        mtx_destroy(&pl->m);
+        pxi_free(&s->alloc, pl, sizeof *pl);
+        return NULL;
+    }
+    for (uint32_t k = 0; k + 1 < threads; ++k) {
+        pl->work[k + 1].pool = pl;
+        if (thrd_create(&pl->th[k], helper_main, &pl->work[k + 1]) != thrd_success) {
+            pool_destroy(&s->alloc, pl);
+            return NULL;
+        }
+        pl->n_helpers++;
+    }
+    return pl;
+}
+
+/* Below this many due pairs the helpers are not woken (waking costs more
+ * than a few updates). */
+#define S_POOL_MIN 64
+
+/* Updates the n due pairs in items[], on the pool's threads when there is
+ * one and enough work; returns the first failure in the items' order. */
+static px_status update_all(px_scene *s, const uint32_t *items, uint32_t n, double time, px_error *err) {
+    spool *pl = s->pool;
+    if (!pl || n < S_POOL_MIN) {
+        uint64_t checked = 0;
+        px_status first = PX_OK;
+        for (uint32_t i = 0; i < n; ++i) {
+            px_error e;
+            px_status st = update_pair(s, items[i], time, &s->done[i], &checked, &e);
+            if (st != PX_OK && first == PX_OK) {
+                first = st;
+                if (err) *err = e;
+            }
+        }
+        s->stats.pairs_checked += checked;
+        return first;
+    }
+    pl->items = items;
+    pl->n_items = n;
+    pl->time = time;
+    for (uint32_t k = 0; k <= pl->n_helpers; ++k) {
+        pl->work[k].checked = 0;
+        pl->work[k].first_failed = S_NONE;
+    }
+    atomic_store(&pl->next, 0u);
+    atomic_store(&pl->open, 1);
+    mtx_lock(&pl->m);
+    pl->gen++;
+    atomic_store(&pl->agen, pl->gen);
+    cnd_broadcast(&pl->go);
+    mtx_unlock(&pl->m);
+    run_chunks(pl, &pl->work[0]);
+    atomic_store(&pl->open, 0);
+    while (atomic_load(&pl->inflight) != 0u) thrd_yield();
+    swork *first = NULL;
+    for (uint32_t k = 0; k <= pl->n_helpers; ++k) {
+        s->stats.pairs_checked += pl->work[k].checked;
+        if (pl->work[k].first_failed != S_NONE && (!first || pl->work[k].first_failed < first->first_failed))
+            first = &pl->work[k];
+    }
+    if (!first) return PX_OK;
+    if (err) *err = first->err;
+    return first->err.code;
 }
 
 /* ---- API ----------------------------------------------------------------- */
@@ -1004,6 +1278,11 @@ px_scene *px_scene_create(const px_scene_options *options, px_error *err) {
     if (!isfinite(o.margin) || o.margin < 0.0) {
         pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_create: options.margin %g is not finite and >= 0",
                   o.margin);
+        return NULL;
+    }
+    if (o.threads > S_MAX_THREADS) {
+        pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_create: options.threads %u is above %d", o.threads,
+                  S_MAX_THREADS);
         return NULL;
     }
     if (o.report_distance == 0.0) o.report_distance = o.margin;
@@ -1028,6 +1307,16 @@ px_scene *px_scene_create(const px_scene_options *options, px_error *err) {
     s->time = -INFINITY;
     s->free_pair = S_NONE;
     s->bytes = sizeof *s;
+    if (o.threads > 1) {
+        s->pool = pool_create(s, o.threads);
+        if (!s->pool) {
+            pxi_free(&a, s, sizeof *s);
+            pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_create: could not start %u threads",
+                      o.threads - 1);
+            return NULL;
+        }
+        s->bytes += sizeof *s->pool;
+    }
     return s;
 }
 
@@ -1037,6 +1326,7 @@ void px_scene_destroy(px_scene *s) {
         if (s->pair[p].a != S_NONE && s->pair[p].kind != K_CONVEX)
             px_model_cache_release(&s->pair[p].cache.model);
     px_allocator a = s->alloc;
+    pool_destroy(&a, s->pool);
     pxi_free(&a, s->body, (size_t)s->cap_body * sizeof *s->body);
     pxi_free(&a, s->ep, (size_t)s->cap_bep * sizeof *s->ep);
     for (int k = 0; k < 3; ++k) pxi_free(&a, s->axis[k], (size_t)s->cap_axis[k] * sizeof(sep));
@@ -1046,8 +1336,10 @@ void px_scene_destroy(px_scene *s) {
     pxi_free(&a, s->heap, (size_t)s->cap_heap * sizeof *s->heap);
     pxi_free(&a, s->near, (size_t)s->cap_near * sizeof *s->near);
     pxi_free(&a, s->slot, (size_t)s->cap_slot * sizeof *s->slot);
+    pxi_free(&a, s->where, (size_t)s->cap_where * sizeof *s->where);
     pxi_free(&a, s->dirty, (size_t)s->cap_dirty * sizeof *s->dirty);
     pxi_free(&a, s->later, (size_t)s->cap_later * sizeof *s->later);
+    pxi_free(&a, s->done, (size_t)s->cap_done * sizeof *s->done);
     pxi_free(&a, s->rep, (size_t)s->cap_rep * sizeof *s->rep);
     pxi_free(&a, s->out, (size_t)s->cap_out * sizeof *s->out);
     pxi_free(&a, s->ev, (size_t)s->cap_ev * sizeof *s->ev);
@@ -1278,71 +1570,6 @@ static int cmp_event(const void *x, const void *y) {
     return a->reserved < b->reserved ? -1 : a->reserved > b->reserved;
 }
 
-/* Brings pair p up to date at `time` and sets its next due time: re-keyed
- * without a query while its bodies moved less than its gap since the last
- * one, measured again otherwise (not when neither body moved). */
-static px_status update_pair(px_scene *s, uint32_t p, double time, px_error *err) {
-    spair *q = &s->pair[p];
-    const sbody *x = &s->body[q->a], *y = &s->body[q->b];
-    s->stats.pairs_due++;
-    /* How far the distance may have moved since the query: the bodies'
-     * travels since then (a running sum, rounded up, cheap); when that uses
-     * the gap up, each body's displacement between its pose then and now
-     * (the sum stops being useful once it has grown large), and the motion
-     * of a's points in b's frame between the two relative poses, far
-     * smaller for bodies that move together (links of one arm). Each bounds
-     * the change of the distance between the poses then and now. */
-    double moved = 0.0;
-    if (q->measured) {
-        double ma = since(x->travel, q->snap_a), mb = since(y->travel, q->snap_b);
-        moved = ma + mb > 0.0 ? up(ma + mb) : 0.0;
-        /* Once the travels are large against the bodies (a long run, a far
-         * excursion), their rounding makes the sum coarse: compare poses. */
-        if (moved >= q->gap && moved > 0.0 && x->travel + y->travel > 0x1p20 * (x->size + y->size)) {
-            double m2 = 0.0;
-            if (memcmp(&x->pose, &q->pose_a, sizeof x->pose))
-                m2 += moved_points(x->center, x->radius, &q->pose_a, &x->pose);
-            if (memcmp(&y->pose, &q->pose_b, sizeof y->pose))
-                m2 += moved_points(y->center, y->radius, &q->pose_b, &y->pose);
-            moved = pxi_min2(moved, m2);
-        }
-        /* The relative test pays for bodies that move together; for others
-         * it rarely beats the sums, so after failures in a row a pair of
-         * polytopes (whose query is cheap) tries it ever less often: after
-         * 1, 3, 7, ... 63 due updates. Model pairs always try it. */
-        if (moved >= q->gap && moved > 0.0 && q->rel_skip > 0) {
-            q->rel_skip--;
-        } else if (moved >= q->gap && moved > 0.0) {
-            px_pose then = pxi_relative(&q->pose_a, &q->pose_b), now = pxi_relative(&x->pose, &y->pose);
-            double mr = moved_points(x->center, x->radius, &then, &now) +
-                        16.0 * DBL_EPSILON *
-                            (pxi_max_abs(x->pose.t) + pxi_max_abs(y->pose.t) + pxi_max_abs(q->pose_a.t) +
-                             pxi_max_abs(q->pose_b.t));
-            if (mr < q->gap) {
-                q->rel_miss = 0;
-            } else {
-                if (q->rel_miss < 6 && q->kind == K_CONVEX) q->rel_miss++;
-                q->rel_skip = (uint8_t)((1u << q->rel_miss) - 1u);
-            }
-            moved = pxi_min2(moved, mr);
-        }
-    }
-    if (q->measured && moved < q->gap) {
-        q->due = time + safe_time(s, q, q->gap - moved);
-        return PX_OK;
-    }
-    if (!q->measured || moved > 0.0) {
-        px_status st = query(s, q, x, y, 0, err);
-        if (st != PX_OK) {
-            q->due = -INFINITY;
-            return st;
-        }
-    }
-    if (q->res.distance <= s->report) s->rep[s->n_rep++] = p;
-    q->due = time + safe_time(s, q, q->gap);
-    return PX_OK;
-}
-
 px_status px_scene_step(px_scene *s, double time, px_error *err) {
     pxi_error_clear(err);
     if (!s) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_step: scene is NULL");
@@ -1397,45 +1624,46 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     s->n_rep = 0;
     s->n_later = 0;
     if (!GROW(s, s->later, s->cap_later, s->live_pairs + 1) ||
-        !GROW(s, s->rep, s->cap_rep, s->live_pairs + 1))
+        !GROW(s, s->done, s->cap_done, s->live_pairs + 1) || !GROW(s, s->rep, s->cap_rep, s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
-    px_status st = PX_OK;
-    /* The near pairs that are due, then the heap's; a pair due again
-     * within the horizon goes (back) to the near list, the others to the
-     * heap once the loop is over. The list is scanned from its end, so that
-     * a removal (the last entry moves into the hole) skips nothing. */
+    /* The due pairs: the near list's (scanned from its end, so that a
+     * removal, which moves the last entry into the hole, skips nothing),
+     * then the heap's. All leave their queue, are brought up to date, then
+     * collected in this order: reports, events, and back to the near list
+     * when due again within the horizon, else to the heap. */
     s->horizon = dt > 0.0 && isfinite(dt) ? S_NEAR_STEPS * dt : 0.0;
     if (!isfinite(time + s->horizon)) s->horizon = 0.0;
-    const double soon = time + s->horizon;
-    for (uint32_t i = s->n_near; i-- > 0 && st == PX_OK;) {
-        if (s->near[i].due > time) continue;
-        uint32_t p = s->near[i].pair;
-        st = update_pair(s, p, time, err);
-        if (s->pair[p].due > soon || st != PX_OK) {
-            dequeue(s, p);
-            s->later[s->n_later++] = p;
-        } else {
-            s->near[i].due = s->pair[p].due;
+    uint32_t nd = 0;
+    uint32_t *due = s->later;
+    for (uint32_t i = s->n_near; i-- > 0;)
+        if (s->near[i].due <= time) {
+            due[nd++] = s->near[i].pair;
+            dequeue(s, s->near[i].pair);
         }
+    while (s->n_heap > 0 && s->heap[0].due <= time) {
+        due[nd++] = s->heap[0].pair;
+        dequeue(s, s->heap[0].pair);
     }
-    while (st == PX_OK && s->n_heap > 0 && s->heap[0].due <= time) {
-        uint32_t p = s->heap[0].pair;
-        dequeue(s, p);
-        st = update_pair(s, p, time, err);
-        if (st != PX_OK) s->pair[p].due = -INFINITY;
-        if (s->pair[p].due <= soon && st == PX_OK)
-            enqueue(s, p);
-        else
-            s->later[s->n_later++] = p;
+    px_status st = update_all(s, due, nd, time, err);
+    s->stats.pairs_due = nd;
+    int oom = 0;
+    for (uint32_t i = 0; i < nd; ++i) {
+        uint32_t p = due[i];
+        const sdone *d = &s->done[i];
+        if (d->report) s->rep[s->n_rep++] = p;
+        if (d->changed) {
+            spair *q = &s->pair[p];
+            if (event(s, q->a, q->b, (int)q->res.contact)) {
+                q->contact = (uint8_t)q->res.contact;
+            } else {
+                oom = 1; /* due again at once: measured, and its event made, next step */
+                q->due = -INFINITY;
+                s->done[i].due = -INFINITY;
+            }
+        }
+        enqueue_at(s, p, s->done[i].due);
     }
-    for (uint32_t i = 0; i < s->n_later; ++i) {
-        uint32_t p = s->later[i];
-        spair *q = &s->pair[p];
-        q->where = Q_HEAP;
-        heap_set(s, s->n_heap++, (shent){q->due, pair_key(q->a, q->b), p});
-        heap_up(s, s->n_heap - 1);
-    }
-    s->n_later = 0;
+    if (oom && st == PX_OK) st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     if (st != PX_OK) {
         s->n_rep = 0;
         return st;
@@ -1558,14 +1786,8 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
                 tmp.cache.model.allocator = &s->alloc;
                 tmp.cache.model.max_bytes = s->model_cache_bytes;
             }
-            uint8_t contact = 0;
-            tmp.contact = contact;
-            /* query() records events on contact changes: this pair starts
-             * with contact = the result's own, so no event is made. */
-            int was = s->n_pending;
-            st = query(s, &tmp, x, y, 1, err);
-            s->n_pending = (uint32_t)was;
-            s->stats.pairs_checked--; /* the minimum's queries are not the step's */
+            uint64_t checked = 0; /* the minimum's queries are not the step's */
+            st = query(s, &tmp, x, y, 1, &checked, err);
             if (tmp.kind != K_CONVEX) px_model_cache_release(&tmp.cache.model);
             if (st == PX_OK && tmp.res.distance < out->distance) *out = tmp.res;
         }

@@ -20,7 +20,9 @@
 //           give them with exact distances
 //   methods proxima: px_scene (margin 0.1, report distance = margin, every
 //           body declared max_speed 0.05, max_angular_speed 0.05 about its
-//           centre); timed: px_scene_set_pose for every body + px_scene_step
+//           centre); timed: px_scene_set_pose for every body + px_scene_step;
+//           once on the calling thread (proxima-scene), once with
+//           options.threads = 2 (proxima-scene-2t)
 //           FCL 0.7: DynamicAABBTreeCollisionManager over one
 //           CollisionObject per body (fcl::Convexd per hull,
 //           BVHModel<OBBRSS> of the link shared by the models); timed:
@@ -441,15 +443,18 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
 
     std::vector<Row> rows;
     // Per step: each method's contacts.
-    std::vector<std::vector<std::pair<Key, double>>> px_sets(total + 1), fcl_sets(total + 1),
-        bf_sets(total + 1);
+    std::vector<std::vector<std::pair<Key, double>>> px_sets(total + 1), px2_sets(total + 1),
+        fcl_sets(total + 1), bf_sets(total + 1);
 
-    // proxima.
-    {
+    // proxima, on the calling thread, then with one helper thread.
+    for (uint32_t threads = 1; threads <= 2; ++threads) {
+        std::vector<std::vector<std::pair<Key, double>>> &sets = threads == 1 ? px_sets : px2_sets;
         Row r;
-        r.method = "proxima-scene", r.kind = kind, r.bodies = cfg.n, r.steps_timed = timed;
+        r.method = threads == 1 ? "proxima-scene" : "proxima-scene-2t", r.kind = kind, r.bodies = cfg.n,
+        r.steps_timed = timed;
         px_scene_options o{};
         o.margin = kMargin;
+        o.threads = threads;
         px_error e{};
         px_scene *sc = px_scene_create(&o, &e);
         if (!sc) {
@@ -501,7 +506,7 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
             const px_scene_pair *p = px_scene_pairs(sc, &np);
             for (size_t q = 0; q < np; ++q)
                 if (p[q].contact) {
-                    px_sets[k].emplace_back(key(p[q].body_a, p[q].body_b), p[q].distance);
+                    sets[k].emplace_back(key(p[q].body_a, p[q].body_b), p[q].distance);
                     ++contacts;
                     touching += p[q].distance == 0;
                 }
@@ -659,15 +664,16 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
         std::vector<Key> keys;
         std::vector<double> dist;
         uint64_t queries = 0;
-        Counts cnt[3];
-        int printed[3] = {0, 0, 0};
-        const char *who[3] = {"proxima", "FCL", "brute force"};
+        Counts cnt[4];
+        int printed[4] = {0, 0, 0, 0};
+        const char *who[4] = {"proxima", "proxima 2 threads", "FCL", "brute force"};
         for (int k = 0; k <= total; ++k) {
             if (k > 0) sim.advance();
             reference_pairs(shapes, sim.pose, &keys, &dist, &queries);
-            const std::vector<std::pair<Key, double>> *sets[3] = {&px_sets[k], &fcl_sets[k], &bf_sets[k]};
-            for (int m = 0; m < 3; ++m) {
-                if (m == 2 && !sampled[k]) continue;
+            const std::vector<std::pair<Key, double>> *sets[4] = {&px_sets[k], &px2_sets[k], &fcl_sets[k],
+                                                                  &bf_sets[k]};
+            for (int m = 0; m < 4; ++m) {
+                if (m == 3 && !sampled[k]) continue;
                 Row &r = rows[m];
                 ++r.steps_compared;
                 r.contacts += sets[m]->size();
@@ -675,7 +681,7 @@ std::vector<Row> run_scene(const Config &cfg, const Link *link, int warm, int ti
                 if (!compare_sets(keys, dist, *sets[m], &cnt[m], who[m], k, &printed[m])) ++r.steps_differing;
             }
         }
-        for (int m = 0; m < 3; ++m) {
+        for (int m = 0; m < 4; ++m) {
             rows[m].missing = cnt[m].missing, rows[m].extra = cnt[m].extra;
             rows[m].missing_threshold = cnt[m].missing_threshold,
             rows[m].extra_threshold = cnt[m].extra_threshold;
@@ -901,41 +907,46 @@ int main(int argc, char **argv) {
 
     fprintf(f, "## Targets (issue 11 section 5)\n\n| target | measured | met |\n|---|---|---|\n");
     auto target = [&](size_t n, double limit_ns) {
-        const Row *p = find_row(rows, "proxima-scene", "convex", n);
-        if (!p) return;
-        fprintf(f,
-                "| %zu convex bodies ≤ %s µs per step (median), exact distances for all pairs within the "
-                "margin | %s µs (p90 %s) | %s |\n",
-                n, bench::fmt_us(limit_ns).c_str(), bench::fmt_us(p->median_ns).c_str(),
-                bench::fmt_us(p->p90_ns).c_str(), p->median_ns <= limit_ns ? "yes" : "**no**");
+        for (const char *m : {"proxima-scene", "proxima-scene-2t"}) {
+            const Row *p = find_row(rows, m, "convex", n);
+            if (!p) continue;
+            fprintf(f,
+                    "| %zu convex bodies ≤ %s µs per step (median), exact distances for all pairs within "
+                    "the margin (%s) | %s µs (p90 %s) | %s |\n",
+                    n, bench::fmt_us(limit_ns).c_str(), m[13] ? "2 threads" : "1 thread",
+                    bench::fmt_us(p->median_ns).c_str(), bench::fmt_us(p->p90_ns).c_str(),
+                    p->median_ns <= limit_ns ? "yes" : "**no**");
+        }
     };
     target(1000, 100e3);
     target(10000, 1000e3);
     for (auto &r : rows)
-        if (r.method == "proxima-scene")
+        if (r.method.rfind("proxima-scene", 0) == 0)
             fprintf(f,
-                    "| contacts equal to brute force on every step: %zu %s bodies | %d of %d steps differ | "
-                    "%s |\n",
-                    r.bodies, r.kind.c_str(), r.steps_differing, r.steps_compared,
-                    r.steps_differing == 0 ? "yes" : "**no**");
+                    "| contacts equal to brute force on every step: %zu %s bodies (%s) | %d of %d steps "
+                    "differ | %s |\n",
+                    r.bodies, r.kind.c_str(), r.method == "proxima-scene" ? "1 thread" : "2 threads",
+                    r.steps_differing, r.steps_compared, r.steps_differing == 0 ? "yes" : "**no**");
     fprintf(
         f, "\nThe Puma arm target (≤ 10 µs per step with self-collision and its cell) belongs to section 3's "
            "scene and is not measured here.\n\n");
     fprintf(f, "## Ratios in this run (median step time)\n\n| kind | bodies | FCL / proxima | brute force / "
-               "proxima |\n|---|---|---|---|\n");
+               "proxima | proxima 1 thread / 2 threads |\n|---|---|---|---|---|\n");
     for (auto &r : rows) {
         if (r.method != "proxima-scene") continue;
         const Row *fc = find_row(rows, "fcl-dynamic-aabb", r.kind, r.bodies);
         const Row *bf = find_row(rows, "bruteforce", r.kind, r.bodies);
-        fprintf(f, "| %s | %zu | %s× | %s× |\n", r.kind.c_str(), r.bodies,
+        const Row *t2 = find_row(rows, "proxima-scene-2t", r.kind, r.bodies);
+        fprintf(f, "| %s | %zu | %s× | %s× | %s× |\n", r.kind.c_str(), r.bodies,
                 fc ? csv_num(fc->median_ns / r.median_ns, "%.1f").c_str() : "–",
-                bf ? csv_num(bf->median_ns / r.median_ns, "%.0f").c_str() : "–");
+                bf ? csv_num(bf->median_ns / r.median_ns, "%.0f").c_str() : "–",
+                t2 ? csv_num(r.median_ns / t2->median_ns, "%.2f").c_str() : "–");
     }
     fprintf(f, "\n![median time per step against the number of bodies](scene.png)\n");
     fclose(f);
     fprintf(stderr, "wrote %s, %s (%.0f s)\n", csv.c_str(), md.c_str(), wall_s);
     int bad = 0;
     for (auto &r : rows)
-        if (r.method == "proxima-scene" && r.steps_differing) bad = 1;
+        if (r.method.rfind("proxima-scene", 0) == 0 && r.steps_differing) bad = 1;
     return bad;
 }

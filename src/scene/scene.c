@@ -602,14 +602,37 @@ static int overlap_others(const px_scene *s, uint32_t a, uint32_t b, int k) {
     return overlap_on(s, a, b, (k + 1) % 3) && overlap_on(s, a, b, (k + 2) % 3);
 }
 
-static void swap_ep(px_scene *s, int k, uint32_t i, uint32_t j) {
+/* Moves endpoint m (0: min, 1: max) of body b on axis k in direction dir
+ * (-1 or +1) to its value's place, shifting the endpoints it passes (one
+ * write each; b's own is written once at the end). Passing an endpoint of
+ * the other kind changes that pair's overlap on this axis: the pair is
+ * added when b's box grows over it (min left, max right) and the boxes
+ * overlap on the other two axes, removed when it shrinks off it. */
+static int move_ep(px_scene *s, uint32_t b, int k, int m, int dir) {
     sep *e = s->axis[k];
-    sep t = e[i];
-    e[i] = e[j];
-    e[j] = t;
-    EP(s, e[i].id >> 1, k, e[i].id & 1) = i;
-    EP(s, e[j].id >> 1, k, e[j].id & 1) = j;
-    s->stats.swaps++;
+    const uint32_t n = s->n_ep;
+    const int grow = (m == 0) == (dir < 0);
+    uint32_t i = EP(s, b, k, m);
+    const sep me = e[i];
+    int ok = 1;
+    for (;;) {
+        uint32_t j = dir < 0 ? i - 1 : i + 1;
+        if (dir < 0 ? i == 0 || !precedes(me, e[j]) : j >= n || !precedes(e[j], me)) break;
+        sep o = e[j];
+        if ((o.id & 1) != (uint32_t)m && overlap_others(s, b, o.id >> 1, k)) {
+            if (grow)
+                ok &= add_pair(s, b, o.id >> 1);
+            else
+                remove_pair(s, b, o.id >> 1);
+        }
+        e[i] = o;
+        EP(s, o.id >> 1, k, o.id & 1) = i;
+        s->stats.swaps++;
+        i = j;
+    }
+    e[i] = me;
+    EP(s, b, k, m) = i;
+    return ok;
 }
 
 /* Moves body b's endpoints on axis k to their new values' places, adding
@@ -619,37 +642,10 @@ static void swap_ep(px_scene *s, int k, uint32_t i, uint32_t j) {
  * removals test that before looking the pair up (Bullet's
  * USE_OVERLAP_TEST_ON_REMOVES). */
 static int sift(px_scene *s, uint32_t b, int k) {
-    sep *e = s->axis[k];
-    const uint32_t n = s->n_ep;
-    int ok = 1;
-    uint32_t i = EP(s, b, k, 0);
-    while (i > 0 && precedes(e[i], e[i - 1])) { /* min left */
-        sep o = e[i - 1];
-        if ((o.id & 1) && overlap_others(s, b, o.id >> 1, k)) ok &= add_pair(s, b, o.id >> 1);
-        swap_ep(s, k, i, i - 1);
-        --i;
-    }
-    i = EP(s, b, k, 1);
-    while (i + 1 < n && precedes(e[i + 1], e[i])) { /* max right */
-        sep o = e[i + 1];
-        if (!(o.id & 1) && overlap_others(s, b, o.id >> 1, k)) ok &= add_pair(s, b, o.id >> 1);
-        swap_ep(s, k, i, i + 1);
-        ++i;
-    }
-    i = EP(s, b, k, 0);
-    while (i + 1 < n && precedes(e[i + 1], e[i])) { /* min right */
-        sep o = e[i + 1];
-        if ((o.id & 1) && overlap_others(s, b, o.id >> 1, k)) remove_pair(s, b, o.id >> 1);
-        swap_ep(s, k, i, i + 1);
-        ++i;
-    }
-    i = EP(s, b, k, 1);
-    while (i > 0 && precedes(e[i], e[i - 1])) { /* max left */
-        sep o = e[i - 1];
-        if (!(o.id & 1) && overlap_others(s, b, o.id >> 1, k)) remove_pair(s, b, o.id >> 1);
-        swap_ep(s, k, i, i - 1);
-        --i;
-    }
+    int ok = move_ep(s, b, k, 0, -1);
+    ok &= move_ep(s, b, k, 1, +1);
+    ok &= move_ep(s, b, k, 0, +1);
+    ok &= move_ep(s, b, k, 1, -1);
     return ok;
 }
 

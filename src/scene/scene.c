@@ -1521,16 +1521,46 @@ static px_status mark_dirty(px_scene *s, uint32_t id) {
     return PX_OK;
 }
 
+/* check_pose's test and the skew in one pass, for the pose set at every
+ * step: the same conditions as px_pose_check (rows orthonormal and
+ * right-handed within 1e-6, finite) and the translation's range; 0 when
+ * any fails (check_pose then says which). The skew is computed from the
+ * rows: |R R^T - I|_F = |R^T R - I|_F (R R^T - I = Q (R^T R - I) Q^T). */
+static int pose_fast(const px_pose *pose, double *sk) {
+    const double *r = pose->r;
+    for (int i = 0; i < 9; ++i)
+        if (!isfinite(r[i])) return 0;
+    if (!pxi_is_finite3(pose->t) || !(pxi_max_abs(pose->t) <= 0x1p250)) return 0;
+    double n0 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - 1.0;
+    double n1 = r[3] * r[3] + r[4] * r[4] + r[5] * r[5] - 1.0;
+    double d01 = r[0] * r[3] + r[1] * r[4] + r[2] * r[5];
+    double cx = r[1] * r[5] - r[2] * r[4] - r[6], cy = r[2] * r[3] - r[0] * r[5] - r[7],
+           cz = r[0] * r[4] - r[1] * r[3] - r[8];
+    const double tol = 1e-6;
+    if (!(fabs(n0) <= tol && fabs(n1) <= tol && fabs(d01) <= tol && fabs(cx) <= tol && fabs(cy) <= tol &&
+          fabs(cz) <= tol))
+        return 0;
+    double n2 = r[6] * r[6] + r[7] * r[7] + r[8] * r[8] - 1.0;
+    double d02 = r[0] * r[6] + r[1] * r[7] + r[2] * r[8], d12 = r[3] * r[6] + r[4] * r[7] + r[5] * r[8];
+    *sk = sqrt(n0 * n0 + n1 * n1 + n2 * n2 + 2.0 * (d01 * d01 + d02 * d02 + d12 * d12));
+    return 1;
+}
+
 px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_error *err) {
     if (!body_ok(s, id))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_pose: no body %u in the scene", id);
     if (s->body[id].flags & PX_BODY_STATIC)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_pose: body %u is static", id);
-    px_status st = check_pose(pose, "px_scene_set_pose", err);
-    if (st != PX_OK) return st;
+    double sk;
+    if (!pose || !pose_fast(pose, &sk)) {
+        px_status st = check_pose(pose, "px_scene_set_pose", err);
+        /* Not reached: pose_fast refuses only what check_pose refuses. */
+        if (st == PX_OK) st = pxi_error(err, PX_ERR_INTERNAL, "px_scene_set_pose: pose test mismatch");
+        return st;
+    }
     pxi_error_clear(err);
     s->body[id].pose = *pose;
-    s->body[id].sk = skew(pose->r);
+    s->body[id].sk = sk;
     return mark_dirty(s, id);
 }
 

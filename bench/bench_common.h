@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "access.h" /* tests/: value-returning accessors, tu_both_ways */
 #include "proxima/proxima.h"
 #include "px_gen.h"
@@ -146,6 +148,41 @@ inline std::string fmt_err(double e) {
     if (e == HUGE_VAL) return "inf";
     std::snprintf(buf, sizeof buf, "%.1e", e);
     return buf;
+}
+
+// The machine's CPU model name ("unknown CPU" when /proc/cpuinfo says none).
+inline std::string cpu_name() {
+    std::string cpu = "unknown CPU";
+    if (FILE *f = fopen("/proc/cpuinfo", "r")) {
+        char line[512];
+        while (fgets(line, sizeof line, f))
+            if (!strncmp(line, "model name", 10)) {
+                const char *c = strchr(line, ':');
+                cpu = c ? c + 2 : line;
+                cpu.erase(cpu.find_last_not_of("\n") + 1);
+                break;
+            }
+        fclose(f);
+    }
+    return cpu;
+}
+
+// The 1-minute load average (NaN when unknown).
+inline double load_average() {
+    double l = NAN;
+    if (FILE *f = fopen("/proc/loadavg", "r")) {
+        if (fscanf(f, "%lf", &l) != 1) l = NAN;
+        fclose(f);
+    }
+    return l;
+}
+
+// "CPU, N cores online, load average L at the end of the run".
+inline std::string machine_line() {
+    char b[768];
+    snprintf(b, sizeof b, "%s, %ld cores online, load average %.2f at the end of the run", cpu_name().c_str(),
+             sysconf(_SC_NPROCESSORS_ONLN), load_average());
+    return b;
 }
 
 } // namespace bench

@@ -1321,7 +1321,7 @@ std::string read_first_line(const char *path, const char *prefix) {
 }
 
 // The three load averages of /proc/loadavg.
-std::string load_average() {
+std::string load_averages() {
     std::string s = read_first_line("/proc/loadavg", nullptr);
     size_t cut = 0;
     for (int k = 0; k < 3 && cut != std::string::npos; ++k) cut = s.find(' ', cut + (k ? 1 : 0));
@@ -1346,7 +1346,7 @@ int write_markdown(const std::string &path, const std::vector<Row> &rows, const 
         "peer's median over the proxima method's (> 1: proxima faster). The protocol is described in "
         "bench/bench_convex.cpp and in convex.md.\n",
         command.c_str(), seconds, read_first_line("/proc/cpuinfo", "model name").c_str(), load_start.c_str(),
-        load_average().c_str());
+        load_averages().c_str());
     std::fprintf(f,
                  "\n## Distance\n\nproxima `px_distance` (lin-canny, gjk, hybrid; NULL cache from scratch, "
                  "one cache per sequence incremental) against `fcl::distance` (GJK in libccd) with tolerance "
@@ -1444,7 +1444,7 @@ int main(int argc, char **argv) {
     std::vector<size_t> sizes = {200, 1000, 5000, 20000, 100000, 200000};
     if (opt.quick) sizes = {200, 1000};
     if (!opt.sizes.empty()) sizes = opt.sizes;
-    const std::string load_start = load_average();
+    const std::string load_start = load_averages();
     const double t0 = now_ns();
 
     Context ctx;

@@ -801,31 +801,6 @@ std::string num(double v, const char *fmt = "%.6g") {
 
 std::string flag(int v) { return v < 0 ? "" : std::to_string(v); }
 
-std::string machine_line() {
-    std::string cpu = "unknown CPU";
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (f) {
-        char line[512];
-        while (fgets(line, sizeof line, f))
-            if (!strncmp(line, "model name", 10)) {
-                const char *c = strchr(line, ':');
-                cpu = c ? c + 2 : line;
-                cpu.erase(cpu.find_last_not_of("\n") + 1);
-                break;
-            }
-        fclose(f);
-    }
-    double load = NAN;
-    if (FILE *l = fopen("/proc/loadavg", "r")) {
-        if (fscanf(l, "%lf", &load) != 1) load = NAN;
-        fclose(l);
-    }
-    char b[768];
-    snprintf(b, sizeof b, "%s, %ld cores online, load average %.2f at the end of the run", cpu.c_str(),
-             sysconf(_SC_NPROCESSORS_ONLN), load);
-    return b;
-}
-
 const char *const kMeshes[] = {"bunny00", "elephant", "armadillo", "puma-link2", "puma-link4", "teapot"};
 const char *const kCurves[] = {"proxima-approx", "bullet-cd", "bullet-hacd", "proxima-parts"};
 
@@ -1078,7 +1053,7 @@ int main(int argc, char **argv) {
         "(`options.threads`, the decomposition and the certification of h); Bullet's decomposers run on "
         "one. Machine: %s (%.2f at the start; "
         "other work shared the machine, so absolute times carry its noise). Whole run: %.0f s.\n\n",
-        n, passes, n_probes, threads, machine_line().c_str(), load0, run_s);
+        n, passes, n_probes, threads, bench::machine_line().c_str(), load0, run_s);
     for (auto &nt : notes) fprintf(f, "%s\n\n", nt.c_str());
     fprintf(f, "| mesh | method | parameters | pieces | hull vertices | max h | pieces h > tol | build s | "
                "decompose s | distance µs (median) | p90 µs | approach error | probe error | cover error | "

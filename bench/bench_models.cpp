@@ -381,32 +381,6 @@ std::string err_cell(const Row &r) {
     return "rel " + bench::fmt_err(r.max_rel_err);
 }
 
-std::string machine_line() {
-    std::string cpu = "unknown CPU";
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (f) {
-        char line[512];
-        while (fgets(line, sizeof line, f))
-            if (!strncmp(line, "model name", 10)) {
-                const char *c = strchr(line, ':');
-                cpu = c ? c + 2 : line;
-                cpu.erase(cpu.find_last_not_of("\n") + 1);
-                break;
-            }
-        fclose(f);
-    }
-    double load[3] = {0, 0, 0};
-    FILE *l = fopen("/proc/loadavg", "r");
-    if (l) {
-        if (fscanf(l, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) load[0] = NAN;
-        fclose(l);
-    }
-    char b[768];
-    snprintf(b, sizeof b, "%s, %ld cores online, load average %.2f at the end of the run", cpu.c_str(),
-             sysconf(_SC_NPROCESSORS_ONLN), load[0]);
-    return b;
-}
-
 } // namespace
 
 int main(int argc, char **argv) {
@@ -581,7 +555,7 @@ int main(int argc, char **argv) {
         "poses. proxima's caches are warm along the sequence; FCL runs as it is. Meshes scaled to a "
         "bounding-box diagonal of 1. Machine: %s (%.2f at the start; other work shared the machine, so "
         "absolute times carry its noise, ratios less so).\n\n",
-        n, passes, machine_line().c_str(), load0);
+        n, passes, bench::machine_line().c_str(), load0);
     for (auto &nt : notes) fprintf(f, "%s\n\n", nt.c_str());
     fprintf(f,
             "| pair | method | leaves | query | median µs | p90 µs | error vs FCL's distance | bracket ok | "

@@ -703,23 +703,6 @@ std::string csv_num(double v, const char *fmt = "%.6g") {
     return b;
 }
 
-std::string machine_cpu() {
-    std::string cpu = "unknown CPU";
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    if (f) {
-        char line[512];
-        while (fgets(line, sizeof line, f))
-            if (!strncmp(line, "model name", 10)) {
-                const char *c = strchr(line, ':');
-                cpu = c ? c + 2 : line;
-                cpu.erase(cpu.find_last_not_of("\n") + 1);
-                break;
-            }
-        fclose(f);
-    }
-    return cpu;
-}
-
 // The tree the run measured: HEAD's short hash, "+ uncommitted changes in
 // src/ or include/" when there are some ("unknown" outside a git tree).
 std::string source_version() {
@@ -737,15 +720,6 @@ std::string source_version() {
         pclose(p);
     }
     return v;
-}
-
-double load_average() {
-    double l = NAN;
-    if (FILE *f = fopen("/proc/loadavg", "r")) {
-        if (fscanf(f, "%lf", &l) != 1) l = NAN;
-        fclose(f);
-    }
-    return l;
 }
 
 const Row *find_row(const std::vector<Row> &rows, const std::string &method, const std::string &kind,
@@ -796,7 +770,7 @@ int main(int argc, char **argv) {
     if (quick) sizes = {60}, model_sizes = {20}, warm = 5, timed = 20, bf_budget_s = 0.3;
     if (mesh.empty()) mesh = models + "/puma560/nimasarli_puma560_description/meshes/puma_link3.stl";
 
-    const double load0 = load_average();
+    const double load0 = bench::load_average();
     const std::string version = source_version();
     const double wall0 = now_ns();
     std::vector<Row> rows;
@@ -816,7 +790,7 @@ int main(int argc, char **argv) {
             notes.push_back("The link " + mesh + " could not be loaded: the model scenes are missing.");
         }
     }
-    const double load1 = load_average();
+    const double load1 = bench::load_average();
     const double wall_s = (now_ns() - wall0) * 1e-9;
 
     if (proxima_only) return 0;
@@ -866,7 +840,7 @@ int main(int argc, char **argv) {
         "Machine: %s, %ld cores online; load average %.2f at the start and %.2f at the end of the run "
         "(%.0f s; other work shared the machine, so absolute times carry its noise, ratios measured in the "
         "same run less so; a step preempted by other work shows in the p90). Source: %s.\n\n",
-        machine_cpu().c_str(), sysconf(_SC_NPROCESSORS_ONLN), load0, load1, wall_s, version.c_str());
+        bench::cpu_name().c_str(), sysconf(_SC_NPROCESSORS_ONLN), load0, load1, wall_s, version.c_str());
     for (auto &nt : notes) fprintf(f, "%s\n\n", nt.c_str());
     fprintf(f, "| kind | bodies | box side | method | median µs / step | p90 µs / step | steps timed | pairs "
                "checked / step | contacts | contacts brute force | steps differing | memory bytes |\n");

@@ -70,19 +70,13 @@ px_status px_pose_check(const px_pose *pose, px_error *err) {
     if (!isfinite(pose->t.x) || !isfinite(pose->t.y) || !isfinite(pose->t.z))
         return pxi_error(err, PX_ERR_NON_FINITE, "pose translation is not finite");
     /* Rows orthonormal and det +1 (row 2 = row 0 x row 1), within 1e-6. */
-    double n0 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - 1.0;
-    double n1 = r[3] * r[3] + r[4] * r[4] + r[5] * r[5] - 1.0;
-    double d01 = r[0] * r[3] + r[1] * r[4] + r[2] * r[5];
-    double cx = r[1] * r[5] - r[2] * r[4] - r[6], cy = r[2] * r[3] - r[0] * r[5] - r[7],
-           cz = r[0] * r[4] - r[1] * r[3] - r[8];
-    const double tol = 1e-6;
-    if (!(fabs(n0) <= tol && fabs(n1) <= tol && fabs(d01) <= tol && fabs(cx) <= tol && fabs(cy) <= tol &&
-          fabs(cz) <= tol))
+    double res[6];
+    if (!pxi_rotation_residuals(r, res))
         return pxi_error(
             err, PX_ERR_INVALID_POSE,
             "pose rotation is not a proper rotation (rows not orthonormal or det != +1 within "
             "1e-6: |r0|^2-1 = %.3g, |r1|^2-1 = %.3g, r0.r1 = %.3g, r2 - r0 x r1 = (%.3g %.3g %.3g))",
-            n0, n1, d01, cx, cy, cz);
+            res[0], res[1], res[2], res[3], res[4], res[5]);
     return PX_OK;
 }
 

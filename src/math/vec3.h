@@ -98,6 +98,22 @@ static inline px_vec3 pxi_xform(const px_pose *T, px_vec3 p) { return pxi_add(px
 /* T^-1 * p */
 static inline px_vec3 pxi_xform_inv(const px_pose *T, px_vec3 p) { return pxi_rot_t(T->r, pxi_sub(p, T->t)); }
 
+/* How far a rotation matrix's rows are from orthonormal and right-handed:
+ * res = |r0|^2 - 1, |r1|^2 - 1, r0.r1 and r2 - r0 x r1 (3). px_pose_check
+ * accepts a pose when all six are within PXI_POSE_TOL. */
+#define PXI_POSE_TOL 1e-6
+static inline int pxi_rotation_residuals(const double r[9], double res[6]) {
+    res[0] = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - 1.0;
+    res[1] = r[3] * r[3] + r[4] * r[4] + r[5] * r[5] - 1.0;
+    res[2] = r[0] * r[3] + r[1] * r[4] + r[2] * r[5];
+    res[3] = r[1] * r[5] - r[2] * r[4] - r[6];
+    res[4] = r[2] * r[3] - r[0] * r[5] - r[7];
+    res[5] = r[0] * r[4] - r[1] * r[3] - r[8];
+    int ok = 1;
+    for (int i = 0; i < 6; ++i) ok &= fabs(res[i]) <= PXI_POSE_TOL;
+    return ok;
+}
+
 /* T_AB = T_B^-1 * T_A: maps A's body frame into B's. The translations are
  * subtracted first (exact when the bodies are close; REFERENCES §1.8, §7). */
 static inline px_pose pxi_relative(const px_pose *ta, const px_pose *tb) {

@@ -1531,18 +1531,11 @@ static int pose_fast(const px_pose *pose, double *sk) {
     for (int i = 0; i < 9; ++i)
         if (!isfinite(r[i])) return 0;
     if (!pxi_is_finite3(pose->t) || !(pxi_max_abs(pose->t) <= 0x1p250)) return 0;
-    double n0 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2] - 1.0;
-    double n1 = r[3] * r[3] + r[4] * r[4] + r[5] * r[5] - 1.0;
-    double d01 = r[0] * r[3] + r[1] * r[4] + r[2] * r[5];
-    double cx = r[1] * r[5] - r[2] * r[4] - r[6], cy = r[2] * r[3] - r[0] * r[5] - r[7],
-           cz = r[0] * r[4] - r[1] * r[3] - r[8];
-    const double tol = 1e-6;
-    if (!(fabs(n0) <= tol && fabs(n1) <= tol && fabs(d01) <= tol && fabs(cx) <= tol && fabs(cy) <= tol &&
-          fabs(cz) <= tol))
-        return 0;
+    double res[6];
+    if (!pxi_rotation_residuals(r, res)) return 0;
     double n2 = r[6] * r[6] + r[7] * r[7] + r[8] * r[8] - 1.0;
     double d02 = r[0] * r[6] + r[1] * r[7] + r[2] * r[8], d12 = r[3] * r[6] + r[4] * r[7] + r[5] * r[8];
-    *sk = sqrt(n0 * n0 + n1 * n1 + n2 * n2 + 2.0 * (d01 * d01 + d02 * d02 + d12 * d12));
+    *sk = sqrt(res[0] * res[0] + res[1] * res[1] + n2 * n2 + 2.0 * (res[2] * res[2] + d02 * d02 + d12 * d12));
     return 1;
 }
 

@@ -19,6 +19,7 @@
 
 #include "proxima/io.h"
 #include "proxima/proxima.h"
+#include "puma560.h"
 
 #define NLINK 7
 #define PI 3.14159265358979323846
@@ -29,67 +30,29 @@ static double now(void) {
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* 4x4 rigid transforms as px_pose (row-major rotation, translation). */
-static px_pose compose(const px_pose *a, const px_pose *b) {
-    px_pose out;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            out.r[3 * i + j] =
-                a->r[3 * i] * b->r[j] + a->r[3 * i + 1] * b->r[3 + j] + a->r[3 * i + 2] * b->r[6 + j];
-    out.t = px_pose_apply(a, b->t);
-    return out;
-}
-
-/* URDF origin: translation, then fixed-axis roll-pitch-yaw (R = Rz Ry Rx). */
-static px_pose origin(double x, double y, double z, double roll, double pitch, double yaw) {
-    double cr = cos(roll), sr = sin(roll), cp = cos(pitch), sp = sin(pitch), cy = cos(yaw), sy = sin(yaw);
-    px_pose p;
-    double r[9] = {cy * cp,
-                   cy * sp * sr - sy * cr,
-                   cy * sp * cr + sy * sr,
-                   sy * cp,
-                   sy * sp * sr + cy * cr,
-                   sy * sp * cr - cy * sr,
-                   -sp,
-                   cp * sr,
-                   cp * cr};
-    memcpy(p.r, r, sizeof r);
-    p.t = (px_vec3){x, y, z};
-    return p;
-}
-
-/* Rotation by q about a unit axis. */
-static px_pose about(px_vec3 a, double q) {
-    double c = cos(q), s = sin(q), t = 1 - c;
-    px_pose p;
-    double r[9] = {t * a.x * a.x + c,       t * a.x * a.y - s * a.z, t * a.x * a.z + s * a.y,
-                   t * a.x * a.y + s * a.z, t * a.y * a.y + c,       t * a.y * a.z - s * a.x,
-                   t * a.x * a.z - s * a.y, t * a.y * a.z + s * a.x, t * a.z * a.z + c};
-    memcpy(p.r, r, sizeof r);
-    p.t = (px_vec3){0, 0, 0};
-    return p;
-}
+/* Pose helpers: examples/puma560.c's (URDF origins, joint rotations). */
 
 /* World poses of the seven link meshes at joint angles q[6]. */
 static void arm_poses(const double q[6], px_pose out[NLINK]) {
     const double pi = PI;
     const px_vec3 z = {0, 0, 1}, y = {0, 1, 0};
     px_pose link = px_pose_identity();
-    out[0] = origin(0, 0, 0, 0, 0, pi / 2);
-    px_pose joints[6] = {origin(0, 0, 0.6718, pi / 2, 0, 0),
-                         origin(0, 0, 0, 0, 0, 0),
-                         origin(0.4318, -0.0203, 0.1501, 0, 0, -pi / 2),
-                         origin(0, 0, 0, pi / 2, 0, pi / 2),
-                         origin(0, 0, 0.4331, pi / 2, 0, 0),
-                         origin(0, 0.0558, 0, -pi / 2, 0, 0)};
-    px_pose visuals[6] = {origin(0, 0, -0.1, 0, 0, 0),    origin(0, 0, 0.1936, 0, 0, 0),
-                          origin(0, 0, 0, 0, 0, 0),       origin(0, 0, 0.3621, 0, 0, pi / 2),
-                          origin(0, 0, 0, pi, 0, pi / 2), origin(0, 0, -0.010, 0, 0, 0)};
+    out[0] = puma_urdf_origin(0, 0, 0, 0, 0, pi / 2);
+    px_pose joints[6] = {puma_urdf_origin(0, 0, 0.6718, pi / 2, 0, 0),
+                         puma_urdf_origin(0, 0, 0, 0, 0, 0),
+                         puma_urdf_origin(0.4318, -0.0203, 0.1501, 0, 0, -pi / 2),
+                         puma_urdf_origin(0, 0, 0, pi / 2, 0, pi / 2),
+                         puma_urdf_origin(0, 0, 0.4331, pi / 2, 0, 0),
+                         puma_urdf_origin(0, 0.0558, 0, -pi / 2, 0, 0)};
+    px_pose visuals[6] = {
+        puma_urdf_origin(0, 0, -0.1, 0, 0, 0),    puma_urdf_origin(0, 0, 0.1936, 0, 0, 0),
+        puma_urdf_origin(0, 0, 0, 0, 0, 0),       puma_urdf_origin(0, 0, 0.3621, 0, 0, pi / 2),
+        puma_urdf_origin(0, 0, 0, pi, 0, pi / 2), puma_urdf_origin(0, 0, -0.010, 0, 0, 0)};
     for (int j = 0; j < 6; ++j) {
-        px_pose rot = about(j == 0 ? y : z, q[j]);
-        px_pose a = compose(&link, &joints[j]);
-        link = compose(&a, &rot);
-        out[j + 1] = compose(&link, &visuals[j]);
+        px_pose rot = puma_axis_rotation(j == 0 ? y : z, q[j]);
+        px_pose a = puma_compose(&link, &joints[j]);
+        link = puma_compose(&a, &rot);
+        out[j + 1] = puma_compose(&link, &visuals[j]);
     }
 }
 

@@ -81,7 +81,7 @@ px_pose puma_urdf_origin(double x, double y, double z, double roll, double pitch
 }
 
 /* Rotation by q about the unit axis a (Rodrigues). */
-static px_pose about(px_vec3 a, double q) {
+px_pose puma_axis_rotation(px_vec3 a, double q) {
     double c = cos(q), s = sin(q), t = 1 - c;
     px_pose p;
     const double r[9] = {t * a.x * a.x + c,       t * a.x * a.y - s * a.z, t * a.x * a.z + s * a.y,
@@ -163,7 +163,7 @@ void puma_link_frames(puma_meshes set, const double q[PUMA_JOINTS], px_pose fram
         px_pose x = origin6(c->joint[k - 1]);
         px_pose a = puma_compose(&frame[k - 1], &x);
         double qk = q[k - 1] + puma_urdf_offset[set][k - 1];
-        px_pose r = about(c->axis_y[k - 1] ? (px_vec3){0, 1, 0} : (px_vec3){0, 0, 1}, qk);
+        px_pose r = puma_axis_rotation(c->axis_y[k - 1] ? (px_vec3){0, 1, 0} : (px_vec3){0, 0, 1}, qk);
         frame[k] = puma_compose(&a, &r);
     }
 }

@@ -55,6 +55,8 @@ px_pose puma_compose(const px_pose *a, const px_pose *b);
 px_pose puma_inverse(const px_pose *a);
 /* URDF origin: translation xyz, then fixed-axis roll, pitch, yaw (R = Rz Ry Rx). */
 px_pose puma_urdf_origin(double x, double y, double z, double roll, double pitch, double yaw);
+/* Rotation by q (rad) about the unit axis a. */
+px_pose puma_axis_rotation(px_vec3 a, double q);
 
 /* Link frames T_k (k = 0..6) of the URDF chain of `set` at joint angles q. */
 void puma_link_frames(puma_meshes set, const double q[PUMA_JOINTS], px_pose frame[PUMA_LINKS]);

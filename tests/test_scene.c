@@ -717,6 +717,74 @@ static void test_review_cases(void) {
         px_scene_destroy(s);
         px_convex_destroy(c);
     }
+    /* Second review. 5. Two touching cubes both moved +100 in one step and
+     *    still touching: the sweep, moving one body at a time, dropped the
+     *    pair and added it back, with an ended and a began event. */
+    for (uint32_t threads = 1; threads <= 2; ++threads) {
+        px_scene_options so = {0};
+        so.margin = 0.01;
+        so.report_distance = 0.1;
+        so.threads = threads;
+        px_scene *s = px_scene_create(&so, &e);
+        px_convex *c = box3(0.5, 0.5, 0.5);
+        px_body_desc d = {0};
+        d.convex = c;
+        d.max_speed = INFINITY;
+        uint32_t a, b;
+        d.pose = at3(0, 0, 0);
+        CHECK(px_scene_add_body(s, &d, &a, &e) == PX_OK, "add");
+        d.pose = at3(1, 0, 0);
+        CHECK(px_scene_add_body(s, &d, &b, &e) == PX_OK, "add");
+        CHECK(px_scene_step(s, 0, &e) == PX_OK, "step");
+        px_scene_events(s, &n);
+        CHECK(n == 1, "review 5: the contact begins");
+        px_pose pa = at3(100, 0, 0), pb = at3(101, 0, 0);
+        px_scene_set_pose(s, a, &pa, &e);
+        px_scene_set_pose(s, b, &pb, &e);
+        CHECK(px_scene_step(s, 1, &e) == PX_OK, "step");
+        px_scene_events(s, &n);
+        CHECK(n == 0, "review 5: %zu events for a contact that held at both steps", n);
+        px_scene_pairs(s, &n);
+        CHECK(n == 1, "review 5: the pair is still reported");
+        pa = at3(-100, 0, 0);
+        px_scene_set_pose(s, a, &pa, &e);
+        CHECK(px_scene_step(s, 2, &e) == PX_OK, "step");
+        const px_scene_event *ev = px_scene_events(s, &n);
+        CHECK(n == 1 && !ev[0].began, "review 5: the contact ends when the boxes part");
+        px_scene_destroy(s);
+        px_convex_destroy(c);
+    }
+    /* 6. A rotation that px_pose_check accepts but that stretches by
+     *    1 + 4.9e-7 (s I): 1,000-unit cubes corner to corner at 0.0095, report
+     *    distance 0.01. The bounding-sphere lower bound must count the
+     *    stretch. */
+    {
+        px_scene_options so = {0};
+        so.margin = 0.01;
+        so.report_distance = 0.01;
+        px_scene *s = px_scene_create(&so, &e);
+        px_convex *c = box3(1000, 1000, 1000);
+        double sc = 1 + 4.9e-7, k = 1000 + 1000 * sc + 0.0095 / sqrt(3.0);
+        px_pose pa = px_pose_identity(), pb = at3(k, k, k);
+        pa.r[0] = pa.r[4] = pa.r[8] = sc;
+        CHECK(px_pose_check(&pa, &e) == PX_OK, "the stretched pose is accepted");
+        px_distance_result r;
+        CHECK(px_distance(c, &pa, c, &pb, NULL, NULL, &r) == PX_OK && r.distance <= 0.01, "cold distance");
+        px_body_desc d = {0};
+        d.convex = c;
+        d.max_speed = 1;
+        uint32_t a, b;
+        d.pose = pa;
+        CHECK(px_scene_add_body(s, &d, &a, &e) == PX_OK, "add");
+        d.pose = pb;
+        CHECK(px_scene_add_body(s, &d, &b, &e) == PX_OK, "add");
+        CHECK(px_scene_step(s, 0, &e) == PX_OK, "step");
+        const px_scene_pair *pr = px_scene_pairs(s, &n);
+        CHECK(n == 1 && fabs(pr[0].distance - r.distance) <= 1e-9,
+              "review 6: the pair at %.6g is reported (%zu pairs)", r.distance, n);
+        px_scene_destroy(s);
+        px_convex_destroy(c);
+    }
 }
 
 /* Out of memory inside px_scene_step (review): 20 cubes moved onto one
@@ -789,6 +857,81 @@ static void test_out_of_memory(void) {
     px_convex_destroy(c);
 }
 
+/* Second review (after the near list and threads): contacts ending while an
+ * allocation fails. A slab with 12 cubes on it, each contact begun in its
+ * own step; then the slab is removed (mode 0) or moved away (mode 1) with
+ * the k-th allocation failing. Every contact must end with exactly one
+ * event, or the call must fail; the reports after a failed step must be
+ * readable (ASan checks the reads). */
+static void test_out_of_memory_events(void) {
+    px_allocator al = {failing_alloc, failing_free, NULL};
+    double sl[24];
+    for (int c = 0; c < 8; ++c) {
+        sl[3 * c] = (c & 1) ? 30.0 : -1.0;
+        sl[3 * c + 1] = (c & 2) ? 0.5 : -0.5;
+        sl[3 * c + 2] = (c & 4) ? 0.0 : -1.0;
+    }
+    px_convex *slab = px_convex_create(sl, 8, NULL, NULL), *cube = box3(0.25, 0.25, 0.25);
+    for (int mode = 0; mode < 2; ++mode)
+        for (long k = 0; k < 12; ++k) {
+            px_scene_options o = {0};
+            o.allocator = &al;
+            o.margin = 0.01;
+            o.report_distance = 0.1;
+            fail_after = -1;
+            px_error e;
+            px_scene *s = px_scene_create(&o, &e);
+            px_body_desc d = {0};
+            d.convex = slab;
+            d.pose = at3(0, 0, 0);
+            d.max_speed = INFINITY;
+            uint32_t sid, id;
+            CHECK(px_scene_add_body(s, &d, &sid, &e) == PX_OK, "slab");
+            double t = 0;
+            px_scene_step(s, t++, &e);
+            long begun = 0, ended = 0;
+            for (int i = 0; i < 12; ++i) {
+                d.convex = cube;
+                d.pose = at3(2.0 * i, 0, 0.25);
+                d.max_speed = 0;
+                CHECK(px_scene_add_body(s, &d, &id, &e) == PX_OK, "cube");
+                CHECK(px_scene_step(s, t++, &e) == PX_OK, "step: %s", e.message);
+                size_t ne;
+                const px_scene_event *ev = px_scene_events(s, &ne);
+                for (size_t j = 0; j < ne; ++j) begun += ev[j].began ? 1 : -1;
+            }
+            CHECK(begun == 12, "mode %d: %ld contacts began", mode, begun);
+            fail_after = k;
+            int removed = 1;
+            if (mode == 0) {
+                removed = px_scene_remove_body(s, sid, &e) == PX_OK;
+            } else {
+                px_pose far = at3(0, 0, -1000);
+                CHECK(px_scene_set_pose(s, sid, &far, &e) == PX_OK, "set pose");
+            }
+            for (int i = 0; i < 4; ++i) {
+                px_status st = px_scene_step(s, t++, &e);
+                size_t ne, np;
+                const px_scene_event *ev = px_scene_events(s, &ne);
+                const px_scene_pair *pr = px_scene_pairs(s, &np);
+                double sum = 0;
+                for (size_t j = 0; j < np; ++j) sum += pr[j].distance; /* readable */
+                CHECK(sum >= 0 && (st == PX_OK || (np == 0 && ne == 0)),
+                      "mode %d k %ld: a failed step reports", mode, k);
+                for (size_t j = 0; j < ne; ++j) ended += ev[j].began ? 0 : 1;
+                px_scene_pair m;
+                if (st != PX_OK) px_scene_min_distance(s, &m, &e);
+                fail_after = -1;
+            }
+            if (removed)
+                CHECK(ended == 12, "mode %d k %ld: %ld of 12 contacts ended with an event", mode, k, ended);
+            px_scene_destroy(s);
+        }
+    CHECK(bad_frees == 0, "%zu frees with a size other than the allocation's", bad_frees);
+    px_convex_destroy(slab);
+    px_convex_destroy(cube);
+}
+
 int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
@@ -822,6 +965,7 @@ int main(void) {
     test_no_allocation();
     test_review_cases();
     test_out_of_memory();
+    test_out_of_memory_events();
     test_bad_inputs();
     return tu_finish();
 }

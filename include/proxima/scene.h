@@ -80,6 +80,9 @@ typedef struct px_scene_options {
     /// The others are started by px_scene_create and wait between steps;
     /// they call the allocator (model pairs' caches), which must then be
     /// thread-safe. Reports, events and errors are the same for any number.
+    /// Helpers run in the floating-point environment of the thread that
+    /// created the scene; like the whole library, they expect
+    /// round-to-nearest.
     uint32_t threads;
     uint32_t reserved[7]; ///< must be zero
 } px_scene_options;

@@ -83,6 +83,7 @@ typedef struct spair {
     uint8_t measured, contact;
     uint8_t rel_miss, rel_skip; /* the relative-pose test's failures in a row, and
                                  * how many due updates skip it still */
+    uint8_t doomed;             /* in contact and dropped by the sweep this step */
     double due;
     double snap_a, snap_b;     /* the bodies' travels at the last query */
     double gap;                /* distance - report - eps at the last query */
@@ -148,7 +149,8 @@ struct px_scene {
     uint32_t cap_where;
     uint32_t *dirty, n_dirty, cap_dirty;
     uint32_t *later, n_later, cap_later;
-    sdone *done; /* per due pair of the step: what became of it */
+    uint32_t *doomed, n_doomed, cap_doomed; /* see remove_pair */
+    sdone *done;                            /* per due pair of the step: what became of it */
     uint32_t cap_done;
     struct spool *pool; /* helper threads (NULL: the step runs on the caller's) */
     uint32_t *rep, n_rep, cap_rep;
@@ -500,7 +502,16 @@ static int add_pair(px_scene *s, uint32_t a, uint32_t b) {
 
 static void free_pair(px_scene *s, uint32_t p, int silent) {
     spair *q = &s->pair[p];
+    /* The capacity of `pending` was reserved (px_scene_step and
+     * px_scene_remove_body), so this event is never lost. */
     if (q->contact && !silent) event(s, q->a, q->b, 0);
+    if (q->doomed) /* only after a failed step: take it off the list */
+        for (uint32_t i = 0; i < s->n_doomed; ++i)
+            if (s->doomed[i] == p) {
+                s->doomed[i] = s->doomed[--s->n_doomed];
+                break;
+            }
+    q->doomed = 0;
     hash_del(&s->pairs, pair_key(q->a, q->b));
     dequeue(s, p);
     unlink_pair(s, p);
@@ -511,9 +522,22 @@ static void free_pair(px_scene *s, uint32_t p, int silent) {
     s->live_pairs--;
 }
 
+/* The sweep moves one body at a time, so two bodies that move together
+ * (both by far more than their boxes) can lose their pair while only one
+ * has moved and get it back when the other does: a pair in contact is
+ * therefore only marked here, and freed after all moves when its boxes no
+ * longer overlap (its contact then ends; else it stays, with no events). */
 static void remove_pair(px_scene *s, uint32_t a, uint32_t b) {
     uint32_t p = hash_get(&s->pairs, pair_key(a, b));
-    if (p != S_NONE) free_pair(s, p, 0);
+    if (p == S_NONE) return;
+    spair *q = &s->pair[p];
+    if (q->doomed) return;
+    if (q->contact && s->n_doomed < s->cap_doomed) {
+        q->doomed = 1;
+        s->doomed[s->n_doomed++] = p;
+        return;
+    }
+    free_pair(s, p, 0);
 }
 
 /* ---- motion bounds ----------------------------------------------------- */
@@ -602,6 +626,18 @@ static int overlap_others(const px_scene *s, uint32_t a, uint32_t b, int k) {
     return overlap_on(s, a, b, (k + 1) % 3) && overlap_on(s, a, b, (k + 2) % 3);
 }
 
+/* Frees the marked pairs whose boxes no longer overlap. */
+static void settle_doomed(px_scene *s) {
+    for (uint32_t i = 0; i < s->n_doomed; ++i) {
+        uint32_t p = s->doomed[i];
+        spair *q = &s->pair[p];
+        q->doomed = 0;
+        if (!overlap_on(s, q->a, q->b, 0) || !overlap_on(s, q->a, q->b, 1) || !overlap_on(s, q->a, q->b, 2))
+            free_pair(s, p, 0);
+    }
+    s->n_doomed = 0;
+}
+
 /* Moves endpoint m (0: min, 1: max) of body b on axis k in direction dir
  * (-1 or +1) to its value's place, shifting the endpoints it passes (one
  * write each; b's own is written once at the end). Passing an endpoint of
@@ -664,6 +700,10 @@ static const double SWEEP[9] = {
     0.7648421872844885 /* row z */
 };
 
+/* The radius of the body's bounding sphere under its pose: the matrix may
+ * stretch by up to 1 + its skew (|R|_2 <= 1 + |S|, R = Q (I + S)). */
+static double sphere_r(const sbody *b) { return b->sr * (1.0 + b->sk); }
+
 /* The body's box in the sweep's frame at its pose: the body-frame box
  * turned (|R| half) cut down to the box of its bounding sphere, which does
  * not grow with the rotation (a round body's turned box is up to sqrt 3
@@ -682,7 +722,7 @@ static void world_box(const sbody *b, double out[6]) {
         /* Rounding of the centres, extents and the frame (its rows are unit
          * within a few ulps): a few ulps of the coordinates. */
         e += 16.0 * DBL_EPSILON * (fabs(wc3[i]) + e);
-        double es = b->sr + 16.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
+        double es = sphere_r(b) + 16.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
         out[i] = pxi_max2(wc3[i] - e, ws3[i] - es);
         out[3 + i] = pxi_min2(wc3[i] + e, ws3[i] + es);
     }
@@ -916,7 +956,7 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
         if (px_distance(hx, &x->pose, hy, &y->pose, NULL, cache, &d) == PX_OK) return d.distance;
     }
     px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
-    return pxi_len(pxi_sub(cx, cy)) - x->sr - y->sr;
+    return pxi_len(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
 }
 
 /* Measures pair q. Unless `exact`, a pair whose bounding spheres, or for
@@ -937,7 +977,7 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
         /* The bounding spheres first (a pair entering the sweep would
          * otherwise start with a cold query), then the root hulls. */
         px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
-        lb = pxi_len(pxi_sub(cx, cy)) - x->sr - y->sr;
+        lb = pxi_len(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
         if (q->kind != K_CONVEX && !(lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report))
             lb = pxi_max2(lb, root_gap(x, y, &q->root));
     }
@@ -1336,6 +1376,7 @@ void px_scene_destroy(px_scene *s) {
     pxi_free(&a, s->dirty, (size_t)s->cap_dirty * sizeof *s->dirty);
     pxi_free(&a, s->later, (size_t)s->cap_later * sizeof *s->later);
     pxi_free(&a, s->done, (size_t)s->cap_done * sizeof *s->done);
+    pxi_free(&a, s->doomed, (size_t)s->cap_doomed * sizeof *s->doomed);
     pxi_free(&a, s->rep, (size_t)s->cap_rep * sizeof *s->rep);
     pxi_free(&a, s->out, (size_t)s->cap_out * sizeof *s->out);
     pxi_free(&a, s->ev, (size_t)s->cap_ev * sizeof *s->ev);
@@ -1476,6 +1517,9 @@ px_status px_scene_remove_body(px_scene *s, uint32_t id, px_error *err) {
     if (!body_ok(s, id))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_remove_body: no body %u in the scene", id);
     sbody *b = &s->body[id];
+    /* Room for its contacts' ended events, before anything changes. */
+    if (!GROW(s, s->pending, s->cap_pending, s->n_pending + s->live_pairs + 1))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_remove_body: out of memory");
     while (b->first_pair != S_NONE) free_pair(s, b->first_pair, 0);
     if (!b->added)
         extract(s, id);
@@ -1595,6 +1639,15 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     if (!isfinite(time) || (s->stepped && time < s->time))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                          "px_scene_step: time %g is not finite or goes back (last %g)", time, s->time);
+    /* Room for every contact that may end in this step (pairs the sweep
+     * drops, see remove_pair), reserved before anything changes. */
+    if (!GROW(s, s->pending, s->cap_pending, s->n_pending + s->live_pairs + 1) ||
+        !GROW(s, s->doomed, s->cap_doomed, s->live_pairs + 1))
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    /* The last step's reports and events are gone from here on, also when
+     * this step fails (its events then wait for the next one). */
+    s->n_rep = 0;
+    s->n_ev = 0;
     double dt = s->stepped ? time - s->time : INFINITY;
     uint64_t checked0 = 0;
     s->stats.swaps = 0;
@@ -1636,6 +1689,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         }
     }
     if (s->resync && rebuild(s)) s->resync = 0;
+    settle_doomed(s);
     if (s->resync) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     s->time = time;
     s->stepped = 1;
@@ -1654,11 +1708,17 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     if (!isfinite(time + s->horizon)) s->horizon = 0.0;
     uint32_t nd = 0;
     uint32_t *due = s->later;
-    for (uint32_t i = s->n_near; i-- > 0;)
-        if (s->near[i].due <= time) {
-            due[nd++] = s->near[i].pair;
-            dequeue(s, s->near[i].pair);
+    const double soon = time + s->horizon;
+    for (uint32_t i = s->n_near; i-- > 0;) {
+        const snear e = s->near[i];
+        if (e.due <= time) {
+            due[nd++] = e.pair;
+            dequeue(s, e.pair);
+        } else if (e.due > soon) { /* queued after a longer step: back to the heap */
+            dequeue(s, e.pair);
+            enqueue_at(s, e.pair, e.due);
         }
+    }
     while (s->n_heap > 0 && s->heap[0].due <= time) {
         due[nd++] = s->heap[0].pair;
         dequeue(s, s->heap[0].pair);
@@ -1688,15 +1748,19 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         return st;
     }
     /* Reports, in (a, b) order. */
-    if (!GROW(s, s->out, s->cap_out, s->n_rep))
+    if (!GROW(s, s->out, s->cap_out, s->n_rep)) {
+        s->n_rep = 0;
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    }
     uint32_t n = 0;
     for (uint32_t i = 0; i < s->n_rep; ++i) s->out[n++] = s->pair[s->rep[i]].res;
     s->n_rep = n;
     sort(s->out, n, sizeof *s->out, cmp_pair_out);
     /* Events, in (a, b) order. */
-    if (!GROW(s, s->ev, s->cap_ev, s->n_pending))
+    if (!GROW(s, s->ev, s->cap_ev, s->n_pending)) {
+        s->n_rep = 0;
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    }
     for (uint32_t i = 0; i < s->n_pending; ++i) s->pending[i].reserved = i;
     sort(s->pending, s->n_pending, sizeof *s->pending, cmp_event);
     for (uint32_t i = 0; i < s->n_pending; ++i) {
@@ -1796,6 +1860,8 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
             sbody x0 = s->body[a], y0 = s->body[b];
             x0.pose = x0.last;
             y0.pose = y0.last;
+            x0.sk = x0.sk_last;
+            y0.sk = y0.sk_last;
             const sbody *x = &x0, *y = &y0;
             tmp.kind = x->convex && y->convex ? K_CONVEX
                        : x->model && y->model ? K_MODEL_MODEL

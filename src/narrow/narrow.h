@@ -57,6 +57,12 @@ typedef struct pxi_lc_start {
 void pxi_lin_canny(const px_convex *a, const px_convex *b, const px_pose *t_ab, const pxi_lc_start *start,
                    pxi_answer *out);
 
+/* px_distance with default options for poses that passed px_pose_check
+ * already (a scene checks each pose once, when it is set, instead of at
+ * every query). */
+px_status pxi_distance_checked(const px_convex *a, const px_pose *pose_a, const px_convex *b,
+                               const px_pose *pose_b, px_pair_cache *cache, px_distance_result *result);
+
 /* Steps of the cold line-of-centres walk before a seed is asked for, and
  * whether the pair is round enough for that start (thin bodies go straight
  * to a GJK seed: from the line of centres a 1:8:40 ellipsoid takes tens of

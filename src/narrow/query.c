@@ -83,11 +83,11 @@ static double sum4(double a, double b, double c, double d) {
  * §1.8, §7), then the centres' offsets. Poses far apart (translations of
  * opposite sign near 1e308) can overflow it even though each pose is
  * finite: PX_ERR_NON_FINITE. */
-static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_convex *b,
-                            const px_pose *pose_b, pair_frames *f) {
+static px_status check_poses(const px_convex *a, const px_pose *pose_a, const px_convex *b,
+                             const px_pose *pose_b, int poses_checked, pair_frames *f) {
     if (!a || !b || !pose_a || !pose_b) return PX_ERR_INVALID_ARGUMENT;
-    px_status st = px_pose_check(pose_a, NULL);
-    if (st == PX_OK) st = px_pose_check(pose_b, NULL);
+    px_status st = poses_checked ? PX_OK : px_pose_check(pose_a, NULL);
+    if (st == PX_OK && !poses_checked) st = px_pose_check(pose_b, NULL);
     if (st != PX_OK) return st;
     /* Checked before the rotation: inf times a zero matrix entry is NaN. */
     px_vec3 dt = pxi_sub(pose_a->t, pose_b->t);
@@ -119,6 +119,11 @@ static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_
     /* The pair's span (sizes plus distance) must leave room for the sums and
      * the power-of-two scaling of every method: at most 2^1021 (4.5e307). */
     return pxi_pair_span(a, b, &f->t_ab) <= 0x1p1021 ? PX_OK : PX_ERR_RANGE;
+}
+
+static px_status check_pair(const px_convex *a, const px_pose *pose_a, const px_convex *b,
+                            const px_pose *pose_b, pair_frames *f) {
+    return check_poses(a, pose_a, b, pose_b, 0, f);
 }
 
 static inline px_vec3 unit_or_zero(px_vec3 v) {
@@ -535,15 +540,16 @@ static px_status read_options(const px_query_options *o, uint32_t allowed, uint3
     return PX_OK;
 }
 
-px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
-                      const px_query_options *options, px_pair_cache *cache, px_distance_result *result) {
+static px_status distance(const px_convex *a, const px_pose *pose_a, const px_convex *b,
+                          const px_pose *pose_b, const px_query_options *options, px_pair_cache *cache,
+                          px_distance_result *result, int poses_checked) {
     if (result) memset(result, 0, sizeof *result);
     if (!result) return PX_ERR_INVALID_ARGUMENT;
     uint32_t method, flags;
     px_status st = read_options(options, PX_QUERY_SIGNED, &method, &flags);
     if (st != PX_OK) return st;
     pair_frames fr;
-    st = check_pair(a, pose_a, b, pose_b, &fr);
+    st = check_poses(a, pose_a, b, pose_b, poses_checked, &fr);
     if (st != PX_OK) return st;
     const px_pose *t_ab = &fr.t_ab;
     pxi_policy policy;
@@ -594,6 +600,16 @@ px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex
     result->feature_a = pen.fa;
     result->feature_b = pen.fb;
     return PX_OK;
+}
+
+px_status px_distance(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,
+                      const px_query_options *options, px_pair_cache *cache, px_distance_result *result) {
+    return distance(a, pose_a, b, pose_b, options, cache, result, 0);
+}
+
+px_status pxi_distance_checked(const px_convex *a, const px_pose *pose_a, const px_convex *b,
+                               const px_pose *pose_b, px_pair_cache *cache, px_distance_result *result) {
+    return distance(a, pose_a, b, pose_b, NULL, cache, result, 1);
 }
 
 px_status px_intersect(const px_convex *a, const px_pose *pose_a, const px_convex *b, const px_pose *pose_b,

@@ -41,6 +41,7 @@
 #include "core/core.h"
 #include "math/vec3.h"
 #include "model/model.h"
+#include "narrow/narrow.h"
 
 #define S_NONE UINT32_MAX
 #define S_PI 3.14159265358979323846
@@ -953,7 +954,7 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
     const px_convex *hy = y->model ? y->model->nodes[0].hull : y->convex;
     if (hx && hy) {
         px_distance_result d;
-        if (px_distance(hx, &x->pose, hy, &y->pose, NULL, cache, &d) == PX_OK) return d.distance;
+        if (pxi_distance_checked(hx, &x->pose, hy, &y->pose, cache, &d) == PX_OK) return d.distance;
     }
     px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
     return pxi_len(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
@@ -989,7 +990,7 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
     } else if (q->kind == K_CONVEX) {
         px_distance_result d;
         (*checked)++;
-        st = px_distance(x->convex, &x->pose, y->convex, &y->pose, NULL, &q->cache.convex, &d);
+        st = pxi_distance_checked(x->convex, &x->pose, y->convex, &y->pose, &q->cache.convex, &d);
         if (st == PX_OK) {
             r->distance = r->upper_bound = d.distance;
             r->point_a = d.point_a;

@@ -932,6 +932,229 @@ static void test_out_of_memory_events(void) {
     px_convex_destroy(cube);
 }
 
+/* Third review: skewed poses, stale witness points, failed steps.
+ * 1. Matrices off a rotation by 4.9e-7 (px_pose_check accepts them, a float
+ *    rotation is this far off): px_distance measures in b's frame through
+ *    R_b^T, 3.4e-7 nearer than the world's; a pair at 0.99999966 with
+ *    report = 1 was never reported. Also each body more skewed than the
+ *    last, in later steps (the allowance grows while pairs are queued).
+ * 2. A point and a box turned together by an exact rotation: the relative
+ *    test finds no motion, and the pair kept its old witness points.
+ * 3. px_scene_min_distance used the current pose's skew for the last pose.
+ * 4. A contact that began in a failed step, then excluded: its began event
+ *    was delivered, never ended. A failed step that failed at once kept the
+ *    last step's reports. */
+static void test_third_review(void) {
+    px_error e;
+    size_t n;
+    {
+        double oct[18] = {0.1, 0, 0, -0.1, 0, 0, 0, 0.1, 0, 0, -0.1, 0, 0, 0, 0.1, 0, 0, -0.1};
+        px_convex *c = px_convex_create(oct, 6, NULL, &e);
+        for (uint32_t th = 1; th <= 2; ++th)
+            for (int late = 0; late < 2; ++late) {
+                px_scene_options o = {0};
+                o.margin = 1.0;
+                o.threads = th;
+                px_scene *s = px_scene_create(&o, &e);
+                px_body_desc d = {0};
+                d.convex = c;
+                d.max_speed = 1e-3;
+                uint32_t a, b, far;
+                px_pose pa = at3(1.2 + 2e-7, 0, 0), pb = at3(0, 0, 0), pf = at3(50, 0, 0);
+                px_pose sb = pb; /* shrinks lengths by 4.9e-7 */
+                for (int i = 0; i < 9; i += 4) sb.r[i] = 1 - 4.9e-7;
+                CHECK(px_pose_check(&sb, &e) == PX_OK, "skewed pose accepted");
+                d.pose = pa;
+                px_scene_add_body(s, &d, &a, &e);
+                d.pose = late ? pb : sb;
+                px_scene_add_body(s, &d, &b, &e);
+                d.pose = pf;
+                px_scene_add_body(s, &d, &far, &e);
+                CHECK(px_scene_step(s, 0, &e) == PX_OK, "step");
+                if (late) { /* the skew comes after the pair was keyed */
+                    px_scene_set_pose(s, b, &sb, &e);
+                    for (int i = 0; i < 9; i += 4) pf.r[i] = 1 - 1e-7;
+                    px_scene_set_pose(s, far, &pf, &e);
+                }
+                CHECK(px_scene_step(s, 1, &e) == PX_OK, "step");
+                px_distance_result r;
+                px_distance(c, &pa, c, &sb, NULL, NULL, &r);
+                const px_scene_pair *pr = px_scene_pairs(s, &n);
+                CHECK(r.distance <= 1.0 && n == 1 && pr[0].contact &&
+                          fabs(pr[0].distance - r.distance) < 1e-12,
+                      "review 3.1 (threads %u, late %d): px_distance %.17g, %zu pairs reported", th, late,
+                      r.distance, n);
+                px_scene_pair m;
+                CHECK(px_scene_min_distance(s, &m, &e) == PX_OK && m.body_a == a && m.body_b == b,
+                      "review 3.1: min distance");
+                px_scene_destroy(s);
+            }
+        px_convex_destroy(c);
+    }
+    {
+        double pt[3] = {0, 0, 0};
+        double bp[24]; /* a cube of half-size 0.5 about (1.05, 0, 0), in its own frame */
+        for (int c = 0; c < 8; ++c)
+            for (int k = 0; k < 3; ++k) bp[3 * c + k] = ((c >> k) & 1 ? 0.5 : -0.5) + (k == 0 ? 1.05 : 0.0);
+        px_convex *a = px_convex_create(pt, 1, NULL, &e), *b = px_convex_create(bp, 8, NULL, &e);
+        px_scene_options o = {0};
+        o.margin = 0.6;
+        px_scene *s = px_scene_create(&o, &e);
+        px_body_desc d = {0};
+        d.max_speed = 1;
+        d.max_angular_speed = 10;
+        uint32_t ia, ib;
+        d.convex = a;
+        d.pose = at3(0, 0, 0);
+        px_scene_add_body(s, &d, &ia, &e);
+        d.convex = b;
+        px_scene_add_body(s, &d, &ib, &e);
+        px_scene_step(s, 0, &e);
+        /* both turned 90 degrees about z (exactly), translations 0 */
+        px_pose ra = at3(0, 0, 0), rb = at3(0, 0, 0);
+        ra.r[0] = rb.r[0] = 0, ra.r[1] = rb.r[1] = -1, ra.r[3] = rb.r[3] = 1, ra.r[4] = rb.r[4] = 0;
+        px_scene_set_pose(s, ia, &ra, &e);
+        px_scene_set_pose(s, ib, &rb, &e);
+        CHECK(px_scene_step(s, 1, &e) == PX_OK, "step");
+        px_distance_result r;
+        px_distance(a, &ra, b, &rb, NULL, NULL, &r);
+        const px_scene_pair *pr = px_scene_pairs(s, &n);
+        CHECK(n == 1 && fabs(pr[0].point_b.x - r.point_b.x) < 1e-12 &&
+                  fabs(pr[0].point_b.y - r.point_b.y) < 1e-12,
+              "review 3.2: witness (%g %g) expected (%g %g)", n ? pr[0].point_b.x : NAN,
+              n ? pr[0].point_b.y : NAN, r.point_b.x, r.point_b.y);
+        px_scene_destroy(s);
+        px_convex_destroy(a);
+        px_convex_destroy(b);
+    }
+    {
+        /* Cubes of half-size 1000 corner to corner along the sweep frame's
+         * x axis: (A,B) 0.1 apart with A stretched by 1 + 4.9e-7, (C,D)
+         * 0.1003 apart and visited first. A is then given an exact pose,
+         * not stepped yet: the minimum is at the last step's poses. */
+        const double U[3] = {0.6312514969513067, -0.5646424733950354, 0.5316958010320105};
+        double nn[3] = {1, 1, 1}, pp[3] = {1, -1, 0}, qq[3], v[3], w[3];
+        double ln = sqrt(3.0), lp = sqrt(2.0);
+        for (int i = 0; i < 3; ++i) nn[i] /= ln, pp[i] /= lp;
+        qq[0] = nn[1] * pp[2] - nn[2] * pp[1], qq[1] = nn[2] * pp[0] - nn[0] * pp[2],
+        qq[2] = nn[0] * pp[1] - nn[1] * pp[0];
+        v[0] = U[1], v[1] = -U[0], v[2] = 0; /* U x z */
+        double lv = sqrt(v[0] * v[0] + v[1] * v[1]);
+        v[0] /= lv, v[1] /= lv;
+        w[0] = U[1] * v[2] - U[2] * v[1], w[1] = U[2] * v[0] - U[0] * v[2], w[2] = U[0] * v[1] - U[1] * v[0];
+        px_pose r0 = px_pose_identity();
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) r0.r[3 * i + j] = U[i] * nn[j] + v[i] * pp[j] + w[i] * qq[j];
+        CHECK(px_pose_check(&r0, &e) == PX_OK, "review 3.3: frame");
+        double h = 1000, s3 = sqrt(3.0) * h, sc = 1 + 4.9e-7;
+        px_convex *c = box3(h, h, h);
+        px_pose p[4] = {r0, r0, r0, r0};
+        for (int i = 0; i < 9; ++i) p[0].r[i] *= sc;
+        double xs[4] = {0, sc * s3 + s3 + 0.1, -20000, -20000 + 2 * s3 + 0.1003};
+        for (int k = 0; k < 4; ++k) p[k].t = (px_vec3){xs[k] * U[0], xs[k] * U[1], xs[k] * U[2]};
+        px_scene_options o = {0};
+        o.margin = o.report_distance = 0.01;
+        px_scene *s = px_scene_create(&o, &e);
+        px_body_desc d = {0};
+        d.convex = c;
+        d.max_speed = INFINITY;
+        uint32_t id[4];
+        for (int i = 0; i < 4; ++i) {
+            d.pose = p[i];
+            px_scene_add_body(s, &d, &id[i], &e);
+        }
+        px_scene_step(s, 0, &e);
+        px_pose exact = r0;
+        exact.t = p[0].t;
+        px_scene_set_pose(s, id[0], &exact, &e);
+        px_scene_pair m;
+        px_distance_result r;
+        px_distance(c, &p[0], c, &p[1], NULL, NULL, &r);
+        CHECK(px_scene_min_distance(s, &m, &e) == PX_OK && m.body_a == id[0] && m.body_b == id[1] &&
+                  fabs(m.distance - r.distance) < 1e-9,
+              "review 3.3: min distance (%u,%u) %.17g, expected (0,1) %.17g", m.body_a, m.body_b, m.distance,
+              r.distance);
+        px_scene_destroy(s);
+        px_convex_destroy(c);
+    }
+    {
+        px_allocator al = {failing_alloc, failing_free, NULL};
+        px_convex *c = box3(0.5, 0.5, 0.5);
+        int failed_once = 0;
+        for (long k = 0; k < 40; ++k) {
+            fail_after = -1;
+            px_scene_options o = {0};
+            o.margin = 0.01;
+            o.report_distance = 0.1;
+            o.allocator = &al;
+            px_scene *s = px_scene_create(&o, &e);
+            px_body_desc d = {0};
+            d.convex = c;
+            d.max_speed = 10;
+            uint32_t a, b;
+            d.pose = at3(0, 0, 0);
+            px_scene_add_body(s, &d, &a, &e);
+            d.pose = at3(1.5, 0, 0);
+            px_scene_add_body(s, &d, &b, &e);
+            px_scene_step(s, 0, &e);
+            px_pose pb = at3(1.0, 0, 0);
+            px_scene_set_pose(s, b, &pb, &e);
+            fail_after = k;
+            px_status st = px_scene_step(s, 0.1, &e);
+            fail_after = -1;
+            if (st == PX_OK) {
+                px_scene_destroy(s);
+                break;
+            }
+            failed_once = 1;
+            px_scene_pairs(s, &n);
+            size_t ne;
+            px_scene_events(s, &ne);
+            CHECK(n == 0 && ne == 0, "review 3.4 (k %ld): a failed step shows %zu pairs, %zu events", k, n,
+                  ne);
+            px_scene_exclude_pair(s, a, b, &e);
+            CHECK(px_scene_step(s, 0.2, &e) == PX_OK, "step");
+            const px_scene_event *ev = px_scene_events(s, &ne);
+            int began = 0;
+            for (size_t i = 0; i < ne; ++i) began += ev[i].began;
+            CHECK(began == 0, "review 3.4 (k %ld): an excluded pair's contact began and never ends", k);
+            px_scene_destroy(s);
+        }
+        CHECK(failed_once, "review 3.4: no step failed");
+        /* Reports of the last step are gone when the next fails at once. */
+        px_scene_options o = {0};
+        o.margin = 0.01;
+        o.report_distance = 0.1;
+        o.allocator = &al;
+        px_scene *s = px_scene_create(&o, &e);
+        px_body_desc d = {0};
+        d.convex = c;
+        d.max_speed = 10;
+        uint32_t id;
+        for (int i = 0; i < 20; ++i) {
+            d.pose = at3(i * 1.0, 0, 0);
+            px_scene_add_body(s, &d, &id, &e);
+        }
+        px_scene_step(s, 0, &e);
+        for (int i = 0; i < 20; ++i) {
+            d.pose = at3(i * 1.0, 5, 0);
+            px_scene_add_body(s, &d, &id, &e);
+        }
+        px_scene_step(s, 1, &e);
+        fail_after = 0;
+        px_status st = px_scene_step(s, 2, &e);
+        fail_after = -1;
+        size_t ne;
+        px_scene_pairs(s, &n);
+        px_scene_events(s, &ne);
+        CHECK(st != PX_OK || (n > 0), "step");
+        if (st != PX_OK)
+            CHECK(n == 0 && ne == 0, "review 3.4: a failed step shows %zu pairs, %zu events", n, ne);
+        px_scene_destroy(s);
+        px_convex_destroy(c);
+    }
+}
+
 int main(void) {
     tu_init("test_scene");
     int quick = tu_sanitized();
@@ -966,6 +1189,7 @@ int main(void) {
     test_review_cases();
     test_out_of_memory();
     test_out_of_memory_events();
+    test_third_review();
     test_bad_inputs();
     return tu_finish();
 }

@@ -25,7 +25,10 @@
 ///   a pair is never skipped while the actual motion could have closed its
 ///   gap. The guarantee is therefore independent of the declared bounds
 ///   (they decide only how often pairs are checked): at every step, every
-///   pair closer than the report distance is reported.
+///   pair closer than the report distance is reported. Poses whose matrix
+///   is a little off a rotation (px_pose_check allows 1e-6) are allowed
+///   for: the scene's bounds give way by the skew times the bodies' reach
+///   (docs/scene.md, "The guarantee").
 ///
 /// Distances are those of px_distance (convex bodies) and
 /// px_model_distance (models): exact for exact leaves, a lower bound with a

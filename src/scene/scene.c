@@ -72,6 +72,7 @@ typedef struct sbody {
     double sr;
     double vmax, wmax;  /* speed bounds */
     double sk, sk_last; /* skews (how far from rotations) of pose and last */
+    double reach;       /* |sc| + 3 sr: bounds |body-frame point - origin| (frame_pad) */
     int fitted;
     double fat[6]; /* the fat box in the sweep: lo xyz, hi xyz */
     uint32_t group, mask, flags;
@@ -127,6 +128,10 @@ typedef struct shash {
 struct px_scene {
     px_allocator alloc;
     double margin, report;
+    /* A power of two >= the skew of every pose the scene has taken (see
+     * frame_pad); skew_grew: it grew since the last step. */
+    double skx;
+    int skew_grew;
     size_t model_cache_bytes;
     double time;
     int stepped;
@@ -506,6 +511,17 @@ static void free_pair(px_scene *s, uint32_t p, int silent) {
     /* The capacity of `pending` was reserved (px_scene_step and
      * px_scene_remove_body), so this event is never lost. */
     if (q->contact && !silent) event(s, q->a, q->b, 0);
+    if (q->contact && silent) { /* a began event not delivered yet (a failed step) goes too */
+        for (uint32_t i = s->n_pending; i-- > 0;) {
+            const px_scene_event *e = &s->pending[i];
+            if (e->body_a != q->a || e->body_b != q->b) continue;
+            if (e->began) {
+                memmove(&s->pending[i], &s->pending[i + 1], (s->n_pending - i - 1) * sizeof *s->pending);
+                s->n_pending--;
+            }
+            break;
+        }
+    }
     if (q->doomed) /* only after a failed step: take it off the list */
         for (uint32_t i = 0; i < s->n_doomed; ++i)
             if (s->doomed[i] == p) {
@@ -701,6 +717,33 @@ static const double SWEEP[9] = {
     0.7648421872844885 /* row z */
 };
 
+/* Poses whose matrix is a little off a rotation (px_pose_check allows
+ * 1e-6): px_distance measures in B's frame through R_B^T, which is not
+ * R_B's inverse, and a model query may measure in either body's frame.
+ * With R^T R = I + E, |E| <= k (the scene's skx), a distance D between
+ * the posed bodies in the world and the same distance D_f measured in body
+ * f's frame differ by at most k D + k |y| (y: body-frame points of f, |y| <=
+ * reach; derivation in docs/scene.md). Every world-frame lower bound of the
+ * scene (spheres, boxes, the gap a pair is keyed by) is lowered by this
+ * much for both bodies, so that no pair px_distance puts within the report
+ * distance is skipped. Exact rotations give k = 2^-40: a pad of ~1e-12 of
+ * the bodies' reach. */
+static double frame_pad(const px_scene *s, const sbody *b) { return 2.0 * s->skx * (b->reach + s->report); }
+
+/* A world-frame lower bound d made good for the distance in either body's
+ * frame. */
+static double frame_low(const px_scene *s, const sbody *x, const sbody *y, double d) {
+    return d - 4.0 * s->skx * fabs(d) - frame_pad(s, x) - frame_pad(s, y);
+}
+
+/* Takes the skew of a pose the scene takes on: the allowance grows to the
+ * next power of two (at most ~22 times: px_pose_check caps the skew). */
+static void note_skew(px_scene *s, double sk) {
+    if (!(sk > s->skx)) return;
+    while (s->skx < sk) s->skx *= 2.0;
+    s->skew_grew = 1;
+}
+
 /* The radius of the body's bounding sphere under its pose: the matrix may
  * stretch by up to 1 + its skew (|R|_2 <= 1 + |S|, R = Q (I + S)). */
 static double sphere_r(const sbody *b) { return b->sr * (1.0 + b->sk); }
@@ -747,7 +790,8 @@ static double room(const double fat[6], const double w[6], double g) {
  * have left, and no box is computed. */
 static int refit(px_scene *s, sbody *b) {
     if (b->fitted && since(b->travel, b->fit_travel) <= b->fit_room) return 0;
-    double w[6], g = 0.5 * s->report;
+    /* Grown by half the report distance, and by the frame allowance. */
+    double w[6], g = 0.5 * s->report * (1.0 + 4.0 * s->skx) + frame_pad(s, b);
     world_box(b, w);
     int moved = 0;
     if (!b->fitted || room(b->fat, w, g) < 0.0) {
@@ -978,9 +1022,9 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
         /* The bounding spheres first (a pair entering the sweep would
          * otherwise start with a cold query), then the root hulls. */
         px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
-        lb = pxi_len(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
+        lb = frame_low(s, x, y, pxi_len(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y));
         if (q->kind != K_CONVEX && !(lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report))
-            lb = pxi_max2(lb, root_gap(x, y, &q->root));
+            lb = pxi_max2(lb, frame_low(s, x, y, root_gap(x, y, &q->root)));
     }
     if (lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report) {
         r->distance = lb;
@@ -1026,7 +1070,7 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
         return pxi_error(err, PX_ERR_INTERNAL, "px_scene_step: bodies %u and %u: distance %g", q->a, q->b,
                          r->distance);
     double eps = 64.0 * DBL_EPSILON * (place + r->distance);
-    q->gap = r->distance - s->report - eps;
+    q->gap = frame_low(s, x, y, r->distance) - s->report - eps;
     q->pose_a = x->pose;
     q->pose_b = y->pose;
     q->snap_a = x->travel;
@@ -1104,7 +1148,11 @@ static px_status update_pair(const px_scene *s, uint32_t p, double time, sdone *
         done->changed = q->res.contact != q->contact;
         return PX_OK;
     }
-    if (!q->measured || moved > 0.0) {
+    /* Measured again unless neither pose changed: a pair that moved
+     * together (moved 0 by the relative test) keeps its distance, but its
+     * witness points move with it. */
+    if (!q->measured || moved > 0.0 || memcmp(&x->pose, &q->pose_a, sizeof x->pose) ||
+        memcmp(&y->pose, &q->pose_b, sizeof y->pose)) {
         px_status st = query(s, q, x, y, 0, checked, err);
         if (st != PX_OK) {
             q->due = done->due = -INFINITY;
@@ -1340,6 +1388,7 @@ px_scene *px_scene_create(const px_scene_options *options, px_error *err) {
     s->alloc = a;
     s->margin = o.margin;
     s->report = o.report_distance;
+    s->skx = 0x1p-40;
     s->model_cache_bytes = o.model_cache_bytes ? o.model_cache_bytes : (size_t)256 << 10;
     s->time = -INFINITY;
     s->free_pair = S_NONE;
@@ -1465,6 +1514,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->convex = d->convex;
     b->pose = b->last = d->pose;
     b->sk = b->sk_last = skew(d->pose.r);
+    note_skew(s, b->sk);
     b->center = d->center;
     b->lo = lo;
     b->hi = hi;
@@ -1491,6 +1541,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->radius = r * (1.0 + 8.0 * DBL_EPSILON);
     b->sc = sc;
     b->sr = sr * (1.0 + 8.0 * DBL_EPSILON);
+    b->reach = pxi_len(sc) + 3.0 * b->sr;
     int fixed = (d->flags & PX_BODY_STATIC) != 0;
     b->vmax = fixed ? 0.0 : d->max_speed;
     b->wmax = fixed ? 0.0 : d->max_angular_speed;
@@ -1599,6 +1650,7 @@ px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_er
     pxi_error_clear(err);
     s->body[id].pose = *pose;
     s->body[id].sk = sk;
+    note_skew(s, sk);
     return mark_dirty(s, id);
 }
 
@@ -1640,15 +1692,15 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     if (!isfinite(time) || (s->stepped && time < s->time))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                          "px_scene_step: time %g is not finite or goes back (last %g)", time, s->time);
+    /* The last step's reports and events are gone from here on, also when
+     * this step fails (its events then wait for the next one). */
+    s->n_rep = 0;
+    s->n_ev = 0;
     /* Room for every contact that may end in this step (pairs the sweep
      * drops, see remove_pair), reserved before anything changes. */
     if (!GROW(s, s->pending, s->cap_pending, s->n_pending + s->live_pairs + 1) ||
         !GROW(s, s->doomed, s->cap_doomed, s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
-    /* The last step's reports and events are gone from here on, also when
-     * this step fails (its events then wait for the next one). */
-    s->n_rep = 0;
-    s->n_ev = 0;
     double dt = s->stepped ? time - s->time : INFINITY;
     uint64_t checked0 = 0;
     s->stats.swaps = 0;
@@ -1676,6 +1728,26 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         for (int k = 0; k < 3; ++k) ok &= sift(s, id, k);
     }
     s->n_dirty = 0;
+    /* A pose more skewed than any before widened the frame allowance
+     * (frame_pad): every box is checked against it, and every pair is
+     * measured anew (its gap was keyed with the old one). */
+    if (s->skew_grew) {
+        s->skew_grew = 0;
+        for (uint32_t id = 0; id < s->n_body; ++id) {
+            sbody *b = &s->body[id];
+            if (!b->alive || b->added) continue;
+            b->fit_room = -1.0;
+            if (!refit(s, b)) continue;
+            s->stats.box_updates++;
+            write_ep(s, id);
+            for (int k = 0; k < 3; ++k) ok &= sift(s, id, k);
+        }
+        for (uint32_t p = 0; p < s->n_pair; ++p)
+            if (s->pair[p].a != S_NONE) {
+                s->pair[p].measured = 0;
+                make_due(s, p);
+            }
+    }
     /* A pair the sweep could not add (out of memory) would be lost for
      * good: the scene then sorts everything anew and adds every missing
      * pair, now or at the next step, and reports the failure meanwhile. */
@@ -1843,18 +1915,25 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
         if (!s->body[i].alive || s->body[i].added) continue;
         sbody last = s->body[i];
         last.pose = last.last;
+        last.sk = last.sk_last;
         world_box(&last, bx[n].b);
         bx[n++].id = i;
     }
     sort(bx, n, sizeof *bx, cmp_sbox);
+    /* Box gaps are world-frame bounds: lowered by the frame allowance. */
+    double pad_max = 0.0;
+    for (uint32_t i = 0; i < n; ++i) pad_max = pxi_max2(pad_max, frame_pad(s, &s->body[bx[i].id]));
     px_status st = PX_OK;
     spair tmp;
     for (uint32_t i = 0; i < n && st == PX_OK; ++i)
         for (uint32_t j = i + 1; j < n && st == PX_OK; ++j) {
-            if (bx[j].b[0] - bx[i].b[3] > out->distance) break;
+            double g1 = bx[j].b[0] - bx[i].b[3];
+            if (g1 - 4.0 * s->skx * fabs(g1) - 2.0 * pad_max > out->distance) break;
             uint32_t a = bx[i].id, b = bx[j].id;
             if (a > b) a = bx[j].id, b = bx[i].id;
-            if (filtered(s, a, b) || box_gap(bx[i].b, bx[j].b) > out->distance) continue;
+            if (filtered(s, a, b) ||
+                frame_low(s, &s->body[a], &s->body[b], box_gap(bx[i].b, bx[j].b)) > out->distance)
+                continue;
             memset(&tmp, 0, sizeof tmp);
             tmp.a = a;
             tmp.b = b;

@@ -1153,6 +1153,100 @@ static void test_third_review(void) {
         px_scene_destroy(s);
         px_convex_destroy(c);
     }
+    {
+        /* 5. A flat square and a closed cube model (triangles) at poses off
+         *    rotations by ~5e-7: the model query pruned by bounds taken in
+         *    the model's frame while the square's leaf distances are taken
+         *    in its own, so a warm cache found 0.22496470 and a cold query
+         *    0.22496440 (the smaller: every leaf measured as the model
+         *    query measures it, the leaf first, the square second). */
+        px_pose P0 = {{
+                          -0x1.1e64349452027p-2,
+                          0x1.4999f371dbd78p-1,
+                          0x1.6cb1cc55a6ccp-1,
+                          -0x1.49c26849be43dp-1,
+                          0x1.b29638572dec6p-2,
+                          -0x1.45dcd8a258245p-1,
+                          -0x1.6c8d380317c36p-1,
+                          -0x1.4605c43ee92dfp-1,
+                          0x1.2f05a49068ff1p-2,
+                      },
+                      {-0x1.ac3ef1d69850bp+0, 0x1.79ddf7de46a54p+0, -0x1.2e29dcaa3c7e4p+1}};
+        px_pose P1 = {{
+                          -0x1.1e6428f34a893p-2,
+                          0x1.4999e60fa9e5cp-1,
+                          0x1.6cb1bd86aa109p-1,
+                          -0x1.49c25ae5e7c7p-1,
+                          0x1.b29626b1aa123p-2,
+                          -0x1.45dccb670344dp-1,
+                          -0x1.6c8d29359745cp-1,
+                          -0x1.4605b701eaf0dp-1,
+                          0x1.2f059842819adp-2,
+                      },
+                      {-0x1.ac3ecf2c94a35p+0, 0x1.79ddea3cf2c9ap+0, -0x1.2e29d204db117p+1}};
+        px_pose P2 = {{
+                          0x1.6421c7ba66316p-1,
+                          -0x1.3636897655319p-1,
+                          0x1.8b62040f560b4p-2,
+                          0x1.9e43db72be514p-3,
+                          0x1.5c961b1172b61p-1,
+                          0x1.686c969cdc888p-1,
+                          -0x1.60f8681998222p-1,
+                          -0x1.a56c669fa6f94p-2,
+                          0x1.31372c0a014afp-1,
+                      },
+                      {-0x1.e10aeed871497p-1, 0x1.7f5fec75f7c97p+0, -0x1.6eafbc80d00dep-1}};
+        px_pose P3 = {{
+                          0x1.6421c7ba66316p-1,
+                          -0x1.3636897655319p-1,
+                          0x1.8b62040f560b4p-2,
+                          0x1.9e43db72be514p-3,
+                          0x1.5c961b1172b61p-1,
+                          0x1.686c969cdc888p-1,
+                          -0x1.60f8681998222p-1,
+                          -0x1.a56c669fa6f94p-2,
+                          0x1.31372c0a014afp-1,
+                      },
+                      {-0x1.e10aeed871497p-1, 0x1.7f5fec75f7c97p+0, -0x1.6eafbc80d00dep-1}};
+        double h = 0.5, fl[12] = {-h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0}, v[24];
+        px_convex *sq = px_convex_create(fl, 4, NULL, &e);
+        for (int c = 0; c < 8; ++c)
+            for (int k = 0; k < 3; ++k) v[3 * c + k] = ((c >> k) & 1 ? 0.8 : -0.8);
+        uint32_t t[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                          2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+        px_mesh_desc md = {0};
+        md.xyz = v;
+        md.vertex_count = 8;
+        md.triangles = t;
+        md.triangle_count = 12;
+        px_mesh *m = px_mesh_create(&md, NULL, &e);
+        px_model_options mo = {0};
+        mo.pieces = PX_PIECES_TRIANGLES;
+        px_model *cube = px_model_create_from_mesh(m, &mo, &e);
+        px_model_distance_result cold, w0, w1;
+        px_model_cache mc;
+        memset(&mc, 0, sizeof mc);
+        px_model_distance_convex(cube, &P3, sq, &P1, NULL, &cold);
+        px_model_distance_convex(cube, &P2, sq, &P0, &mc, &w0);
+        px_model_distance_convex(cube, &P3, sq, &P1, &mc, &w1);
+        double brute = INFINITY;
+        for (int k = 0; k < 12; ++k) {
+            double tp[9];
+            for (int j = 0; j < 3; ++j)
+                for (int c = 0; c < 3; ++c) tp[3 * j + c] = v[3 * t[3 * k + j] + c];
+            px_convex *tc = px_convex_create(tp, 3, NULL, &e);
+            px_distance_result r;
+            px_distance(tc, &P3, sq, &P1, NULL, NULL, &r);
+            if (r.distance < brute) brute = r.distance;
+            px_convex_destroy(tc);
+        }
+        CHECK(cold.distance == w1.distance && fabs(cold.distance - brute) < 1e-15,
+              "review 3.5: cold %.17g, warm %.17g, every leaf %.17g", cold.distance, w1.distance, brute);
+        px_model_cache_release(&mc);
+        px_model_destroy(cube);
+        px_mesh_destroy(m);
+        px_convex_destroy(sq);
+    }
 }
 
 int main(void) {

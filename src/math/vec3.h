@@ -114,6 +114,19 @@ static inline int pxi_rotation_residuals(const double r[9], double res[6]) {
     return ok;
 }
 
+/* |R^T R - I| (Frobenius): how far a pose's matrix is from a rotation; it
+ * bounds |R^T R - I| and |R R^T - I| in the 2-norm, so R stretches or
+ * shrinks lengths by a factor within [sqrt(1 - skew), sqrt(1 + skew)]. */
+static inline double pxi_skew(const double r[9]) {
+    double f = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            double d = r[i] * r[j] + r[3 + i] * r[3 + j] + r[6 + i] * r[6 + j] - (i == j ? 1.0 : 0.0);
+            f += d * d;
+        }
+    return sqrt(f);
+}
+
 /* T_AB = T_B^-1 * T_A: maps A's body frame into B's. The translations are
  * subtracted first (exact when the bodies are close; REFERENCES §1.8, §7). */
 static inline px_pose pxi_relative(const px_pose *ta, const px_pose *tb) {

@@ -192,6 +192,10 @@ typedef struct qctx {
     px_vec3 hint;       /* unit direction between the best witnesses, A's frame */
     int has_hint;
     double band; /* contact band of the roots (collide, within) */
+    /* Poses a little off rotations (px_pose_check allows 1e-6): bounds
+     * taken in A's frame and leaf distances taken in B's (a polytope's
+     * query) differ by up to frel |d| + fpad; pruning allows for it. */
+    double frel, fpad;
     px_feature fa, fb;
     uint32_t node_pairs, leaf_pairs;
     px_diagnostics diag;
@@ -217,6 +221,11 @@ typedef struct qbound {
 static qbound no_axis(double lb) { return (qbound){lb, lb, {0, 0, 0}}; }
 
 static qbound larger(qbound x, qbound y) { return y.lb > x.lb ? y : x; }
+
+/* A bound taken in A's frame, made good for distances taken in B's. */
+static double frame_lb(const qctx *q, double lb) {
+    return isfinite(lb) ? lb - q->frel * fabs(lb) - q->fpad : lb;
+}
 
 static int is_leaf(const pxi_mnode *n) { return n->child[1] == PXI_NONE; }
 
@@ -421,7 +430,7 @@ static qbound leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
          * direction between the best witnesses and on each one's normal. */
         double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : node_band(q, na, nb);
         out = tri_gap(s, t, q->has_hint ? &q->hint : NULL);
-        if (out.lb > limit) return out;
+        if (frame_lb(q, out.lb) > limit) return out;
         d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
         /* The projection gap along the witnesses' direction: for the next
          * query's front (the distance itself has no axis one can trust
@@ -499,6 +508,7 @@ static int done(const qctx *q) {
  * boolean queries pairs whose bound is at most the tolerance (plus the
  * contact band for collisions, so that touching pairs are not pruned). */
 static int keep(const qctx *q, double lb) {
+    lb = frame_lb(q, lb);
     if (q->kind == Q_DISTANCE) return lb < q->ub;
     /* q->band: at least every node pair's band, computed once. */
     return lb <= current_limit(q) + q->band;
@@ -905,6 +915,15 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     q->pb = pb;
     q->t_ab = pxi_relative(pb, pa);
     if (!pxi_is_finite3(q->t_ab.t)) return PX_ERR_NON_FINITE;
+    /* With R^T R = I + E, |E| <= k, a distance measured in one body's
+     * frame and in the other's differ by at most about 2k (|d| + the
+     * bodies' reach from their origins) (docs/scene.md derives it for the
+     * world frame). Exact rotations: k ~ 1e-16, a pad of ulps. */
+    double k = pxi_skew(pa->r) + pxi_skew(pb->r) + 8.0 * DBL_EPSILON;
+    double reach = pxi_len(a->nodes[0].center) + 3.0 * a->nodes[0].radius + pxi_len(b->nodes[0].center) +
+                   3.0 * b->nodes[0].radius;
+    q->frel = 4.0 * k;
+    q->fpad = 2.0 * k * reach;
     /* Both models in A's frame stay within the models' range. */
     if (!(pxi_max_abs(q->t_ab.t) <= PXI_MODEL_MAX_COORD)) return PX_ERR_RANGE;
     q->cache = cache;

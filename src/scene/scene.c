@@ -571,16 +571,6 @@ static double since(double travel, double snap) { return travel == snap ? 0.0 : 
  * the nearest rotation (R = Q (I + S), S symmetric: R^T R - I = 2S + S^2,
  * so |S| <= |R^T R - I| while |S| <= 1). px_pose_check lets rows be
  * orthonormal within 1e-6 only. */
-static double skew(const double r[9]) {
-    double f = 0.0;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            double d = r[i] * r[j] + r[3 + i] * r[3 + j] + r[6 + i] * r[6 + j] - (i == j ? 1.0 : 0.0);
-            f += d * d;
-        }
-    return sqrt(f);
-}
-
 /* A bound on how far any point of a body of radius `radius` about `center`
  * (body frame) moved from pose p to pose q: the reference point's
  * displacement plus the chord of the rotation times the radius. The angle
@@ -1513,7 +1503,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->model = d->model;
     b->convex = d->convex;
     b->pose = b->last = d->pose;
-    b->sk = b->sk_last = skew(d->pose.r);
+    b->sk = b->sk_last = pxi_skew(d->pose.r);
     note_skew(s, b->sk);
     b->center = d->center;
     b->lo = lo;

@@ -944,6 +944,19 @@ static void test_out_of_memory_events(void) {
  * 4. A contact that began in a failed step, then excluded: its began event
  *    was delivered, never ended. A failed step that failed at once kept the
  *    last step's reports. */
+/* A scene (margin 0.01, report distance 0.1) on allocator al, and in *d a
+ * body of polytope c moving at up to 10. */
+static px_scene *cube_scene(const px_allocator *al, const px_convex *c, px_body_desc *d, px_error *e) {
+    px_scene_options o = {0};
+    o.margin = 0.01;
+    o.report_distance = 0.1;
+    o.allocator = al;
+    memset(d, 0, sizeof *d);
+    d->convex = c;
+    d->max_speed = 10;
+    return px_scene_create(&o, e);
+}
+
 static void test_third_review(void) {
     px_error e;
     size_t n;
@@ -1080,17 +1093,11 @@ static void test_third_review(void) {
     {
         px_allocator al = {failing_alloc, failing_free, NULL};
         px_convex *c = box3(0.5, 0.5, 0.5);
+        px_body_desc d;
         int failed_once = 0;
         for (long k = 0; k < 40; ++k) {
             fail_after = -1;
-            px_scene_options o = {0};
-            o.margin = 0.01;
-            o.report_distance = 0.1;
-            o.allocator = &al;
-            px_scene *s = px_scene_create(&o, &e);
-            px_body_desc d = {0};
-            d.convex = c;
-            d.max_speed = 10;
+            px_scene *s = cube_scene(&al, c, &d, &e);
             uint32_t a, b;
             d.pose = at3(0, 0, 0);
             px_scene_add_body(s, &d, &a, &e);
@@ -1122,14 +1129,7 @@ static void test_third_review(void) {
         }
         CHECK(failed_once, "review 3.4: no step failed");
         /* Reports of the last step are gone when the next fails at once. */
-        px_scene_options o = {0};
-        o.margin = 0.01;
-        o.report_distance = 0.1;
-        o.allocator = &al;
-        px_scene *s = px_scene_create(&o, &e);
-        px_body_desc d = {0};
-        d.convex = c;
-        d.max_speed = 10;
+        px_scene *s = cube_scene(&al, c, &d, &e);
         uint32_t id;
         for (int i = 0; i < 20; ++i) {
             d.pose = at3(i * 1.0, 0, 0);
@@ -1160,54 +1160,19 @@ static void test_third_review(void) {
          *    in its own, so a warm cache found 0.22496470 and a cold query
          *    0.22496440 (the smaller: every leaf measured as the model
          *    query measures it, the leaf first, the square second). */
-        px_pose P0 = {{
-                          -0x1.1e64349452027p-2,
-                          0x1.4999f371dbd78p-1,
-                          0x1.6cb1cc55a6ccp-1,
-                          -0x1.49c26849be43dp-1,
-                          0x1.b29638572dec6p-2,
-                          -0x1.45dcd8a258245p-1,
-                          -0x1.6c8d380317c36p-1,
-                          -0x1.4605c43ee92dfp-1,
-                          0x1.2f05a49068ff1p-2,
-                      },
+        px_pose P0 = {{-0x1.1e64349452027p-2, 0x1.4999f371dbd78p-1, 0x1.6cb1cc55a6ccp-1,
+                       -0x1.49c26849be43dp-1, 0x1.b29638572dec6p-2, -0x1.45dcd8a258245p-1,
+                       -0x1.6c8d380317c36p-1, -0x1.4605c43ee92dfp-1, 0x1.2f05a49068ff1p-2},
                       {-0x1.ac3ef1d69850bp+0, 0x1.79ddf7de46a54p+0, -0x1.2e29dcaa3c7e4p+1}};
-        px_pose P1 = {{
-                          -0x1.1e6428f34a893p-2,
-                          0x1.4999e60fa9e5cp-1,
-                          0x1.6cb1bd86aa109p-1,
-                          -0x1.49c25ae5e7c7p-1,
-                          0x1.b29626b1aa123p-2,
-                          -0x1.45dccb670344dp-1,
-                          -0x1.6c8d29359745cp-1,
-                          -0x1.4605b701eaf0dp-1,
-                          0x1.2f059842819adp-2,
-                      },
+        px_pose P1 = {{-0x1.1e6428f34a893p-2, 0x1.4999e60fa9e5cp-1, 0x1.6cb1bd86aa109p-1,
+                       -0x1.49c25ae5e7c7p-1, 0x1.b29626b1aa123p-2, -0x1.45dccb670344dp-1,
+                       -0x1.6c8d29359745cp-1, -0x1.4605b701eaf0dp-1, 0x1.2f059842819adp-2},
                       {-0x1.ac3ecf2c94a35p+0, 0x1.79ddea3cf2c9ap+0, -0x1.2e29d204db117p+1}};
-        px_pose P2 = {{
-                          0x1.6421c7ba66316p-1,
-                          -0x1.3636897655319p-1,
-                          0x1.8b62040f560b4p-2,
-                          0x1.9e43db72be514p-3,
-                          0x1.5c961b1172b61p-1,
-                          0x1.686c969cdc888p-1,
-                          -0x1.60f8681998222p-1,
-                          -0x1.a56c669fa6f94p-2,
-                          0x1.31372c0a014afp-1,
-                      },
+        px_pose P2 = {{0x1.6421c7ba66316p-1, -0x1.3636897655319p-1, 0x1.8b62040f560b4p-2,
+                       0x1.9e43db72be514p-3, 0x1.5c961b1172b61p-1, 0x1.686c969cdc888p-1,
+                       -0x1.60f8681998222p-1, -0x1.a56c669fa6f94p-2, 0x1.31372c0a014afp-1},
                       {-0x1.e10aeed871497p-1, 0x1.7f5fec75f7c97p+0, -0x1.6eafbc80d00dep-1}};
-        px_pose P3 = {{
-                          0x1.6421c7ba66316p-1,
-                          -0x1.3636897655319p-1,
-                          0x1.8b62040f560b4p-2,
-                          0x1.9e43db72be514p-3,
-                          0x1.5c961b1172b61p-1,
-                          0x1.686c969cdc888p-1,
-                          -0x1.60f8681998222p-1,
-                          -0x1.a56c669fa6f94p-2,
-                          0x1.31372c0a014afp-1,
-                      },
-                      {-0x1.e10aeed871497p-1, 0x1.7f5fec75f7c97p+0, -0x1.6eafbc80d00dep-1}};
+        px_pose P3 = P2; /* the cube does not move */
         double h = 0.5, fl[12] = {-h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0}, v[24];
         px_convex *sq = px_convex_create(fl, 4, NULL, &e);
         for (int c = 0; c < 8; ++c)

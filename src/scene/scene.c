@@ -567,11 +567,12 @@ static double up(double x) { return x + (x * DBL_EPSILON + 0x1p-1074); }
 /* Travel since a snapshot, rounded up (0 when none). */
 static double since(double travel, double snap) { return travel == snap ? 0.0 : up(travel - snap); }
 
-/* How far a matrix is from a rotation: |R^T R - I|_F bounds |R - Q| for Q
- * the nearest rotation (R = Q (I + S), S symmetric: R^T R - I = 2S + S^2,
- * so |S| <= |R^T R - I| while |S| <= 1). px_pose_check lets rows be
- * orthonormal within 1e-6 only. */
-/* A bound on how far any point of a body of radius `radius` about `center`
+/* The skew of a pose (pxi_skew, |R^T R - I|_F) bounds |R - Q| for Q the
+ * nearest rotation (R = Q (I + S), S symmetric: R^T R - I = 2S + S^2, so
+ * |S| <= |R^T R - I| while |S| <= 1). px_pose_check lets rows be
+ * orthonormal within 1e-6 only.
+ *
+ * A bound on how far any point of a body of radius `radius` about `center`
  * (body frame) moved from pose p to pose q: the reference point's
  * displacement plus the chord of the rotation times the radius. The angle
  * comes from the Frobenius norm of the difference of the nearest rotations,

@@ -115,7 +115,9 @@ static px_status check_raw(const char *path, const pxi_file_id *id, const struct
         for (unsigned v = 0; v < m->mNumVertices; ++v) {
             const struct aiVector3D *p = &m->mVertices[v];
             if (!isfinite(p->x) || !isfinite(p->y) || !isfinite(p->z))
-                return pxi_error(err, PX_ERR_IO, "mesh file '%s': vertex %u of mesh %u is NaN or infinite",
+                return pxi_error(err, PX_ERR_IO,
+                                 "mesh file '%s': vertex %u of mesh %u is NaN, infinite or beyond the 32-bit "
+                                 "float range (|x| > 3.4e38) that Assimp reads every format in",
                                  path, v, i);
         }
         for (unsigned f = 0; f < m->mNumFaces; ++f) {

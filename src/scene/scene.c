@@ -722,9 +722,13 @@ static const double SWEEP[9] = {
 static double frame_pad(const px_scene *s, const sbody *b) { return 2.0 * s->skx * (b->reach + s->report); }
 
 /* A world-frame lower bound d made good for the distance in either body's
- * frame. */
+ * frame, `pads` being the two bodies' frame_pad (or more). */
+static double frame_lower(const px_scene *s, double d, double pads) {
+    return d - 4.0 * s->skx * fabs(d) - pads;
+}
+
 static double frame_low(const px_scene *s, const sbody *x, const sbody *y, double d) {
-    return d - 4.0 * s->skx * fabs(d) - frame_pad(s, x) - frame_pad(s, y);
+    return frame_lower(s, d, frame_pad(s, x) + frame_pad(s, y));
 }
 
 /* Takes the skew of a pose the scene takes on: the allowance grows to the
@@ -805,6 +809,16 @@ static void write_ep(px_scene *s, uint32_t id) {
         s->axis[k][EP(s, id, k, 0)].v = b->fat[k];
         s->axis[k][EP(s, id, k, 1)].v = b->fat[3 + k];
     }
+}
+
+/* Body id's fat box moved: its endpoints take the new values and every
+ * axis is sorted again (also when a pair could not be added: 0 then). */
+static int resort(px_scene *s, uint32_t id) {
+    s->stats.box_updates++;
+    write_ep(s, id);
+    int ok = 1;
+    for (int k = 0; k < 3; ++k) ok &= sift(s, id, k);
+    return ok;
 }
 
 static int cmp_sep(const void *x, const void *y) {
@@ -1712,11 +1726,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         measure(s, id, dt, !s->stepped);
         /* A body added since the last step is sorted in below, at its
          * refitted box. */
-        if (!refit(s, b) || b->added) continue;
-        s->stats.box_updates++;
-        write_ep(s, id);
-        /* Every axis is sorted even when a pair could not be added. */
-        for (int k = 0; k < 3; ++k) ok &= sift(s, id, k);
+        if (refit(s, b) && !b->added) ok &= resort(s, id);
     }
     s->n_dirty = 0;
     /* A pose more skewed than any before widened the frame allowance
@@ -1728,10 +1738,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
             sbody *b = &s->body[id];
             if (!b->alive || b->added) continue;
             b->fit_room = -1.0;
-            if (!refit(s, b)) continue;
-            s->stats.box_updates++;
-            write_ep(s, id);
-            for (int k = 0; k < 3; ++k) ok &= sift(s, id, k);
+            if (refit(s, b)) ok &= resort(s, id);
         }
         for (uint32_t p = 0; p < s->n_pair; ++p)
             if (s->pair[p].a != S_NONE) {
@@ -1918,8 +1925,7 @@ px_status px_scene_min_distance(px_scene *s, px_scene_pair *out, px_error *err) 
     spair tmp;
     for (uint32_t i = 0; i < n && st == PX_OK; ++i)
         for (uint32_t j = i + 1; j < n && st == PX_OK; ++j) {
-            double g1 = bx[j].b[0] - bx[i].b[3];
-            if (g1 - 4.0 * s->skx * fabs(g1) - 2.0 * pad_max > out->distance) break;
+            if (frame_lower(s, bx[j].b[0] - bx[i].b[3], 2.0 * pad_max) > out->distance) break;
             uint32_t a = bx[i].id, b = bx[j].id;
             if (a > b) a = bx[j].id, b = bx[i].id;
             if (filtered(s, a, b) ||

@@ -127,6 +127,25 @@ static inline double pxi_skew(const double r[9]) {
     return sqrt(f);
 }
 
+/* px_pose_check's test (finite; rows orthonormal and right-handed within
+ * PXI_POSE_TOL) and the pose's skew (pxi_skew) in one pass, for hot paths
+ * that check a pose at every query: 0 when the pose fails (px_pose_check
+ * then says why). The skew comes from the rows, the residuals' own terms:
+ * |R R^T - I|_F = |R^T R - I|_F (R R^T - I = Q (R^T R - I) Q^T for the
+ * polar factor Q, so both have the same singular values). */
+static inline int pxi_pose_ok_skew(const px_pose *pose, double *sk) {
+    const double *r = pose->r;
+    for (int i = 0; i < 9; ++i)
+        if (!isfinite(r[i])) return 0;
+    if (!pxi_is_finite3(pose->t)) return 0;
+    double res[6];
+    if (!pxi_rotation_residuals(r, res)) return 0;
+    double n2 = r[6] * r[6] + r[7] * r[7] + r[8] * r[8] - 1.0;
+    double d02 = r[0] * r[6] + r[1] * r[7] + r[2] * r[8], d12 = r[3] * r[6] + r[4] * r[7] + r[5] * r[8];
+    *sk = sqrt(res[0] * res[0] + res[1] * res[1] + n2 * n2 + 2.0 * (res[2] * res[2] + d02 * d02 + d12 * d12));
+    return 1;
+}
+
 /* T_AB = T_B^-1 * T_A: maps A's body frame into B's. The translations are
  * subtracted first (exact when the bodies are close; REFERENCES §1.8, §7). */
 static inline px_pose pxi_relative(const px_pose *ta, const px_pose *tb) {

@@ -26,6 +26,7 @@
 #include "convex/convex.h"
 #include "core/core.h"
 #include "model/model.h"
+#include "narrow/narrow.h"
 
 /* ---- The cache ---------------------------------------------------------- */
 
@@ -252,10 +253,11 @@ static void add_diag(qctx *q, const px_diagnostics *d) {
     q->diag.quality |= d->quality;
 }
 
-/* Exact distance between two hulls (convex leaves or inner nodes). */
+/* Exact distance between two hulls (convex leaves or inner nodes). start()
+ * checked both poses, so the leaf queries skip px_pose_check. */
 static int hull_distance(qctx *q, uint32_t ia, uint32_t ib, px_distance_result *r) {
     px_pair_cache *pc = mc_pair(q->cache, q->mc, ia, ib);
-    px_status st = px_distance(q->a->nodes[ia].hull, q->pa, q->b->nodes[ib].hull, q->pb, NULL, pc, r);
+    px_status st = pxi_distance_checked(q->a->nodes[ia].hull, q->pa, q->b->nodes[ib].hull, q->pb, pc, r);
     if (st != PX_OK) {
         q->status = st;
         return 0;
@@ -384,8 +386,8 @@ static int mixed_pair(qctx *q, const pxi_mnode *na, const pxi_mnode *nb, double 
         return 0;
     }
     px_distance_result r;
-    px_status st = tri_is_a ? px_distance(tc, q->pa, nb->hull, q->pb, NULL, NULL, &r)
-                            : px_distance(na->hull, q->pa, tc, q->pb, NULL, NULL, &r);
+    px_status st = tri_is_a ? pxi_distance_checked(tc, q->pa, nb->hull, q->pb, NULL, &r)
+                            : pxi_distance_checked(na->hull, q->pa, tc, q->pb, NULL, &r);
     if (st == PX_OK) {
         add_diag(q, &r.diag);
         *d = r.intersecting ? 0.0 : r.distance;
@@ -906,9 +908,13 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
                        px_model_cache *cache, int kind) {
     memset(q, 0, offsetof(qctx, dr));
     if (!a || !b || !pa || !pb) return PX_ERR_INVALID_ARGUMENT;
-    px_status st = px_pose_check(pa, NULL);
-    if (st == PX_OK) st = px_pose_check(pb, NULL);
-    if (st != PX_OK) return st;
+    double ka, kb;
+    if (!pxi_pose_ok_skew(pa, &ka) || !pxi_pose_ok_skew(pb, &kb)) {
+        px_status st = px_pose_check(pa, NULL);
+        if (st == PX_OK) st = px_pose_check(pb, NULL);
+        /* Not reached: pxi_pose_ok_skew refuses only what px_pose_check refuses. */
+        return st != PX_OK ? st : PX_ERR_INTERNAL;
+    }
     q->a = a;
     q->b = b;
     q->pa = pa;
@@ -919,7 +925,7 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
      * frame and in the other's differ by at most about 2k (|d| + the
      * bodies' reach from their origins) (docs/scene.md derives it for the
      * world frame). Exact rotations: k ~ 1e-16, a pad of ulps. */
-    double k = pxi_skew(pa->r) + pxi_skew(pb->r) + 8.0 * DBL_EPSILON;
+    double k = ka + kb + 8.0 * DBL_EPSILON;
     double reach = pxi_len(a->nodes[0].center) + 3.0 * a->nodes[0].radius + pxi_len(b->nodes[0].center) +
                    3.0 * b->nodes[0].radius;
     q->frel = 4.0 * k;

@@ -1623,21 +1623,10 @@ static px_status mark_dirty(px_scene *s, uint32_t id) {
 }
 
 /* check_pose's test and the skew in one pass, for the pose set at every
- * step: the same conditions as px_pose_check (rows orthonormal and
- * right-handed within 1e-6, finite) and the translation's range; 0 when
- * any fails (check_pose then says which). The skew is computed from the
- * rows: |R R^T - I|_F = |R^T R - I|_F (R R^T - I = Q (R^T R - I) Q^T). */
+ * step (pxi_pose_ok_skew) plus the translation's range; 0 when any fails
+ * (check_pose then says which). */
 static int pose_fast(const px_pose *pose, double *sk) {
-    const double *r = pose->r;
-    for (int i = 0; i < 9; ++i)
-        if (!isfinite(r[i])) return 0;
-    if (!pxi_is_finite3(pose->t) || !(pxi_max_abs(pose->t) <= 0x1p250)) return 0;
-    double res[6];
-    if (!pxi_rotation_residuals(r, res)) return 0;
-    double n2 = r[6] * r[6] + r[7] * r[7] + r[8] * r[8] - 1.0;
-    double d02 = r[0] * r[6] + r[1] * r[7] + r[2] * r[8], d12 = r[3] * r[6] + r[4] * r[7] + r[5] * r[8];
-    *sk = sqrt(res[0] * res[0] + res[1] * res[1] + n2 * n2 + 2.0 * (res[2] * res[2] + d02 * d02 + d12 * d12));
-    return 1;
+    return pxi_pose_ok_skew(pose, sk) && pxi_max_abs(pose->t) <= 0x1p250;
 }
 
 px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_error *err) {

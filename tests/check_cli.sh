@@ -142,6 +142,40 @@ if [ -n "$A" ]; then
   expect 1 "found: +1 pairs" -- "$B" check "$T/stl" --clearance 0.75 $IGN
   expect 2 "not two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl,nope.stl
   expect 2 "two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl
+  # A part of lines only is skipped, and --ignore may still name it.
+  mkdir -p "$T/wire" && cp "$T/stl/a_overlap.stl" "$T/stl/b_overlap.stl" "$T/wire/"
+  printf 'v 0 0 0\nv 1 0 0\nl 1 2\n' >"$T/wire/lines.obj"
+  expect 1 "found: +1 pairs" -- "$B" check "$T/wire" --ignore lines.obj,a_overlap.stl
+  expect 0 "found: +nothing" -- "$B" check "$T/wire" --ignore lines.obj,a_overlap.stl --ignore a_overlap.stl,b_overlap.stl
+  expect 2 "not two part names" -- "$B" check "$T/wire" --ignore lines.obj,nope.stl
+  # Surfaces that meet count as touching even when rounding leaves them a
+  # few ulps apart: two coplanar triangles 1e-12 across at x = 100 overlap
+  # (measured 5e-29 apart); 1e-9 apart they do not, and 1e-10 apart they
+  # are closer than a clearance of 1e-9.
+  mkdir -p "$T/cop" "$T/cop2" "$T/cop3"
+  tri() { printf 'solid p\n facet normal 0 0 0\n  outer loop\n   vertex %s\n   vertex %s\n   vertex %s\n  endloop\n endfacet\nendsolid p\n' "$@"; }
+  tri "100 0 0" "100 1e-12 0" "100 0 1e-12" >"$T/cop/a.stl"
+  tri "100 3e-13 3e-13" "100 -5e-13 1e-13" "100 2e-13 -6.999999999999999e-13" >"$T/cop/b.stl"
+  expect 1 "^a.stl +b.stl +interference" -- "$B" check "$T/cop"
+  cp "$T/cop/a.stl" "$T/cop2/" && cp "$T/cop/a.stl" "$T/cop3/"
+  tri "100.000000001 0 0" "100.000000001 1 0" "100.000000001 0 1" >"$T/cop2/b.stl"
+  expect 0 "found: +nothing" -- "$B" check "$T/cop2"
+  tri "100.0000000001 0 0" "100.0000000001 1 0" "100.0000000001 0 1" >"$T/cop3/b.stl"
+  expect 1 "^a.stl +b.stl +clearance +1.000" -- "$B" check "$T/cop3" --clearance 1e-9
+  # Control characters in part names (glTF node names) are escaped in the
+  # table, so that the columns hold: one triangle twice, overlapping.
+  z='\x00\x00\x00\x00' o='\x00\x00\x80\x3f'
+  data=$(printf "$z$z$z$o$z$z$z$o$z" | base64 -w0)
+  cat >"$T/tab.gltf" <<EOF
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+ "nodes": [{"name": "left\tpart", "mesh": 0}, {"name": "right\npart", "mesh": 0, "translation": [0.25, 0.25, 0]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,$data"}]}
+EOF
+  expect 1 '^left\\tpart +right\\npart +interference +0 +0.75 0.25 0 ' -- "$B" check "$T/tab.gltf"
+  expect 1 '"name": "left\\u0009part"' -- "$B" check "$T/tab.gltf" --json
   # Coarse leaves: brackets, and a bracket across the clearance is "possible".
   expect 1 "possible" -- "$B" check "$T/stl" --pieces parts --clearance 0.75
   expect 1 "upper bound" -- "$B" check "$T/boxes.obj" --pieces approximate --tolerance 0.05 --clearance 0.75

@@ -20,6 +20,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -62,6 +63,10 @@ typedef struct assembly {
     part *parts;
     uint32_t count, cap;
     int folder;
+    /* Names of the parts skipped for having no triangles: `--ignore` may
+     * name them (their pairs are not checked anyway). */
+    char **skipped;
+    uint32_t n_skipped, cap_skipped;
 } assembly;
 
 static void note(const char *fmt, ...)
@@ -208,17 +213,42 @@ static px_mesh *load(const char *path, const check_opts *o) {
     return m;
 }
 
+/* Keeps the name of a part skipped for having no triangles; 0 when out of
+ * memory. */
+static int note_skipped(assembly *as, const char *name) {
+    if (!name[0]) return 1;
+    if (as->n_skipped == as->cap_skipped) {
+        uint32_t cap = as->cap_skipped ? 2 * as->cap_skipped : 8;
+        char **v = realloc(as->skipped, sizeof *v * cap);
+        if (!v) return 0;
+        as->skipped = v;
+        as->cap_skipped = cap;
+    }
+    as->skipped[as->n_skipped] = dup_string(name);
+    return as->skipped[as->n_skipped++] != NULL;
+}
+
+static const char *node_name(const px_mesh *m, uint32_t id);
+
 /* Indices of the parts of `m` that have triangles (a part of points or
- * lines only has no surface to check: skipped with a note). */
-static uint32_t surface_parts(const px_mesh *m, const char *file, uint32_t *ids) {
+ * lines only has no surface to check: skipped with a note; its names, the
+ * node's and px_mesh_load's, stay known to `--ignore`). 0 parts and
+ * *ok = 0 when out of memory. */
+static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, uint32_t *ids, int *ok) {
     uint32_t n = 0, np = px_mesh_part_count(m);
     for (uint32_t i = 0; i < np; ++i) {
         px_mesh_part p;
         px_mesh_get_part(m, i, &p);
-        if (p.triangle_count)
+        if (p.triangle_count) {
             ids[n++] = i;
-        else
-            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
+            continue;
+        }
+        note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
+        if (!as->folder && !(note_skipped(as, p.name) && note_skipped(as, node_name(m, i)))) {
+            note("out of memory");
+            *ok = 0;
+            return 0;
+        }
     }
     return n;
 }
@@ -251,7 +281,7 @@ static int load_file(assembly *as, const check_opts *o) {
     uint32_t np = px_mesh_part_count(m);
     uint32_t *ids = malloc(sizeof *ids * (np ? np : 1));
     int ok = ids != NULL;
-    uint32_t n = ok ? surface_parts(m, o->file, ids) : 0;
+    uint32_t n = ok ? surface_parts(as, m, o->file, ids, &ok) : 0;
     for (uint32_t i = 0; ok && i < n; ++i) {
         px_mesh_part p;
         px_mesh_get_part(m, ids[i], &p);
@@ -343,12 +373,17 @@ static int load_folder(assembly *as, const check_opts *o) {
         }
         uint32_t np = px_mesh_part_count(m);
         uint32_t *ids = malloc(sizeof *ids * (np ? np : 1));
-        uint32_t k = ids ? surface_parts(m, path, ids) : 0;
+        uint32_t k = ids ? surface_parts(as, m, path, ids, &ok) : 0;
         if (!ids) {
             note("out of memory");
             ok = 0;
+        } else if (!ok) {
         } else if (k == 0) {
             note("note: '%s' has no triangles: not checked", path);
+            if (!note_skipped(as, names[i])) {
+                note("out of memory");
+                ok = 0;
+            }
         } else {
             ok = add_part(as, o, path, names[i], m, ids, k);
         }
@@ -372,9 +407,12 @@ static int named(const assembly *as, const char *name, size_t len, uint32_t i) {
     return strlen(as->parts[i].name) == len && !strncmp(as->parts[i].name, name, len);
 }
 
+/* A name of a part, or of a part skipped for having no triangles. */
 static int has_name(const assembly *as, const char *name, size_t len) {
     for (uint32_t i = 0; i < as->count; ++i)
         if (named(as, name, len, i)) return 1;
+    for (uint32_t i = 0; i < as->n_skipped; ++i)
+        if (strlen(as->skipped[i]) == len && !strncmp(as->skipped[i], name, len)) return 1;
     return 0;
 }
 
@@ -432,6 +470,23 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
 }
 
 /* ---- the check ------------------------------------------------------- */
+
+/* Surfaces that meet in exact arithmetic can come out a few ulps apart:
+ * the closest points of two edges that cross, or of coplanar triangles that
+ * overlap, are computed in floating point (5e-29 for two triangles 1e-12
+ * across at x = 100). The queries' error is a few ulps of the pair's size
+ * and place (docs/model.md), so a distance within 16 ulps of the two parts'
+ * largest coordinate counts as touching. */
+static double touch_band(const part *a, const part *b) {
+    double m = 0.0;
+    const px_vec3 v[4] = {a->lo, a->hi, b->lo, b->hi};
+    for (int i = 0; i < 4; ++i) {
+        if (fabs(v[i].x) > m) m = fabs(v[i].x);
+        if (fabs(v[i].y) > m) m = fabs(v[i].y);
+        if (fabs(v[i].z) > m) m = fabs(v[i].z);
+    }
+    return 16.0 * DBL_EPSILON * m;
+}
 
 static int cmp_finding(const void *x, const void *y) {
     const finding *f = x, *g = y;
@@ -516,7 +571,32 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
     printf("}\n}\n");
 }
 
-static int width(const char *s) { return (int)strlen(s); }
+/* Part names in the table: a control character (a tab or newline in a
+ * node's name) is written as \t, \n, \r or \xHH so that it cannot break
+ * the columns (the JSON escapes them its own way; `--ignore` takes the
+ * names as they are). */
+static int width(const char *s) {
+    int w = 0;
+    for (const unsigned char *c = (const unsigned char *)s; *c; ++c)
+        w += *c == '\t' || *c == '\n' || *c == '\r' ? 2 : *c < 0x20 || *c == 0x7f ? 4 : 1;
+    return w;
+}
+
+static void put_name(const char *s, int pad) {
+    for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
+        if (*c == '\t')
+            fputs("\\t", stdout);
+        else if (*c == '\n')
+            fputs("\\n", stdout);
+        else if (*c == '\r')
+            fputs("\\r", stdout);
+        else if (*c < 0x20 || *c == 0x7f)
+            printf("\\x%02x", *c);
+        else
+            putchar(*c);
+    }
+    for (int w = width(s); w < pad; ++w) putchar(' ');
+}
 
 static void print_table(const assembly *as, const check_opts *o, const findings *fs, const size_t counts[4],
                         const px_scene_pair *closest, long nig) {
@@ -548,8 +628,10 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
             snprintf(pa, sizeof pa, "%.9g %.9g %.9g", f->pa.x, f->pa.y, f->pa.z);
             snprintf(pb, sizeof pb, "%.9g %.9g %.9g", f->pb.x, f->pb.y, f->pb.z);
             if (!exact) snprintf(up, sizeof up, "%-14.9g  ", f->upper);
-            printf("%-*s  %-*s  %-12s  %-14.9g  %s%-38s  %s\n", wa, as->parts[f->a].name, wb,
-                   as->parts[f->b].name, st, f->distance, up, pa, pb);
+            put_name(as->parts[f->a].name, wa);
+            printf("  ");
+            put_name(as->parts[f->b].name, wb);
+            printf("  %-12s  %-14.9g  %s%-38s  %s\n", st, f->distance, up, pa, pb);
         }
         printf("\n");
         printf("found:     %zu pairs: %zu interfering, %zu inside another part, %zu closer than %.9g", fs->n,
@@ -561,9 +643,13 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
     } else {
         printf("found:     nothing: no interference, no pair closer than %.9g\n", o->clearance);
     }
-    if (closest->body_a != UINT32_MAX)
-        printf("closest:   %.9g between %s and %s\n", closest->distance, as->parts[closest->body_a].name,
-               as->parts[closest->body_b].name);
+    if (closest->body_a != UINT32_MAX) {
+        printf("closest:   %.9g between ", closest->distance);
+        put_name(as->parts[closest->body_a].name, 0);
+        printf(" and ");
+        put_name(as->parts[closest->body_b].name, 0);
+        printf("\n");
+    }
 }
 
 int check_run(const check_opts *o) {
@@ -584,12 +670,16 @@ int check_run(const check_opts *o) {
     nig = resolve_ignores(&as, o, &ig);
     if (nig < 0) goto done;
 
-    /* The scene: one static body per part, the clearance as margin and
-     * report distance. */
+    /* The scene: one static body per part, the clearance (or the widest
+     * touching band, if larger) as margin and report distance. */
     px_error e;
     px_scene_options so;
     memset(&so, 0, sizeof so);
     so.margin = so.report_distance = o->clearance;
+    for (uint32_t i = 0; i < as.count; ++i) {
+        double band = touch_band(&as.parts[i], &as.parts[i]);
+        if (band > so.margin) so.margin = so.report_distance = band;
+    }
     scene = px_scene_create(&so, &e);
     if (!scene) {
         note("%s", e.message);
@@ -627,17 +717,18 @@ int check_run(const check_opts *o) {
         const px_scene_pair *p = &pairs[i];
         /* Closer than the clearance, or touching (a clearance of 0 still
          * reports interference). */
-        if (!(p->distance < o->clearance || p->distance == 0.0)) continue;
+        double band = touch_band(&as.parts[p->body_a], &as.parts[p->body_b]);
+        if (!(p->distance < o->clearance || p->distance <= band)) continue;
         finding *f = &fs.v[fs.n++];
         memset(f, 0, sizeof *f);
         f->a = p->body_a;
         f->b = p->body_b;
-        f->status = p->contained ? F_INSIDE : p->distance == 0.0 ? F_INTERFERENCE : F_CLEARANCE;
+        f->status = p->contained ? F_INSIDE : p->distance <= band ? F_INTERFERENCE : F_CLEARANCE;
         /* Coarse leaves: the meshes' distance lies in [distance,
          * upper_bound]; found for sure only when the bound says so. */
-        if (p->upper_bound > p->distance && !(p->upper_bound < o->clearance))
+        if (p->upper_bound > p->distance && !(p->upper_bound < o->clearance) && !(p->upper_bound <= band))
             f->status = F_POSSIBLE;
-        else if (p->upper_bound > 0.0 && f->status == F_INTERFERENCE)
+        else if (p->upper_bound > band && f->status == F_INTERFERENCE)
             f->status = F_CLEARANCE;
         /* Which one is inside: the scene says (1: a inside b, 2: b inside
          * a; 3, pieces of each inside the other, names neither). */
@@ -669,5 +760,7 @@ done:
         free(as.parts[i].name);
     }
     free(as.parts);
+    for (uint32_t i = 0; i < as.n_skipped; ++i) free(as.skipped[i]);
+    free(as.skipped);
     return rc;
 }

@@ -148,10 +148,9 @@ if [ -n "$A" ]; then
   expect 1 "found: +1 pairs" -- "$B" check "$T/wire" --ignore lines.obj,a_overlap.stl
   expect 0 "found: +nothing" -- "$B" check "$T/wire" --ignore lines.obj,a_overlap.stl --ignore a_overlap.stl,b_overlap.stl
   expect 2 "not two part names" -- "$B" check "$T/wire" --ignore lines.obj,nope.stl
-  # Surfaces that meet count as touching even when rounding leaves them a
-  # few ulps apart: two coplanar triangles 1e-12 across at x = 100 overlap
-  # (measured 5e-29 apart); 1e-9 apart they do not, and 1e-10 apart they
-  # are closer than a clearance of 1e-9.
+  # Exact where the triangles sit: two coplanar triangles 1e-12 across at
+  # x = 100 overlap (were measured 5e-29 apart); 1e-9 apart they do not,
+  # and 1e-10 apart they are closer than a clearance of 1e-9.
   mkdir -p "$T/cop" "$T/cop2" "$T/cop3"
   tri() { printf 'solid p\n facet normal 0 0 0\n  outer loop\n   vertex %s\n   vertex %s\n   vertex %s\n  endloop\n endfacet\nendsolid p\n' "$@"; }
   tri "100 0 0" "100 1e-12 0" "100 0 1e-12" >"$T/cop/a.stl"
@@ -162,6 +161,20 @@ if [ -n "$A" ]; then
   expect 0 "found: +nothing" -- "$B" check "$T/cop2"
   tri "100.0000000001 0 0" "100.0000000001 1 0" "100.0000000001 0 1" >"$T/cop3/b.stl"
   expect 1 "^a.stl +b.stl +clearance +1.000" -- "$B" check "$T/cop3" --clearance 1e-9
+  # Skipped names never make a name of two parts ambiguous: parts a and
+  # "b,c", lines-only objects "a,b" and c; "a,b,c" is still a with b,c.
+  printf 'o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b,c\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 4 5 6\no a,b\nv 5 5 5\nv 6 5 5\nl 7 8\no c\nv 7 5 5\nv 8 5 5\nl 9 10\n' >"$T/amb.obj"
+  expect 0 "1 pairs ignored" -- "$B" check "$T/amb.obj" --ignore 'a,b,c'
+  expect 1 "found: +1 pairs" -- "$B" check "$T/amb.obj" --ignore 'c,a'
+  # Two slivers about 1e-10 across at (-2e4, 2.4, -3.7e4): 3.1094680939e-14
+  # apart in exact rational arithmetic. Measured where they sit, an edge
+  # pair within ulps of 4e4 was taken as closest (1.76e-10).
+  mkdir -p "$T/sliver"
+  tri "-20804.98931634255 2.364129635524833 -37323.24561155667" "-20804.989316342475 2.364129635553021 -37323.245611556435" \
+    "-20804.98931634232 2.364129635566344 -37323.24561155675" >"$T/sliver/a.stl"
+  tri "-20804.989316342366 2.3641296355623473 -37323.24561155665" "-20804.98931634229 2.364129635590535 -37323.24561155642" \
+    "-20804.989316342133 2.3641296356038586 -37323.24561155673" >"$T/sliver/b.stl"
+  expect 1 "^a.stl +b.stl +clearance +3.1094680[89]e-14 " -- "$B" check "$T/sliver" --clearance 1e-10
   # Control characters in part names (glTF node names) are escaped in the
   # table, so that the columns hold: one triangle twice, overlapping.
   z='\x00\x00\x00\x00' o='\x00\x00\x80\x3f'

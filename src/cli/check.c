@@ -20,7 +20,6 @@
 
 #include <dirent.h>
 #include <errno.h>
-#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -243,7 +242,12 @@ static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, 
             ids[n++] = i;
             continue;
         }
-        note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
+        const char *node = node_name(m, i);
+        if (node[0] && strcmp(node, p.name))
+            note("note: '%s': part '%s' (node '%s') has no triangles (points or lines only): not checked",
+                 file, p.name, node);
+        else
+            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
         if (!as->folder && !(note_skipped(as, p.name) && note_skipped(as, node_name(m, i)))) {
             note("out of memory");
             *ok = 0;
@@ -407,10 +411,11 @@ static int named(const assembly *as, const char *name, size_t len, uint32_t i) {
     return strlen(as->parts[i].name) == len && !strncmp(as->parts[i].name, name, len);
 }
 
-/* A name of a part, or of a part skipped for having no triangles. */
+/* 2: the name of a part; 1: of a part skipped for having no triangles
+ * only; 0: neither. */
 static int has_name(const assembly *as, const char *name, size_t len) {
     for (uint32_t i = 0; i < as->count; ++i)
-        if (named(as, name, len, i)) return 1;
+        if (named(as, name, len, i)) return 2;
     for (uint32_t i = 0; i < as->n_skipped; ++i)
         if (strlen(as->skipped[i]) == len && !strncmp(as->skipped[i], name, len)) return 1;
     return 0;
@@ -424,17 +429,24 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
     size_t n = 0, cap = 0;
     for (int g = 0; g < o->nignore; ++g) {
         const char *s = o->ignore[g];
+        /* Splits into two parts' names first; only when there is none,
+         * splits that name a skipped part (so that skipped names never make
+         * a name of two parts ambiguous). */
         const char *split = NULL;
         int splits = 0;
-        for (const char *c = strchr(s, ','); c; c = strchr(c + 1, ','))
-            if (has_name(as, s, (size_t)(c - s)) && has_name(as, c + 1, strlen(c + 1))) {
-                split = c;
-                ++splits;
+        for (int want = 4; want >= 2 && !splits; want -= 2)
+            for (const char *c = strchr(s, ','); c; c = strchr(c + 1, ',')) {
+                int ha = has_name(as, s, (size_t)(c - s)), hb = has_name(as, c + 1, strlen(c + 1));
+                if (ha && hb && (want == 4 ? ha + hb == 4 : ha + hb < 4)) {
+                    split = c;
+                    ++splits;
+                }
             }
         if (splits != 1) {
             note("--ignore '%s': %s", s,
                  splits ? "more than one way to split it into two part names"
-                        : "not two part names A,B of the assembly (`proxima check FILE --json` lists them)");
+                        : "not two part names A,B of the assembly (`proxima check FILE --json` lists them; "
+                          "parts without triangles are named in the notes)");
             free(v);
             return -1;
         }
@@ -470,23 +482,6 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
 }
 
 /* ---- the check ------------------------------------------------------- */
-
-/* Surfaces that meet in exact arithmetic can come out a few ulps apart:
- * the closest points of two edges that cross, or of coplanar triangles that
- * overlap, are computed in floating point (5e-29 for two triangles 1e-12
- * across at x = 100). The queries' error is a few ulps of the pair's size
- * and place (docs/model.md), so a distance within 16 ulps of the two parts'
- * largest coordinate counts as touching. */
-static double touch_band(const part *a, const part *b) {
-    double m = 0.0;
-    const px_vec3 v[4] = {a->lo, a->hi, b->lo, b->hi};
-    for (int i = 0; i < 4; ++i) {
-        if (fabs(v[i].x) > m) m = fabs(v[i].x);
-        if (fabs(v[i].y) > m) m = fabs(v[i].y);
-        if (fabs(v[i].z) > m) m = fabs(v[i].z);
-    }
-    return 16.0 * DBL_EPSILON * m;
-}
 
 static int cmp_finding(const void *x, const void *y) {
     const finding *f = x, *g = y;
@@ -670,16 +665,12 @@ int check_run(const check_opts *o) {
     nig = resolve_ignores(&as, o, &ig);
     if (nig < 0) goto done;
 
-    /* The scene: one static body per part, the clearance (or the widest
-     * touching band, if larger) as margin and report distance. */
+    /* The scene: one static body per part, the clearance as margin and
+     * report distance. */
     px_error e;
     px_scene_options so;
     memset(&so, 0, sizeof so);
     so.margin = so.report_distance = o->clearance;
-    for (uint32_t i = 0; i < as.count; ++i) {
-        double band = touch_band(&as.parts[i], &as.parts[i]);
-        if (band > so.margin) so.margin = so.report_distance = band;
-    }
     scene = px_scene_create(&so, &e);
     if (!scene) {
         note("%s", e.message);
@@ -717,18 +708,17 @@ int check_run(const check_opts *o) {
         const px_scene_pair *p = &pairs[i];
         /* Closer than the clearance, or touching (a clearance of 0 still
          * reports interference). */
-        double band = touch_band(&as.parts[p->body_a], &as.parts[p->body_b]);
-        if (!(p->distance < o->clearance || p->distance <= band)) continue;
+        if (!(p->distance < o->clearance || p->distance == 0.0)) continue;
         finding *f = &fs.v[fs.n++];
         memset(f, 0, sizeof *f);
         f->a = p->body_a;
         f->b = p->body_b;
-        f->status = p->contained ? F_INSIDE : p->distance <= band ? F_INTERFERENCE : F_CLEARANCE;
+        f->status = p->contained ? F_INSIDE : p->distance == 0.0 ? F_INTERFERENCE : F_CLEARANCE;
         /* Coarse leaves: the meshes' distance lies in [distance,
          * upper_bound]; found for sure only when the bound says so. */
-        if (p->upper_bound > p->distance && !(p->upper_bound < o->clearance) && !(p->upper_bound <= band))
+        if (p->upper_bound > p->distance && !(p->upper_bound < o->clearance))
             f->status = F_POSSIBLE;
-        else if (p->upper_bound > band && f->status == F_INTERFERENCE)
+        else if (p->upper_bound > 0.0 && f->status == F_INTERFERENCE)
             f->status = F_CLEARANCE;
         /* Which one is inside: the scene says (1: a inside b, 2: b inside
          * a; 3, pieces of each inside the other, names neither). */

@@ -197,6 +197,10 @@ typedef struct qctx {
      * taken in A's frame and leaf distances taken in B's (a polytope's
      * query) differ by up to frel |d| + fpad; pruning allows for it. */
     double frel, fpad;
+    /* Q_DISTANCE keeps a bound lb when frame_lb(lb) < ub, that is when lb
+     * < (ub + fpad) / (1 - frel) (lb < 0 always): that threshold, a few
+     * ulps high, set with ub (set_ub). */
+    double keep_lt;
     px_feature fa, fb;
     uint32_t node_pairs, leaf_pairs;
     px_diagnostics diag;
@@ -226,6 +230,14 @@ static qbound larger(qbound x, qbound y) { return y.lb > x.lb ? y : x; }
 /* A bound taken in A's frame, made good for distances taken in B's. */
 static double frame_lb(const qctx *q, double lb) {
     return isfinite(lb) ? lb - q->frel * fabs(lb) - q->fpad : lb;
+}
+
+/* The best distance so far and keep()'s threshold for it. (1 + 8 eps)
+ * covers the rounding of frame_lb's own sum, 3 eps (lb + fpad) at most, so
+ * that keep() prunes no pair frame_lb would keep. */
+static void set_ub(qctx *q, double ub) {
+    q->ub = ub;
+    q->keep_lt = (ub + q->fpad) / (1.0 - q->frel) * (1.0 + 8.0 * DBL_EPSILON);
 }
 
 static int is_leaf(const pxi_mnode *n) { return n->child[1] == PXI_NONE; }
@@ -274,7 +286,7 @@ static void tri_of(const px_model *m, uint32_t leaf, px_vec3 out[3]) {
 static void record(qctx *q, double d, uint32_t ia, uint32_t ib, px_vec3 pa, px_vec3 pb, px_feature fa,
                    px_feature fb) {
     uint32_t la = q->a->nodes[ia].child[0], lb = q->b->nodes[ib].child[0];
-    q->ub = d;
+    set_ub(q, d);
     q->node_a = ia;
     q->node_b = ib;
     q->leaf_a = la;
@@ -510,8 +522,8 @@ static int done(const qctx *q) {
  * boolean queries pairs whose bound is at most the tolerance (plus the
  * contact band for collisions, so that touching pairs are not pruned). */
 static int keep(const qctx *q, double lb) {
+    if (q->kind == Q_DISTANCE) return lb < q->keep_lt;
     lb = frame_lb(q, lb);
-    if (q->kind == Q_DISTANCE) return lb < q->ub;
     /* q->band: at least every node pair's band, computed once. */
     return lb <= current_limit(q) + q->band;
 }
@@ -938,7 +950,7 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     /* Twice the roots' band: every node pair's band is below it (the centres
      * lie in their ancestors' spheres). */
     q->band = 2.0 * node_band(q, &a->nodes[0], &b->nodes[0]);
-    q->ub = INFINITY;
+    set_ub(q, INFINITY);
     q->leaf_a = q->leaf_b = PXI_NONE;
     q->status = PX_OK;
     return PX_OK;

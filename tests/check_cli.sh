@@ -161,6 +161,18 @@ if [ -n "$A" ]; then
   expect 0 "found: +nothing" -- "$B" check "$T/cop2"
   tri "100.0000000001 0 0" "100.0000000001 1 0" "100.0000000001 0 1" >"$T/cop3/b.stl"
   expect 1 "^a.stl +b.stl +clearance +1.000" -- "$B" check "$T/cop3" --clearance 1e-9
+  # Exactly coplanar triangles that overlap (faces on one plane, as parts
+  # touching by design have them) measure 0: near the origin, and at 1e15
+  # (were 3.6e-12 apart, a review's random case).
+  mkdir -p "$T/flat" "$T/flat15"
+  tri "0.1 0.2 0.3" "0.7 0.25 0.3" "0.2 0.9 0.3" >"$T/flat/a.stl"
+  tri "0.4 0.1 0.3" "0.3 0.8 0.3" "0.9 0.6 0.3" >"$T/flat/b.stl"
+  expect 1 "^a.stl +b.stl +interference +0 " -- "$B" check "$T/flat"
+  tri "-674766667690497.1 17703854475077.46 969097046843295.5" "-674766667570632.9 17703854465677.66 969097046843295.5" \
+    "-674766667762453.9 17703854461989.99 969097046843295.5" >"$T/flat15/a.stl"
+  tri "-674766667643193.6 17703854490190.227 969097046843295.5" "-674766667744063.1 17703854462198.715 969097046843295.5" \
+    "-674766667629218.9 17703854560643.01 969097046843295.5" >"$T/flat15/b.stl"
+  expect 1 "^a.stl +b.stl +interference +0 " -- "$B" check "$T/flat15"
   # Skipped names never make a name of two parts ambiguous: parts a and
   # "b,c", lines-only objects "a,b" and c; "a,b,c" is still a with b,c.
   printf 'o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b,c\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 4 5 6\no a,b\nv 5 5 5\nv 6 5 5\nl 7 8\no c\nv 7 5 5\nv 8 5 5\nl 9 10\n' >"$T/amb.obj"

@@ -162,6 +162,86 @@ static int edge_certified(const px_vec3 s[3], const px_vec3 t[3], px_vec3 p, px_
     return (hs + ht) / l <= 16.0 * DBL_EPSILON * size;
 }
 
+/* Exactly coplanar triangles (every corner's computed distance to the
+ * other's plane is 0: faces on one axis-aligned plane, the common case of
+ * parts that touch by design) meet when, projected on the plane's
+ * dominant axes, an edge of one meets an edge of the other or a corner of
+ * one lies in the other. The crossing tests above cannot see it (no edge
+ * leaves the plane), and the edge pairs' closest points would measure a
+ * rounding-sized gap. Writes a common point; 1 when they meet. */
+static double orient2(const double a[2], const double b[2], const double c[2]) {
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+static int on_segment2(const double a[2], const double b[2], const double p[2]) {
+    return p[0] >= fmin(a[0], b[0]) && p[0] <= fmax(a[0], b[0]) && p[1] >= fmin(a[1], b[1]) &&
+           p[1] <= fmax(a[1], b[1]);
+}
+
+static int inside2(const double t[3][2], const double p[2]) {
+    double o0 = orient2(t[0], t[1], p), o1 = orient2(t[1], t[2], p), o2 = orient2(t[2], t[0], p);
+    return (o0 >= 0.0 && o1 >= 0.0 && o2 >= 0.0) || (o0 <= 0.0 && o1 <= 0.0 && o2 <= 0.0);
+}
+
+static int coplanar_meet(const px_vec3 s[3], const px_vec3 t[3], px_vec3 n, px_vec3 *x, px_feature *fs,
+                         px_feature *ft) {
+    double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
+    if (!(ax > 0.0 || ay > 0.0 || az > 0.0)) return 0;
+    int u = ax >= ay && ax >= az ? 1 : 0, v = ax >= ay && ax >= az ? 2 : ay >= az ? 2 : 1;
+    double s2[3][2], t2[3][2];
+    for (int k = 0; k < 3; ++k) {
+        const double *ps = &s[k].x, *pt = &t[k].x;
+        s2[k][0] = ps[u], s2[k][1] = ps[v], t2[k][0] = pt[u], t2[k][1] = pt[v];
+    }
+    for (int i = 0; i < 3; ++i) {
+        const double *a = s2[i], *b = s2[(i + 1) % 3];
+        for (int j = 0; j < 3; ++j) {
+            const double *c = t2[j], *d = t2[(j + 1) % 3];
+            double d1 = orient2(c, d, a), d2 = orient2(c, d, b), d3 = orient2(a, b, c), d4 = orient2(a, b, d);
+            int proper = ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
+                         ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
+            if (proper) {
+                *x = pxi_madd(s[i], pxi_sub(s[(i + 1) % 3], s[i]), d1 / (d1 - d2));
+                *fs = tri_feature(PX_FEATURE_EDGE, (uint32_t)i);
+                *ft = tri_feature(PX_FEATURE_EDGE, (uint32_t)j);
+                return 1;
+            }
+        }
+    }
+    for (int k = 0; k < 3; ++k) {
+        if (inside2(t2, s2[k])) {
+            *x = s[k];
+            *fs = tri_feature(PX_FEATURE_VERTEX, (uint32_t)k);
+            *ft = tri_feature(PX_FEATURE_FACE, 0);
+            return 1;
+        }
+        if (inside2(s2, t2[k])) {
+            *x = t[k];
+            *fs = tri_feature(PX_FEATURE_FACE, 0);
+            *ft = tri_feature(PX_FEATURE_VERTEX, (uint32_t)k);
+            return 1;
+        }
+    }
+    /* Touching edges (a corner on the other's edge is caught above). */
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const double *a = s2[i], *b = s2[(i + 1) % 3], *c = t2[j], *d = t2[(j + 1) % 3];
+            if (orient2(a, b, c) == 0.0 && on_segment2(a, b, c)) {
+                *x = t[j];
+                *fs = tri_feature(PX_FEATURE_EDGE, (uint32_t)i);
+                *ft = tri_feature(PX_FEATURE_VERTEX, (uint32_t)j);
+                return 1;
+            }
+            if (orient2(c, d, a) == 0.0 && on_segment2(c, d, a)) {
+                *x = s[i];
+                *fs = tri_feature(PX_FEATURE_VERTEX, (uint32_t)i);
+                *ft = tri_feature(PX_FEATURE_EDGE, (uint32_t)j);
+                return 1;
+            }
+        }
+    return 0;
+}
+
 static double tri_tri_local(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps, px_vec3 *pt, px_feature *fs,
                             px_feature *ft) {
     /* An edge of one crossing the other: they intersect. An edge of s
@@ -176,6 +256,13 @@ static double tri_tri_local(const px_vec3 s[3], const px_vec3 t[3], px_vec3 *ps,
     for (int k = 0; k < 3; ++k)
         ds[k] = pxi_dot(nt, pxi_sub(s[k], t[0])), dt[k] = pxi_dot(ns, pxi_sub(t[k], s[0]));
     int s_apart = one_side(ds), t_apart = one_side(dt);
+    if (ds[0] == 0.0 && ds[1] == 0.0 && ds[2] == 0.0 && dt[0] == 0.0 && dt[1] == 0.0 && dt[2] == 0.0) {
+        px_vec3 n = pxi_max_abs(ns) >= pxi_max_abs(nt) ? ns : nt;
+        if (coplanar_meet(s, t, n, ps, fs, ft)) {
+            *pt = *ps;
+            return 0.0;
+        }
+    }
     if (!s_apart || !t_apart) {
         for (int k = 0; k < 3; ++k) {
             if (!s_apart && pxi_segment_crosses_tri(s[k], s[(k + 1) % 3], t)) {

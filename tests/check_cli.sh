@@ -173,6 +173,12 @@ if [ -n "$A" ]; then
   tri "-674766667643193.6 17703854490190.227 969097046843295.5" "-674766667744063.1 17703854462198.715 969097046843295.5" \
     "-674766667629218.9 17703854560643.01 969097046843295.5" >"$T/flat15/b.stl"
   expect 1 "^a.stl +b.stl +interference +0 " -- "$B" check "$T/flat15"
+  # A triangle of no area in the other's plane is not inside it: a point
+  # triangle at the origin and a triangle 1.414 away on z = 0.
+  mkdir -p "$T/dot"
+  tri "0 0 0" "0 0 0" "0 0 0" >"$T/dot/a.stl"
+  tri "1 1 0" "2 1 0" "1 2 0" >"$T/dot/b.stl"
+  expect 1 "^a.stl +b.stl +clearance +1.41421356 " -- "$B" check "$T/dot" --clearance 10
   # Skipped names never make a name of two parts ambiguous: parts a and
   # "b,c", lines-only objects "a,b" and c; "a,b,c" is still a with b,c.
   printf 'o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b,c\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 4 5 6\no a,b\nv 5 5 5\nv 6 5 5\nl 7 8\no c\nv 7 5 5\nv 8 5 5\nl 9 10\n' >"$T/amb.obj"

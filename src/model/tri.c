@@ -178,7 +178,10 @@ static int on_segment2(const double a[2], const double b[2], const double p[2]) 
            p[1] <= fmax(a[1], b[1]);
 }
 
+/* p in triangle t (edges included); never for a triangle of no area, whose
+ * orientations would all be 0 (its edges are tested on their own). */
 static int inside2(const double t[3][2], const double p[2]) {
+    if (orient2(t[0], t[1], t[2]) == 0.0) return 0;
     double o0 = orient2(t[0], t[1], p), o1 = orient2(t[1], t[2], p), o2 = orient2(t[2], t[0], p);
     return (o0 >= 0.0 && o1 >= 0.0 && o2 >= 0.0) || (o0 <= 0.0 && o1 <= 0.0 && o2 <= 0.0);
 }

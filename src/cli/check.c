@@ -248,7 +248,7 @@ static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, 
                  file, p.name, node);
         else
             note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
-        if (!as->folder && !(note_skipped(as, p.name) && note_skipped(as, node_name(m, i)))) {
+        if (!as->folder && !(note_skipped(as, p.name) && note_skipped(as, node))) {
             note("out of memory");
             *ok = 0;
             return 0;
@@ -381,14 +381,13 @@ static int load_folder(assembly *as, const check_opts *o) {
         if (!ids) {
             note("out of memory");
             ok = 0;
-        } else if (!ok) {
-        } else if (k == 0) {
+        } else if (ok && k == 0) {
             note("note: '%s' has no triangles: not checked", path);
             if (!note_skipped(as, names[i])) {
                 note("out of memory");
                 ok = 0;
             }
-        } else {
+        } else if (ok) {
             ok = add_part(as, o, path, names[i], m, ids, k);
         }
         free(ids);
@@ -407,8 +406,13 @@ typedef struct ipair {
 } ipair;
 
 /* The parts named `name` (a name may repeat). */
+/* Whether s is the first len bytes of name (an `--ignore` side). */
+static int same_name(const char *s, const char *name, size_t len) {
+    return strlen(s) == len && !strncmp(s, name, len);
+}
+
 static int named(const assembly *as, const char *name, size_t len, uint32_t i) {
-    return strlen(as->parts[i].name) == len && !strncmp(as->parts[i].name, name, len);
+    return same_name(as->parts[i].name, name, len);
 }
 
 /* 2: the name of a part; 1: of a part skipped for having no triangles
@@ -417,7 +421,7 @@ static int has_name(const assembly *as, const char *name, size_t len) {
     for (uint32_t i = 0; i < as->count; ++i)
         if (named(as, name, len, i)) return 2;
     for (uint32_t i = 0; i < as->n_skipped; ++i)
-        if (strlen(as->skipped[i]) == len && !strncmp(as->skipped[i], name, len)) return 1;
+        if (same_name(as->skipped[i], name, len)) return 1;
     return 0;
 }
 

@@ -162,13 +162,7 @@ static int edge_certified(const px_vec3 s[3], const px_vec3 t[3], px_vec3 p, px_
     return (hs + ht) / l <= 16.0 * DBL_EPSILON * size;
 }
 
-/* Exactly coplanar triangles (every corner's computed distance to the
- * other's plane is 0: faces on one axis-aligned plane, the common case of
- * parts that touch by design) meet when, projected on the plane's
- * dominant axes, an edge of one meets an edge of the other or a corner of
- * one lies in the other. The crossing tests above cannot see it (no edge
- * leaves the plane), and the edge pairs' closest points would measure a
- * rounding-sized gap. Writes a common point; 1 when they meet. */
+/* Twice the signed area of 2D triangle abc. */
 static double orient2(const double a[2], const double b[2], const double c[2]) {
     return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
@@ -186,11 +180,20 @@ static int inside2(const double t[3][2], const double p[2]) {
     return (o0 >= 0.0 && o1 >= 0.0 && o2 >= 0.0) || (o0 <= 0.0 && o1 <= 0.0 && o2 <= 0.0);
 }
 
+/* Exactly coplanar triangles (every corner's computed distance to the
+ * other's plane is 0: faces on one axis-aligned plane, the common case of
+ * parts that touch by design) meet when, projected on the two axes other
+ * than the normal n's largest, an edge of one meets an edge of the other
+ * or a corner of one lies in the other. tri_tri_local's crossing tests
+ * cannot see it (no edge leaves the plane), and the edge pairs' closest
+ * points would measure a rounding-sized gap. Writes a common point; 1 when
+ * they meet. */
 static int coplanar_meet(const px_vec3 s[3], const px_vec3 t[3], px_vec3 n, px_vec3 *x, px_feature *fs,
                          px_feature *ft) {
     double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
     if (!(ax > 0.0 || ay > 0.0 || az > 0.0)) return 0;
-    int u = ax >= ay && ax >= az ? 1 : 0, v = ax >= ay && ax >= az ? 2 : ay >= az ? 2 : 1;
+    int drop = ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2; /* the axis projected away */
+    int u = drop == 0 ? 1 : 0, v = drop == 2 ? 1 : 2;
     double s2[3][2], t2[3][2];
     for (int k = 0; k < 3; ++k) {
         const double *ps = &s[k].x, *pt = &t[k].x;
@@ -225,7 +228,8 @@ static int coplanar_meet(const px_vec3 s[3], const px_vec3 t[3], px_vec3 n, px_v
             return 1;
         }
     }
-    /* Touching edges (a corner on the other's edge is caught above). */
+    /* A corner on the other's edge where that triangle has no area (with
+     * an area, inside2 above takes edges in). */
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
             const double *a = s2[i], *b = s2[(i + 1) % 3], *c = t2[j], *d = t2[(j + 1) % 3];

@@ -184,6 +184,10 @@ if [ -n "$A" ]; then
   printf 'o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b,c\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 4 5 6\no a,b\nv 5 5 5\nv 6 5 5\nl 7 8\no c\nv 7 5 5\nv 8 5 5\nl 9 10\n' >"$T/amb.obj"
   expect 0 "1 pairs ignored" -- "$B" check "$T/amb.obj" --ignore 'a,b,c'
   expect 1 "found: +1 pairs" -- "$B" check "$T/amb.obj" --ignore 'c,a'
+  # The JSON lists the skipped parts by both their names.
+  expect 0 '"skipped": \[$' -- "$B" check "$T/amb.obj" --ignore 'a,b,c' --json
+  expect 0 '\{"name": "a,b", "mesh_name": "a,b/a,b"\},' -- "$B" check "$T/amb.obj" --ignore 'a,b,c' --json
+  expect 1 '\{"name": "lines.obj", "mesh_name": null\}' -- "$B" check "$T/wire" --json
   # Two slivers about 1e-10 across at (-2e4, 2.4, -3.7e4): 3.1094680939e-14
   # apart in exact rational arithmetic. Measured where they sit, an edge
   # pair within ulps of 4e4 was taken as closest (1.76e-10).

@@ -58,13 +58,20 @@ typedef struct findings {
     size_t n;
 } findings;
 
+/* A part skipped for having no triangles: its name as a part's would be
+ * (its node's, else px_mesh_load's, or a folder's file name) and
+ * px_mesh_load's name when that differs (else NULL). */
+typedef struct skipped_part {
+    char *name, *mesh_name;
+} skipped_part;
+
 typedef struct assembly {
     part *parts;
     uint32_t count, cap;
     int folder;
-    /* Names of the parts skipped for having no triangles: `--ignore` may
-     * name them (their pairs are not checked anyway). */
-    char **skipped;
+    /* The parts skipped for having no triangles, listed in the JSON;
+     * `--ignore` may name them (their pairs are not checked anyway). */
+    skipped_part *skipped;
     uint32_t n_skipped, cap_skipped;
 } assembly;
 
@@ -212,19 +219,27 @@ static px_mesh *load(const char *path, const check_opts *o) {
     return m;
 }
 
-/* Keeps the name of a part skipped for having no triangles; 0 when out of
- * memory. */
-static int note_skipped(assembly *as, const char *name) {
-    if (!name[0]) return 1;
+/* Keeps the names of a part skipped for having no triangles (other: a
+ * second name, or ""); 0 when out of memory. */
+static int note_skipped(assembly *as, const char *name, const char *other) {
     if (as->n_skipped == as->cap_skipped) {
         uint32_t cap = as->cap_skipped ? 2 * as->cap_skipped : 8;
-        char **v = realloc(as->skipped, sizeof *v * cap);
+        skipped_part *v = realloc(as->skipped, sizeof *v * cap);
         if (!v) return 0;
         as->skipped = v;
         as->cap_skipped = cap;
     }
-    as->skipped[as->n_skipped] = dup_string(name);
-    return as->skipped[as->n_skipped++] != NULL;
+    skipped_part *k = &as->skipped[as->n_skipped];
+    int two = other[0] && strcmp(other, name);
+    k->name = dup_string(name);
+    k->mesh_name = two ? dup_string(other) : NULL;
+    if (!k->name || (two && !k->mesh_name)) {
+        free(k->name);
+        free(k->mesh_name);
+        return 0;
+    }
+    as->n_skipped++;
+    return 1;
 }
 
 static const char *node_name(const px_mesh *m, uint32_t id);
@@ -248,7 +263,7 @@ static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, 
                  file, p.name, node);
         else
             note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
-        if (!as->folder && !(note_skipped(as, p.name) && note_skipped(as, node))) {
+        if (!as->folder && !note_skipped(as, node[0] ? node : p.name, p.name)) {
             note("out of memory");
             *ok = 0;
             return 0;
@@ -383,7 +398,7 @@ static int load_folder(assembly *as, const check_opts *o) {
             ok = 0;
         } else if (ok && k == 0) {
             note("note: '%s' has no triangles: not checked", path);
-            if (!note_skipped(as, names[i])) {
+            if (!note_skipped(as, names[i], "")) {
                 note("out of memory");
                 ok = 0;
             }
@@ -420,8 +435,12 @@ static int named(const assembly *as, const char *name, size_t len, uint32_t i) {
 static int has_name(const assembly *as, const char *name, size_t len) {
     for (uint32_t i = 0; i < as->count; ++i)
         if (named(as, name, len, i)) return 2;
-    for (uint32_t i = 0; i < as->n_skipped; ++i)
-        if (same_name(as->skipped[i], name, len)) return 1;
+    for (uint32_t i = 0; i < as->n_skipped; ++i) {
+        const skipped_part *k = &as->skipped[i];
+        if ((k->name[0] && same_name(k->name, name, len)) ||
+            (k->mesh_name && same_name(k->mesh_name, name, len)))
+            return 1;
+    }
     return 0;
 }
 
@@ -534,7 +553,18 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
         printf(", \"triangles\": %u, \"closed\": %s}", as->parts[i].triangles,
                as->parts[i].closed ? "true" : "false");
     }
-    printf("%s],\n  \"ignored\": [", as->count ? "\n  " : "");
+    printf("%s],\n  \"skipped\": [", as->count ? "\n  " : "");
+    for (uint32_t i = 0; i < as->n_skipped; ++i) {
+        printf("%s\n    {\"name\": ", i ? "," : "");
+        json_string(as->skipped[i].name);
+        printf(", \"mesh_name\": ");
+        if (as->skipped[i].mesh_name)
+            json_string(as->skipped[i].mesh_name);
+        else
+            printf("null");
+        printf("}");
+    }
+    printf("%s],\n  \"ignored\": [", as->n_skipped ? "\n  " : "");
     for (long i = 0; i < nig; ++i) printf("%s[%u, %u]", i ? ", " : "", ig[i].a, ig[i].b);
     printf("],\n  \"findings\": [");
     for (size_t i = 0; i < fs->n; ++i) {
@@ -754,7 +784,10 @@ done:
         free(as.parts[i].name);
     }
     free(as.parts);
-    for (uint32_t i = 0; i < as.n_skipped; ++i) free(as.skipped[i]);
+    for (uint32_t i = 0; i < as.n_skipped; ++i) {
+        free(as.skipped[i].name);
+        free(as.skipped[i].mesh_name);
+    }
     free(as.skipped);
     return rc;
 }

@@ -211,6 +211,30 @@ if [ -n "$A" ]; then
 EOF
   expect 1 '^left\\tpart +right\\npart +interference +0 +0.75 0.25 0 ' -- "$B" check "$T/tab.gltf"
   expect 1 '"name": "left\\u0009part"' -- "$B" check "$T/tab.gltf" --json
+  # Instances of one mesh under nodes of one name get unique names
+  # node/mesh#k, and their base name still names them all.
+  cat >"$T/inst.gltf" <<EOF
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+ "nodes": [{"name": "bolt", "mesh": 0}, {"name": "bolt", "mesh": 0, "translation": [0.25, 0.25, 0]},
+           {"name": "bolt", "mesh": 0, "translation": [5, 0, 0]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,$data"}]}
+EOF
+  expect 1 '^bolt/meshes\[0\]#1 +bolt/meshes\[0\]#2 +interference' -- "$B" check "$T/inst.gltf"
+  expect 0 "found: +nothing" -- "$B" check "$T/inst.gltf" --ignore 'bolt/meshes[0]#2,bolt/meshes[0]#1'
+  expect 0 "3 pairs ignored" -- "$B" check "$T/inst.gltf" --ignore 'bolt/meshes[0],bolt/meshes[0]'
+  # Open parts are named in a note (a part inside one is not found).
+  expect 1 "part 'a.stl' is not a closed surface" -- "$B" check "$T/flat"
+  # A file name that is not UTF-8 (Latin-1) still gives valid JSON.
+  mkdir -p "$T/latin1" && cp "$T/flat/a.stl" "$T/latin1/b.stl" && cp "$T/flat/b.stl" "$T/latin1/$(printf 'Geh\344use.stl')"
+  "$B" check "$T/latin1" --json >"$T/latin1.json" 2>/dev/null
+  ok 'python3 -c "import json,sys; d=json.load(open(sys.argv[1],encoding=\"utf-8\")); assert d[\"parts\"][0][\"name\"]==\"Geh\\ufffduse.stl\"" "$T/latin1.json"' \
+    "non-UTF-8 name: invalid JSON or not U+FFFD"
+  # check takes no .pxm model; the clearance is printed as given.
+  expect 2 "l2.pxm' is a .pxm model" -- "$B" check "$T/l2.pxm"
+  expect 0 "clearance 0.5000000001," -- "$B" check "$T/inst.gltf" --clearance 0.5000000001 --ignore 'bolt/meshes[0],bolt/meshes[0]'
   # Coarse leaves: brackets, and a bracket across the clearance is "possible".
   expect 1 "possible" -- "$B" check "$T/stl" --pieces parts --clearance 0.75
   expect 1 "upper bound" -- "$B" check "$T/boxes.obj" --pieces approximate --tolerance 0.05 --clearance 0.75

@@ -38,7 +38,8 @@ enum { F_INTERFERENCE = 0, F_INSIDE = 1, F_CLEARANCE = 2, F_POSSIBLE = 3 };
 static const char *status_name[] = {"interference", "inside", "clearance", "possible"};
 
 typedef struct part {
-    char *name;      /* the part's name (folder: the file name) */
+    char *name;      /* the part's name (folder: the file name), unique */
+    char *base;      /* for "node/mesh#k": "node/mesh", which --ignore also takes; else NULL */
     px_model *model; /* world frame: bodies sit at the identity */
     uint32_t triangles;
     uint32_t closed; /* every mesh part closed (a solid) */
@@ -210,6 +211,17 @@ static int add_part(assembly *as, const check_opts *o, const char *file, const c
 }
 
 static px_mesh *load(const char *path, const check_opts *o) {
+    FILE *f = fopen(path, "rb");
+    if (f) {
+        char magic[8] = {0};
+        size_t got = fread(magic, 1, sizeof magic, f);
+        fclose(f);
+        if (got == sizeof magic && !memcmp(magic, "PXMODEL", 8)) {
+            note("'%s' is a .pxm model: check reads mesh files (or a folder of them), whose parts it names",
+                 path);
+            return NULL;
+        }
+    }
     px_mesh_options mo;
     memset(&mo, 0, sizeof mo);
     mo.scale = o->scale;
@@ -282,15 +294,32 @@ static const char *node_name(const px_mesh *m, uint32_t id) {
 
 /* A part's name in the report: its node's name (the name the file gives
  * the body: a COLLADA or glTF node, an OBJ object) when no other part has
- * it, else px_mesh_load's "node/mesh". */
-static const char *part_name(const px_mesh *m, const uint32_t *ids, uint32_t n, uint32_t i) {
+ * it, else px_mesh_load's "node/mesh" when no other part has that, else
+ * "node/mesh#k" for the k-th part of that name (instances of one mesh
+ * under nodes of one name), with *base = "node/mesh" (else NULL). A
+ * string to free; NULL when out of memory. */
+static char *part_name(const px_mesh *m, const uint32_t *ids, uint32_t n, uint32_t i, const char **base) {
+    *base = NULL;
     const char *name = node_name(m, ids[i]);
     for (uint32_t j = 0; j < n && name[0]; ++j)
         if (j != i && !strcmp(node_name(m, ids[j]), name)) name = "";
-    if (name[0]) return name;
-    px_mesh_part p;
+    if (name[0]) return dup_string(name);
+    px_mesh_part p, q;
     px_mesh_get_part(m, ids[i], &p);
-    return p.name;
+    uint32_t k = 0, same = 0;
+    for (uint32_t j = 0; j < n; ++j) {
+        px_mesh_get_part(m, ids[j], &q);
+        if (!strcmp(q.name, p.name)) {
+            same++;
+            k += j <= i;
+        }
+    }
+    if (same == 1) return dup_string(p.name);
+    *base = p.name;
+    size_t len = strlen(p.name) + 16;
+    char *out = malloc(len);
+    if (out) snprintf(out, len, "%s#%u", p.name, k);
+    return out;
 }
 
 /* One file: each part with triangles is a part of the assembly. */
@@ -302,9 +331,19 @@ static int load_file(assembly *as, const check_opts *o) {
     int ok = ids != NULL;
     uint32_t n = ok ? surface_parts(as, m, o->file, ids, &ok) : 0;
     for (uint32_t i = 0; ok && i < n; ++i) {
-        px_mesh_part p;
-        px_mesh_get_part(m, ids[i], &p);
-        ok = add_part(as, o, o->file, part_name(m, ids, n, i), m, &ids[i], 1);
+        const char *base;
+        char *name = part_name(m, ids, n, i, &base);
+        if (!name) {
+            note("out of memory");
+            ok = 0;
+            break;
+        }
+        ok = add_part(as, o, o->file, name, m, &ids[i], 1);
+        free(name);
+        if (ok && base && !(as->parts[as->count - 1].base = dup_string(base))) {
+            note("out of memory");
+            ok = 0;
+        }
     }
     if (!ids) note("out of memory");
     free(ids);
@@ -420,14 +459,16 @@ typedef struct ipair {
     uint32_t a, b;
 } ipair;
 
-/* The parts named `name` (a name may repeat). */
 /* Whether s is the first len bytes of name (an `--ignore` side). */
 static int same_name(const char *s, const char *name, size_t len) {
     return strlen(s) == len && !strncmp(s, name, len);
 }
 
+/* Whether part i is named so: its name, or its base name (every
+ * instance "node/mesh#k" of "node/mesh"). */
 static int named(const assembly *as, const char *name, size_t len, uint32_t i) {
-    return same_name(as->parts[i].name, name, len);
+    const part *p = &as->parts[i];
+    return same_name(p->name, name, len) || (p->base && same_name(p->base, name, len));
 }
 
 /* 2: the name of a part; 1: of a part skipped for having no triangles
@@ -474,7 +515,9 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
             return -1;
         }
         size_t la = (size_t)(split - s), lb = strlen(split + 1);
-        if (la == lb && !strncmp(s, split + 1, la)) {
+        uint32_t many = 0; /* "A,A" is a pair when A names several parts */
+        for (uint32_t i = 0; i < as->count && many < 2; ++i) many += named(as, s, la, i);
+        if (la == lb && !strncmp(s, split + 1, la) && many < 2) {
             note("--ignore '%s': a part and itself are no pair", s);
             free(v);
             return -1;
@@ -514,15 +557,36 @@ static int cmp_finding(const void *x, const void *y) {
 
 /* ---- output ---------------------------------------------------------- */
 
+/* The length of the UTF-8 sequence at c (1 to 4), or 0 when it is not
+ * one (a stray, overlong or surrogate byte sequence: a Latin-1 file name). */
+static int utf8_length(const unsigned char *c) {
+    if (c[0] < 0x80) return 1;
+    int n = c[0] >= 0xc2 && c[0] <= 0xdf   ? 2
+            : c[0] >= 0xe0 && c[0] <= 0xef ? 3
+            : c[0] >= 0xf0 && c[0] <= 0xf4 ? 4
+                                           : 0;
+    for (int k = 1; k < n; ++k)
+        if ((c[k] & 0xc0) != 0x80) return 0;
+    if ((c[0] == 0xe0 && c[1] < 0xa0) || (c[0] == 0xed && c[1] >= 0xa0) || (c[0] == 0xf0 && c[1] < 0x90) ||
+        (c[0] == 0xf4 && c[1] >= 0x90))
+        return 0;
+    return n;
+}
+
+/* A JSON string: bytes that are not UTF-8 become U+FFFD (JSON is UTF-8). */
 static void json_string(const char *s) {
     putchar('"');
-    for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int n = utf8_length(c);
         if (*c == '"' || *c == '\\')
             printf("\\%c", *c);
         else if (*c < 0x20)
             printf("\\u%04x", *c);
+        else if (n == 0)
+            fputs("\\ufffd", stdout);
         else
-            putchar(*c);
+            fwrite(c, 1, (size_t)n, stdout);
+        c += n ? n : 1;
     }
     putchar('"');
 }
@@ -601,40 +665,56 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
 }
 
 /* Part names in the table: a control character (a tab or newline in a
- * node's name) is written as \t, \n, \r or \xHH so that it cannot break
- * the columns (the JSON escapes them its own way; `--ignore` takes the
+ * node's name) is written as \t, \n, \r or \xHH, and so is a byte that is
+ * not UTF-8, so that it cannot break the columns; a UTF-8 character counts
+ * as one column (the JSON escapes them its own way; `--ignore` takes the
  * names as they are). */
 static int width(const char *s) {
     int w = 0;
-    for (const unsigned char *c = (const unsigned char *)s; *c; ++c)
-        w += *c == '\t' || *c == '\n' || *c == '\r' ? 2 : *c < 0x20 || *c == 0x7f ? 4 : 1;
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int n = utf8_length(c);
+        w += *c == '\t' || *c == '\n' || *c == '\r' ? 2 : *c < 0x20 || *c == 0x7f || n == 0 ? 4 : 1;
+        c += n ? n : 1;
+    }
     return w;
 }
 
 static void put_name(const char *s, int pad) {
-    for (const unsigned char *c = (const unsigned char *)s; *c; ++c) {
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int n = utf8_length(c);
         if (*c == '\t')
             fputs("\\t", stdout);
         else if (*c == '\n')
             fputs("\\n", stdout);
         else if (*c == '\r')
             fputs("\\r", stdout);
-        else if (*c < 0x20 || *c == 0x7f)
+        else if (*c < 0x20 || *c == 0x7f || n == 0)
             printf("\\x%02x", *c);
         else
-            putchar(*c);
+            fwrite(c, 1, (size_t)n, stdout);
+        c += n ? n : 1;
     }
     for (int w = width(s); w < pad; ++w) putchar(' ');
 }
 
+/* The shortest %g form of x that reads back as x (the clearance as given). */
+static void shortest(char *buf, size_t size, double x) {
+    for (int p = 1; p <= 17; ++p) {
+        snprintf(buf, size, "%.*g", p, x);
+        if (strtod(buf, NULL) == x) return;
+    }
+}
+
 static void print_table(const assembly *as, const check_opts *o, const findings *fs, const size_t counts[4],
                         const px_scene_pair *closest, long nig) {
+    char c[32];
+    shortest(c, sizeof c, o->clearance);
     uint32_t closed = 0;
     for (uint32_t i = 0; i < as->count; ++i) closed += as->parts[i].closed;
     int exact = o->pieces == PX_PIECES_TRIANGLES;
     printf("assembly:  %s (%s, %u part%s, %u closed)\n", o->file, as->folder ? "folder" : "file", as->count,
            as->count == 1 ? "" : "s", closed);
-    printf("check:     interference and clearance %.9g, %s", o->clearance,
+    printf("check:     interference and clearance %s, %s", c,
            exact                          ? "exact (triangle leaves)"
            : o->pieces == PX_PIECES_PARTS ? "one hull per part (distance brackets)"
                                           : "approximate convex pieces (distance brackets)");
@@ -663,14 +743,14 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
             printf("  %-12s  %-14.9g  %s%-38s  %s\n", st, f->distance, up, pa, pb);
         }
         printf("\n");
-        printf("found:     %zu pairs: %zu interfering, %zu inside another part, %zu closer than %.9g", fs->n,
-               counts[0], counts[1], counts[2], o->clearance);
+        printf("found:     %zu pairs: %zu interfering, %zu inside another part, %zu closer than %s", fs->n,
+               counts[0], counts[1], counts[2], c);
         if (counts[3]) printf(", %zu possibly (brackets across it: try the exact default)", counts[3]);
         printf("\n");
     } else if (as->count < 2) {
         printf("found:     nothing (%s)\n", as->count ? "one part only" : "no part with triangles");
     } else {
-        printf("found:     nothing: no interference, no pair closer than %.9g\n", o->clearance);
+        printf("found:     nothing: no interference, no pair closer than %s\n", c);
     }
     if (closest->body_a != UINT32_MAX) {
         printf("closest:   %.9g between ", closest->distance);
@@ -679,6 +759,24 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
         put_name(as->parts[closest->body_b].name, 0);
         printf("\n");
     }
+}
+
+/* Names the open parts (up to 8): a part inside one of them is not found,
+ * and a flaw of the mesh (a hole, an edge of three triangles, a flipped,
+ * repeated or zero-area triangle) is the usual reason a part meant as a
+ * solid is open. */
+static void note_open_parts(const assembly *as) {
+    if (as->count < 2) return;
+    uint32_t open = 0;
+    for (uint32_t i = 0; i < as->count; ++i) {
+        if (as->parts[i].closed) continue;
+        if (open++ < 8)
+            note("note: part '%s' is not a closed surface (a hole, an edge of three or more triangles, or a "
+                 "flipped, repeated or zero-area triangle): it is checked as a surface, and a part inside it "
+                 "is not found",
+                 as->parts[i].name);
+    }
+    if (open > 8) note("note: and %u more open parts", open - 8);
 }
 
 int check_run(const check_opts *o) {
@@ -696,6 +794,7 @@ int check_run(const check_opts *o) {
     findings fs = {NULL, 0};
     px_scene *scene = NULL;
     if (!(as.folder ? load_folder(&as, o) : load_file(&as, o))) goto done;
+    note_open_parts(&as);
     nig = resolve_ignores(&as, o, &ig);
     if (nig < 0) goto done;
 
@@ -782,6 +881,7 @@ done:
     for (uint32_t i = 0; i < as.count; ++i) {
         px_model_destroy(as.parts[i].model);
         free(as.parts[i].name);
+        free(as.parts[i].base);
     }
     free(as.parts);
     for (uint32_t i = 0; i < as.n_skipped; ++i) {

@@ -540,8 +540,81 @@ static void test_inside_flat_edge(void) {
     px_convex_destroy(p);
 }
 
+/* A triangle (three points not certainly collinear under a floating-point
+ * filter) is built without CGAL; the same points with the first repeated
+ * go through CGAL: the two polytopes must be the same bit for bit (vertices,
+ * edges, faces, size), as must a distance query on each, and both must be
+ * refused or accepted together. Random triangles at sizes 2^-30..2^30,
+ * offsets up to 2^80, nearly collinear (1e-14 off the line), slivers,
+ * on an axis plane, and a corner 2^-40 of an edge along it. */
+static void test_triangle_without_cgal(int count) {
+    pg_rng rng;
+    pg_seed(&rng, 3011);
+    int compared = 0, refused = 0;
+    for (int it = 0; it < count; ++it) {
+        double p[12];
+        double sc = ldexp(1.0, (int)pg_range(&rng, -30, 30));
+        double off = pg_uniform(&rng) < 0.3 ? ldexp(1.0, (int)pg_range(&rng, 0, 80)) : 0.0;
+        for (int i = 0; i < 9; ++i) p[i] = off + sc * (pg_uniform(&rng) - 0.5);
+        int kind = it % 5;
+        for (int k = 0; k < 3; ++k) {
+            if (kind == 1) p[6 + k] = p[k] + 0.5 * (p[3 + k] - p[k]) + sc * 1e-14 * (pg_uniform(&rng) - 0.5);
+            if (kind == 2) p[6 + k] = p[3 + k] + sc * 1e-9 * (pg_uniform(&rng) - 0.5);
+            if (kind == 4) p[6 + k] = p[k] + 0x1p-40 * (p[3 + k] - p[k]);
+        }
+        if (kind == 3) p[2] = p[5] = p[8] = off;
+        memcpy(p + 9, p, 3 * sizeof *p);
+        px_error e3, e4;
+        px_convex *a = px_convex_create(p, 3, NULL, &e3), *b = px_convex_create(p, 4, NULL, &e4);
+        CHECK(!a == !b, "triangle %d (kind %d): %s without CGAL, %s with it", it, kind,
+              a ? "built" : e3.message, b ? "built" : e4.message);
+        if (a && b) {
+            compared++;
+            int same = px_convex_vertex_count(a) == px_convex_vertex_count(b) &&
+                       px_convex_edge_count(a) == px_convex_edge_count(b) &&
+                       px_convex_face_count(a) == px_convex_face_count(b) &&
+                       px_convex_dimension(a) == px_convex_dimension(b) &&
+                       px_convex_memory_bytes(a) == px_convex_memory_bytes(b);
+            for (uint32_t i = 0; same && i < px_convex_vertex_count(a); ++i) {
+                px_vec3 x, y;
+                px_convex_vertex(a, i, &x);
+                px_convex_vertex(b, i, &y);
+                same = !memcmp(&x, &y, sizeof x);
+            }
+            for (uint32_t i = 0; same && i < px_convex_edge_count(a); ++i) {
+                uint32_t x[2], y[2];
+                px_convex_edge(a, i, x);
+                px_convex_edge(b, i, y);
+                same = !memcmp(x, y, sizeof x);
+            }
+            for (uint32_t i = 0; same && i < px_convex_face_count(a); ++i) {
+                px_vec3 x, y;
+                double dx, dy;
+                uint32_t cx, cy;
+                px_convex_face(a, i, &x, &dx, &cx);
+                px_convex_face(b, i, &y, &dy, &cy);
+                same = !memcmp(&x, &y, sizeof x) && dx == dy && cx == cy;
+            }
+            px_pose ia = px_pose_identity(), tb = ia;
+            tb.t = (px_vec3){sc, 0.3 * sc, -0.2 * sc};
+            px_distance_result ra, rb;
+            same = same && px_distance(a, &ia, a, &tb, NULL, NULL, &ra) == PX_OK &&
+                   px_distance(b, &ia, b, &tb, NULL, NULL, &rb) == PX_OK && ra.distance == rb.distance &&
+                   !memcmp(&ra.point_a, &rb.point_a, sizeof ra.point_a) &&
+                   !memcmp(&ra.point_b, &rb.point_b, sizeof ra.point_b);
+            CHECK(same, "triangle %d (kind %d): built without CGAL, it differs from CGAL's", it, kind);
+        } else {
+            refused++;
+        }
+        px_convex_destroy(a);
+        px_convex_destroy(b);
+    }
+    printf("  triangles without CGAL: %d equal to CGAL's, %d refused by both\n", compared, refused);
+}
+
 int main(void) {
     tu_init("test_convex");
+    test_triangle_without_cgal(tu_scaled(20000));
     test_inside_flat_edge();
     test_extent_and_weld();
     double t0 = tu_now();

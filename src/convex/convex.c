@@ -430,6 +430,53 @@ static size_t weld_points(const px_allocator *alloc, const double *xyz, size_t c
 static px_convex *convex_create(const double *xyz, size_t count, const px_convex_options *options, int weld,
                                 px_error *err);
 
+/* Whether three points are certainly not collinear: the orientation of
+ * their projection on some coordinate plane is nonzero beyond the error
+ * bound of its floating-point evaluation (Shewchuk 1997, "Adaptive
+ * precision floating-point arithmetic and fast robust geometric
+ * predicates", orient2d's first stage: |det| > (3 + 16 eps) eps (|l| + |r|),
+ * eps = 2^-53). 0 when no projection decides (nearly or exactly collinear,
+ * or products outside the normal range): CGAL's exact predicates decide
+ * then. */
+static int surely_a_triangle(const double *p) {
+    static const int axes[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    const double eps = 0.5 * DBL_EPSILON;
+    for (int k = 0; k < 3; ++k) {
+        int i = axes[k][0], j = axes[k][1];
+        double l = (p[i] - p[6 + i]) * (p[3 + j] - p[6 + j]);
+        double r = (p[j] - p[6 + j]) * (p[3 + i] - p[6 + i]);
+        double sum = fabs(l) + fabs(r);
+        if (!(sum > 0x1p-900 && sum < 0x1p900)) continue;
+        if (fabs(l - r) > (3.0 + 16.0 * eps) * eps * sum) return 1;
+    }
+    return 0;
+}
+
+/* The hull of a triangle, as pxcd_hull_compute gives it (vertices in input
+ * order, faces (0, 1, 2) and (0, 2, 1): each starts at its smallest id,
+ * sorted by their first two), built without CGAL: a model's triangle
+ * leaves become px_convex copies one query at a time (model/query.c), and
+ * CGAL would allocate outside the caller's allocator. */
+typedef struct tri_hull {
+    pxcd_hull h;
+    double v[9];
+    size_t offsets[3];
+    uint32_t ids[6];
+} tri_hull;
+
+static void tri_hull_init(tri_hull *t, const double *xyz) {
+    memcpy(t->v, xyz, sizeof t->v);
+    static const uint32_t ids[6] = {0, 1, 2, 0, 2, 1};
+    memcpy(t->ids, ids, sizeof ids);
+    t->offsets[0] = 0, t->offsets[1] = 3, t->offsets[2] = 6;
+    t->h = (pxcd_hull){3, t->v, 2, t->offsets, t->ids};
+}
+
+/* Frees a hull from pxcd_hull_compute (not the local triangle's). */
+static void hull_release(pxcd_hull *h, const tri_hull *local) {
+    if (h != &local->h) pxcd_hull_free(h);
+}
+
 px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,
                             px_error *err) {
     return convex_create(xyz, count, options, 1, err);
@@ -472,20 +519,28 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
     pxcd_hull *hull = NULL;
     int dim = 3;
     char msg[200] = {0};
-    pxcd_status hs = pxcd_hull_compute(xyz, count, &hull, &dim, msg, sizeof msg);
+    tri_hull tri;
+    pxcd_status hs = PXCD_OK;
+    if (count == 3 && surely_a_triangle(xyz)) {
+        tri_hull_init(&tri, xyz);
+        hull = &tri.h;
+        dim = 2;
+    } else {
+        hs = pxcd_hull_compute(xyz, count, &hull, &dim, msg, sizeof msg);
+    }
     if (hs == PXCD_OUT_OF_MEMORY) {
         pxi_error(err, PX_ERR_OUT_OF_MEMORY,
                   "px_convex_create: out of memory computing the hull of %zu points", count);
         return NULL;
     }
     if (hs != PXCD_OK || !hull || dim < 0 || dim > 3) {
-        pxcd_hull_free(hull);
+        hull_release(hull, &tri);
         pxi_error(err, PX_ERR_INTERNAL, "px_convex_create: hull computation failed: %s", msg);
         return NULL;
     }
     px_convex *c = pxi_alloc(&alloc, sizeof *c);
     if (!c) {
-        pxcd_hull_free(hull);
+        hull_release(hull, &tri);
         pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_convex_create: out of memory");
         return NULL;
     }
@@ -494,7 +549,7 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
     c->alloc = alloc;
     c->bytes = sizeof *c;
     px_status st = build_from_hull(c, hull, dim, err);
-    pxcd_hull_free(hull);
+    hull_release(hull, &tri);
     /* A point has no size (it is stored as its own origin): any finite
      * point is in range. */
     if (st == PX_OK && c->dim > 0 && !(c->scale >= PXI_MIN_SIZE && c->scale <= PXI_MAX_SIZE))

@@ -362,10 +362,37 @@ static px_feature triangle_feature(const px_convex *c, px_feature f, const px_ve
     return (px_feature){PX_FEATURE_EDGE, e, 0};
 }
 
+/* A bump allocator over a buffer on the caller's stack, for the
+ * short-lived px_convex of one triangle leaf (980 bytes in 12 blocks): the
+ * leaf pair calls no allocator. What does not fit goes to `next` (the cache's
+ * allocator, or malloc), and frees inside the buffer are nothing. */
+typedef struct stack_arena {
+    unsigned char *buf;
+    size_t size, used;
+    px_allocator next;
+} stack_arena;
+
+static void *arena_alloc(void *user, size_t size) {
+    stack_arena *a = user;
+    size_t at = (a->used + 15u) & ~(size_t)15u;
+    if (at <= a->size && size <= a->size - at) {
+        a->used = at + size;
+        return a->buf + at;
+    }
+    return a->next.alloc(a->next.user, size);
+}
+
+static void arena_free(void *user, void *ptr, size_t size) {
+    stack_arena *a = user;
+    uintptr_t p = (uintptr_t)ptr, b = (uintptr_t)a->buf;
+    if (p >= b && p < b + a->size) return;
+    a->next.free(a->next.user, ptr, size);
+}
+
 /* A triangle leaf against a convex leaf: the triangle becomes a
- * (two-dimensional) px_convex for this pair, measured by px_distance, then
- * freed. Costs ~3 us and allocates through the cache's allocator (malloc
- * without a cache); docs/model.md. Returns 0 with q->status set on error. */
+ * (two-dimensional) px_convex for this pair (its hull built without CGAL,
+ * in a buffer on the stack: no allocation), measured by px_distance, then
+ * dropped; docs/model.md. Returns 0 with q->status set on error. */
 static int mixed_pair(qctx *q, const pxi_mnode *na, const pxi_mnode *nb, double *d, px_vec3 *pa, px_vec3 *pb,
                       px_feature *fa, px_feature *fb) {
     int tri_is_a = na->hull == NULL;
@@ -374,9 +401,16 @@ static int mixed_pair(qctx *q, const pxi_mnode *na, const pxi_mnode *nb, double 
     tri_of(tm, (tri_is_a ? na : nb)->child[0], t);
     double xyz[9];
     for (int k = 0; k < 3; ++k) xyz[3 * k] = t[k].x, xyz[3 * k + 1] = t[k].y, xyz[3 * k + 2] = t[k].z;
+    _Alignas(16) unsigned char buf[2048];
+    stack_arena arena = {buf, sizeof buf, 0, {NULL, NULL, NULL}};
+    px_allocator via = {arena_alloc, arena_free, &arena};
     px_convex_options co;
     memset(&co, 0, sizeof co);
-    co.allocator = q->cache ? q->cache->allocator : NULL;
+    if (pxi_allocator_resolve(q->cache ? q->cache->allocator : NULL, &arena.next, NULL) != PX_OK) {
+        q->status = PX_ERR_INVALID_ARGUMENT;
+        return 0;
+    }
+    co.allocator = &via;
     co.lut_resolution = 1;
     px_error e;
     px_convex *tc = px_convex_create(xyz, 3, &co, &e);

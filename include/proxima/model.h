@@ -29,9 +29,9 @@
 ///
 /// Models are immutable after creation and safe to share across threads.
 /// Queries allocate only through a caller-owned `px_model_cache` (its node
-/// pair table), and for a triangle leaf met with a convex leaf, where the
-/// triangle is made a flat px_convex for that pair (~3 us, through the
-/// cache's allocator, malloc without one; docs/model.md).
+/// pair table). A triangle leaf met with a convex leaf is made a flat
+/// px_convex for that pair, built on the stack (no allocation;
+/// docs/model.md).
 #ifndef PROXIMA_MODEL_H
 #define PROXIMA_MODEL_H
 

@@ -85,6 +85,15 @@ uint32_t pxi_lut_lookup(const px_convex *c, px_vec3 d) {
  * 3x3 symmetric, converges in a few sweeps) and the widths along them:
  * the lookup map diag(w) Q^T and its inverse Q diag(1/w) for the build. */
 static void lut_map(const px_convex *c, double map[9], double inv[9]) {
+    /* Three vertices or fewer (a triangle, a segment, a point: the model
+     * queries build one per triangle leaf met with a convex leaf): any
+     * start climbs to the answer at once, so the table needs no spreading
+     * and the cells are indexed by d itself (the rotations below cost more
+     * than the rest of such a polytope's construction). */
+    if (c->nv <= 3) {
+        for (int k = 0; k < 9; ++k) map[k] = inv[k] = k % 4 == 0 ? 1.0 : 0.0;
+        return;
+    }
     double a[3][3] = {{0}}, q[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     /* Second moments are squares of coordinates: formed at unit scale (a
      * power of two) outside the safe range, where they would overflow or

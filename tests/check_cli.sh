@@ -201,30 +201,34 @@ if [ -n "$A" ]; then
   # table, so that the columns hold: one triangle twice, overlapping.
   z='\x00\x00\x00\x00' o='\x00\x00\x80\x3f'
   data=$(printf "$z$z$z$o$z$z$z$o$z" | base64 -w0)
-  cat >"$T/tab.gltf" <<EOF
-{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
- "nodes": [{"name": "left\tpart", "mesh": 0}, {"name": "right\npart", "mesh": 0, "translation": [0.25, 0.25, 0]}],
- "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
- "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
- "bufferViews": [{"buffer": 0, "byteLength": 36}],
- "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,$data"}]}
-EOF
+  # gltf FILE NODES MESHES: a glTF of those nodes and meshes (JSON lists
+  # without brackets), every mesh the triangle (0,0,0) (1,0,0) (0,1,0).
+  gltf() {
+    local n
+    n=$(grep -o '"mesh"' <<<"$2" | wc -l)
+    printf '{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [%s]}],\n "nodes": [%s],\n "meshes": [%s],\n' \
+      "$(seq -s, 0 $((n - 1)))" "$2" "$3" >"$1"
+    printf ' "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],\n "bufferViews": [{"buffer": 0, "byteLength": 36}],\n "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,%s"}]}\n' \
+      "$data" >>"$1"
+  }
+  tri0='{"primitives": [{"attributes": {"POSITION": 0}}]}'
+  gltf "$T/tab.gltf" '{"name": "left\tpart", "mesh": 0}, {"name": "right\npart", "mesh": 0, "translation": [0.25, 0.25, 0]}' "$tri0"
   expect 1 '^left\\tpart +right\\npart +interference +0 +0.75 0.25 0 ' -- "$B" check "$T/tab.gltf"
   expect 1 '"name": "left\\u0009part"' -- "$B" check "$T/tab.gltf" --json
   # Instances of one mesh under nodes of one name get unique names
   # node/mesh#k, and their base name still names them all.
-  cat >"$T/inst.gltf" <<EOF
-{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
- "nodes": [{"name": "bolt", "mesh": 0}, {"name": "bolt", "mesh": 0, "translation": [0.25, 0.25, 0]},
-           {"name": "bolt", "mesh": 0, "translation": [5, 0, 0]}],
- "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
- "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}],
- "bufferViews": [{"buffer": 0, "byteLength": 36}],
- "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,$data"}]}
-EOF
+  gltf "$T/inst.gltf" '{"name": "bolt", "mesh": 0}, {"name": "bolt", "mesh": 0, "translation": [0.25, 0.25, 0]},
+    {"name": "bolt", "mesh": 0, "translation": [5, 0, 0]}' "$tri0"
   expect 1 '^bolt/meshes\[0\]#1 +bolt/meshes\[0\]#2 +interference' -- "$B" check "$T/inst.gltf"
   expect 0 "found: +nothing" -- "$B" check "$T/inst.gltf" --ignore 'bolt/meshes[0]#2,bolt/meshes[0]#1'
   expect 0 "3 pairs ignored" -- "$B" check "$T/inst.gltf" --ignore 'bolt/meshes[0],bolt/meshes[0]'
+  # A generated name never takes a name the file gives: meshes "m" (twice
+  # under nodes "x") and "m#1" (under a third "x") are x/m#2, x/m#3, x/m#1.
+  gltf "$T/clash.gltf" '{"name": "x", "mesh": 0}, {"name": "x", "mesh": 0, "translation": [5, 0, 0]},
+    {"name": "x", "mesh": 1, "translation": [0.25, 0.25, 0]}' \
+    '{"name": "m", "primitives": [{"attributes": {"POSITION": 0}}]}, {"name": "m#1", "primitives": [{"attributes": {"POSITION": 0}}]}'
+  expect 1 '^x/m#2 +x/m#1 +interference' -- "$B" check "$T/clash.gltf"
+  expect 1 "found: +1 pairs" -- "$B" check "$T/clash.gltf" --ignore 'x/m#2,x/m#3'
   # Open parts are named in a note (a part inside one is not found).
   expect 1 "part 'a.stl' is not a closed surface" -- "$B" check "$T/flat"
   # A file name that is not UTF-8 (Latin-1) still gives valid JSON.

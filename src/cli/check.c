@@ -275,7 +275,12 @@ static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, 
                  file, p.name, node);
         else
             note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
-        if (!as->folder && !note_skipped(as, node[0] ? node : p.name, p.name)) {
+        /* Named as a part would be: its node's name when no other part's
+         * node has it, else the loader's. */
+        int own = node[0] != 0;
+        for (uint32_t j = 0; j < np && own; ++j)
+            if (j != i && !strcmp(node_name(m, j), node)) own = 0;
+        if (!as->folder && !note_skipped(as, own ? node : p.name, p.name)) {
             note("out of memory");
             *ok = 0;
             return 0;
@@ -292,34 +297,61 @@ static const char *node_name(const px_mesh *m, uint32_t id) {
     return p.node >= 0 && px_mesh_get_node(m, (uint32_t)p.node, &nd) == PX_OK ? nd.name : "";
 }
 
-/* A part's name in the report: its node's name (the name the file gives
- * the body: a COLLADA or glTF node, an OBJ object) when no other part has
- * it, else px_mesh_load's "node/mesh" when no other part has that, else
- * "node/mesh#k" for the k-th part of that name (instances of one mesh
- * under nodes of one name), with *base = "node/mesh" (else NULL). A
- * string to free; NULL when out of memory. */
-static char *part_name(const px_mesh *m, const uint32_t *ids, uint32_t n, uint32_t i, const char **base) {
-    *base = NULL;
-    const char *name = node_name(m, ids[i]);
-    for (uint32_t j = 0; j < n && name[0]; ++j)
-        if (j != i && !strcmp(node_name(m, ids[j]), name)) name = "";
-    if (name[0]) return dup_string(name);
-    px_mesh_part p, q;
-    px_mesh_get_part(m, ids[i], &p);
-    uint32_t k = 0, same = 0;
-    for (uint32_t j = 0; j < n; ++j) {
-        px_mesh_get_part(m, ids[j], &q);
-        if (!strcmp(q.name, p.name)) {
-            same++;
-            k += j <= i;
-        }
+/* Whether `name` is among the n strings of v (NULL entries skipped). */
+static int among(char *const *v, uint32_t n, const char *name) {
+    for (uint32_t j = 0; j < n; ++j)
+        if (v[j] && !strcmp(v[j], name)) return 1;
+    return 0;
+}
+
+/* The names of the parts ids[0..n) of m in the report, unique: a part's
+ * node's name (the name the file gives the body: a COLLADA or glTF node,
+ * an OBJ object) when no other part's node has it, else px_mesh_load's
+ * "node/mesh"; a name that two or more parts would then share becomes
+ * "name#k" for each of them in file order, k the smallest number that
+ * makes a name no part has (instances of one mesh under nodes of one
+ * name), with base[i] = that shared name (which `--ignore` takes for all
+ * of them) unless a part is named so. out[] and base[] are strings to free
+ * (base[i] NULL for a name of its own); 0 when out of memory. */
+static int part_names(const px_mesh *m, const uint32_t *ids, uint32_t n, char **out, char **base) {
+    const char **cand = malloc(sizeof *cand * (n ? n : 1));
+    if (!cand) return 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        const char *node = node_name(m, ids[i]);
+        for (uint32_t j = 0; j < n && node[0]; ++j)
+            if (j != i && !strcmp(node_name(m, ids[j]), node)) node = "";
+        px_mesh_part p;
+        px_mesh_get_part(m, ids[i], &p);
+        cand[i] = node[0] ? node : p.name;
     }
-    if (same == 1) return dup_string(p.name);
-    *base = p.name;
-    size_t len = strlen(p.name) + 16;
-    char *out = malloc(len);
-    if (out) snprintf(out, len, "%s#%u", p.name, k);
-    return out;
+    int ok = 1;
+    /* Names of their own first, so that a generated one never takes one. */
+    for (uint32_t i = 0; i < n && ok; ++i) {
+        uint32_t same = 0;
+        for (uint32_t j = 0; j < n; ++j) same += !strcmp(cand[j], cand[i]);
+        if (same == 1) ok = (out[i] = dup_string(cand[i])) != NULL;
+    }
+    for (uint32_t i = 0; i < n && ok; ++i) {
+        if (out[i]) continue;
+        size_t len = strlen(cand[i]) + 16;
+        char *name = malloc(len);
+        ok = name && (base[i] = dup_string(cand[i])) != NULL;
+        for (uint32_t k = 1; ok; ++k) {
+            snprintf(name, len, "%s#%u", cand[i], k);
+            if (!among(out, n, name)) break;
+        }
+        if (ok)
+            out[i] = name;
+        else
+            free(name);
+    }
+    for (uint32_t i = 0; i < n && ok; ++i)
+        if (base[i] && among(out, n, base[i])) {
+            free(base[i]);
+            base[i] = NULL;
+        }
+    free(cand);
+    return ok;
 }
 
 /* One file: each part with triangles is a part of the assembly. */
@@ -330,21 +362,22 @@ static int load_file(assembly *as, const check_opts *o) {
     uint32_t *ids = malloc(sizeof *ids * (np ? np : 1));
     int ok = ids != NULL;
     uint32_t n = ok ? surface_parts(as, m, o->file, ids, &ok) : 0;
-    for (uint32_t i = 0; ok && i < n; ++i) {
-        const char *base;
-        char *name = part_name(m, ids, n, i, &base);
-        if (!name) {
-            note("out of memory");
-            ok = 0;
-            break;
-        }
-        ok = add_part(as, o, o->file, name, m, &ids[i], 1);
-        free(name);
-        if (ok && base && !(as->parts[as->count - 1].base = dup_string(base))) {
-            note("out of memory");
-            ok = 0;
-        }
+    char **names = ok ? calloc(n ? n : 1, sizeof *names) : NULL;
+    char **bases = ok ? calloc(n ? n : 1, sizeof *bases) : NULL;
+    if (ok && !(names && bases && part_names(m, ids, n, names, bases))) {
+        note("out of memory");
+        ok = 0;
     }
+    for (uint32_t i = 0; ok && i < n; ++i) {
+        ok = add_part(as, o, o->file, names[i], m, &ids[i], 1);
+        if (ok) as->parts[as->count - 1].base = bases[i], bases[i] = NULL;
+    }
+    for (uint32_t i = 0; i < n && names && bases; ++i) {
+        free(names[i]);
+        free(bases[i]);
+    }
+    free(names);
+    free(bases);
     if (!ids) note("out of memory");
     free(ids);
     px_mesh_destroy(m);
@@ -669,31 +702,41 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
  * not UTF-8, so that it cannot break the columns; a UTF-8 character counts
  * as one column (the JSON escapes them its own way; `--ignore` takes the
  * names as they are). */
+/* Bytes shown as \xHH: C0 and C1 controls (U+0080..U+009F, bytes c2 80 to
+ * c2 9f), DEL and bytes that are not UTF-8 (n: utf8_length there). */
+static int hidden(const unsigned char *c, int n) {
+    return *c < 0x20 || *c == 0x7f || n == 0 || (n == 2 && c[0] == 0xc2 && c[1] < 0xa0);
+}
+
 static int width(const char *s) {
     int w = 0;
     for (const unsigned char *c = (const unsigned char *)s; *c;) {
         int n = utf8_length(c);
-        w += *c == '\t' || *c == '\n' || *c == '\r' ? 2 : *c < 0x20 || *c == 0x7f || n == 0 ? 4 : 1;
+        w += *c == '\t' || *c == '\n' || *c == '\r' ? 2 : hidden(c, n) ? 4 * (n ? n : 1) : 1;
         c += n ? n : 1;
     }
     return w;
 }
 
-static void put_name(const char *s, int pad) {
+static void put_escaped(FILE *f, const char *s) {
     for (const unsigned char *c = (const unsigned char *)s; *c;) {
         int n = utf8_length(c);
         if (*c == '\t')
-            fputs("\\t", stdout);
+            fputs("\\t", f);
         else if (*c == '\n')
-            fputs("\\n", stdout);
+            fputs("\\n", f);
         else if (*c == '\r')
-            fputs("\\r", stdout);
-        else if (*c < 0x20 || *c == 0x7f || n == 0)
-            printf("\\x%02x", *c);
+            fputs("\\r", f);
+        else if (hidden(c, n))
+            for (int k = 0; k < (n ? n : 1); ++k) fprintf(f, "\\x%02x", c[k]);
         else
-            fwrite(c, 1, (size_t)n, stdout);
+            fwrite(c, 1, (size_t)n, f);
         c += n ? n : 1;
     }
+}
+
+static void put_name(const char *s, int pad) {
+    put_escaped(stdout, s);
     for (int w = width(s); w < pad; ++w) putchar(' ');
 }
 
@@ -770,11 +813,13 @@ static void note_open_parts(const assembly *as) {
     uint32_t open = 0;
     for (uint32_t i = 0; i < as->count; ++i) {
         if (as->parts[i].closed) continue;
-        if (open++ < 8)
-            note("note: part '%s' is not a closed surface (a hole, an edge of three or more triangles, or a "
-                 "flipped, repeated or zero-area triangle): it is checked as a surface, and a part inside it "
-                 "is not found",
-                 as->parts[i].name);
+        if (open++ >= 8) continue;
+        fputs("proxima: note: part '", stderr);
+        put_escaped(stderr, as->parts[i].name);
+        fputs("' is not a closed surface (a hole, an edge of three or more triangles, or a flipped, repeated "
+              "or "
+              "zero-area triangle): it is checked as a surface, and a part inside it is not found\n",
+              stderr);
     }
     if (open > 8) note("note: and %u more open parts", open - 8);
 }

@@ -229,6 +229,18 @@ if [ -n "$A" ]; then
     '{"name": "m", "primitives": [{"attributes": {"POSITION": 0}}]}, {"name": "m#1", "primitives": [{"attributes": {"POSITION": 0}}]}'
   expect 1 '^x/m#2 +x/m#1 +interference' -- "$B" check "$T/clash.gltf"
   expect 1 "found: +1 pairs" -- "$B" check "$T/clash.gltf" --ignore 'x/m#2,x/m#3'
+  # A skipped part's name is taken too: nodes "bolt" twice (mesh cube),
+  # a points-only node "bolt/cube" and "other" on the first bolt. The
+  # bolts are bolt/cube#1 and #2 with no shared name, so --ignore
+  # bolt/cube,other names the skipped part and leaves the interference.
+  gltf "$T/skip.gltf" '{"name": "bolt", "mesh": 0}, {"name": "bolt", "mesh": 0, "translation": [5, 0, 0]},
+    {"name": "bolt/cube", "mesh": 1}, {"name": "other", "mesh": 2, "translation": [0.25, 0.25, 0]}' \
+    '{"name": "cube", "primitives": [{"attributes": {"POSITION": 0}}]},
+     {"name": "pts", "primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}, '"$tri0"
+  expect 1 '^bolt/cube#1 +other +interference' -- "$B" check "$T/skip.gltf" --ignore bolt/cube,other
+  # Names in the table never look alike: a backslash is doubled.
+  gltf "$T/bs.gltf" '{"name": "a\\x01", "mesh": 0}, {"name": "a\u0001", "mesh": 0, "translation": [0.25, 0.25, 0]}' "$tri0"
+  expect 1 '^a\\\\x01 +a\\x01 +interference' -- "$B" check "$T/bs.gltf"
   # Open parts are named in a note (a part inside one is not found).
   expect 1 "part 'a.stl' is not a closed surface" -- "$B" check "$T/flat"
   # A file name that is not UTF-8 (Latin-1) still gives valid JSON.

@@ -98,6 +98,63 @@ static char *dup_string(const char *s) {
     return d;
 }
 
+/* The length of the UTF-8 sequence at c (1 to 4), or 0 when it is not
+ * one (a stray, overlong or surrogate byte sequence: a Latin-1 file name). */
+static int utf8_length(const unsigned char *c) {
+    if (c[0] < 0x80) return 1;
+    int n = c[0] >= 0xc2 && c[0] <= 0xdf   ? 2
+            : c[0] >= 0xe0 && c[0] <= 0xef ? 3
+            : c[0] >= 0xf0 && c[0] <= 0xf4 ? 4
+                                           : 0;
+    for (int k = 1; k < n; ++k)
+        if ((c[k] & 0xc0) != 0x80) return 0;
+    if ((c[0] == 0xe0 && c[1] < 0xa0) || (c[0] == 0xed && c[1] >= 0xa0) || (c[0] == 0xf0 && c[1] < 0x90) ||
+        (c[0] == 0xf4 && c[1] >= 0x90))
+        return 0;
+    return n;
+}
+
+/* Bytes shown as \xHH: C0 and C1 controls (U+0080..U+009F, bytes c2 80 to
+ * c2 9f), DEL and bytes that are not UTF-8 (n: utf8_length there). */
+static int hidden(const unsigned char *c, int n) {
+    return *c < 0x20 || *c == 0x7f || n == 0 || (n == 2 && c[0] == 0xc2 && c[1] < 0xa0);
+}
+
+/* s as shown in the table and the notes, into dst (room for 4 strlen(s) + 1
+ * bytes): a backslash doubled, \t \n \r, other hidden bytes \xHH, so
+ * that two names never look alike and no name moves the cursor. */
+static char *escape_into(char *dst, const char *s) {
+    char *w = dst;
+    for (const unsigned char *c = (const unsigned char *)s; *c;) {
+        int n = utf8_length(c);
+        if (*c == '\\' || *c == '\t' || *c == '\n' || *c == '\r') {
+            *w++ = '\\';
+            *w++ = *c == '\t' ? 't' : *c == '\n' ? 'n' : *c == '\r' ? 'r' : '\\';
+        } else if (hidden(c, n)) {
+            for (int k = 0; k < (n ? n : 1); ++k) w += sprintf(w, "\\x%02x", c[k]);
+        } else {
+            memcpy(w, c, (size_t)n);
+            w += n;
+        }
+        c += n ? n : 1;
+    }
+    *w = '\0';
+    return dst;
+}
+
+/* s escaped (escape_into), a string to free; NULL when out of memory. */
+static char *escaped(const char *s) {
+    char *b = malloc(4 * strlen(s) + 1);
+    return b ? escape_into(b, s) : NULL;
+}
+
+/* A message about a part of `file`, its name escaped. */
+static void note_part(const char *file, const char *name, const char *what) {
+    char *e = escaped(name);
+    note("'%s': part '%s': %s", file, e ? e : name, what);
+    free(e);
+}
+
 /* A mesh of the given parts of `m` alone (vertices and triangles copied,
  * indices rebased), or NULL with `e` filled. */
 static px_mesh *submesh(const px_mesh *m, const uint32_t *ids, uint32_t n, px_error *e) {
@@ -161,7 +218,7 @@ static int add_part(assembly *as, const check_opts *o, const char *file, const c
     px_error e;
     px_mesh *sub = submesh(m, ids, n, &e);
     if (!sub) {
-        note("'%s': part '%s': %s", file, name, e.message);
+        note_part(file, name, e.message);
         return 0;
     }
     px_model_options mo;
@@ -177,7 +234,7 @@ static int add_part(assembly *as, const check_opts *o, const char *file, const c
     uint32_t triangles = px_mesh_triangle_count(sub), closed = mi.closed_parts == px_mesh_part_count(sub);
     px_mesh_destroy(sub);
     if (!model) {
-        note("'%s': part '%s': %s", file, name, e.message);
+        note_part(file, name, e.message);
         return 0;
     }
     if (as->count == as->cap) {
@@ -270,11 +327,15 @@ static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, 
             continue;
         }
         const char *node = node_name(m, i);
+        char *ep = escaped(p.name), *en = escaped(node);
         if (node[0] && strcmp(node, p.name))
             note("note: '%s': part '%s' (node '%s') has no triangles (points or lines only): not checked",
-                 file, p.name, node);
+                 file, ep ? ep : p.name, en ? en : node);
         else
-            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file, p.name);
+            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file,
+                 ep ? ep : p.name);
+        free(ep);
+        free(en);
         /* Named as a part would be: its node's name when no other part's
          * node has it, else the loader's. */
         int own = node[0] != 0;
@@ -297,11 +358,43 @@ static const char *node_name(const px_mesh *m, uint32_t id) {
     return p.node >= 0 && px_mesh_get_node(m, (uint32_t)p.node, &nd) == PX_OK ? nd.name : "";
 }
 
-/* Whether `name` is among the n strings of v (NULL entries skipped). */
-static int among(char *const *v, uint32_t n, const char *name) {
-    for (uint32_t j = 0; j < n; ++j)
-        if (v[j] && !strcmp(v[j], name)) return 1;
-    return 0;
+/* A string and its part's index, sorted by string, then index. */
+typedef struct name_ix {
+    const char *s;
+    uint32_t i;
+} name_ix;
+
+static int cmp_name_ix(const void *x, const void *y) {
+    const name_ix *a = x, *b = y;
+    int c = strcmp(a->s, b->s);
+    return c ? c : (a->i > b->i) - (a->i < b->i);
+}
+
+/* Sorts the n strings s[] (with their indices) into v and sets alone[i]
+ * when no other string equals s[i]. */
+static void sort_names(const char *const *s, uint32_t n, name_ix *v, unsigned char *alone) {
+    for (uint32_t i = 0; i < n; ++i) v[i] = (name_ix){s[i], i};
+    qsort(v, n, sizeof *v, cmp_name_ix);
+    for (uint32_t r = 0; r < n;) {
+        uint32_t e = r + 1;
+        while (e < n && !strcmp(v[e].s, v[r].s)) ++e;
+        for (uint32_t k = r; k < e; ++k) alone[v[k].i] = e - r == 1;
+        r = e;
+    }
+}
+
+/* Whether `name` is among the n sorted strings of v. */
+static int among(const name_ix *v, uint32_t n, const char *name) {
+    name_ix key = {name, 0};
+    uint32_t lo = 0, hi = n;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        if (strcmp(v[mid].s, key.s) < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && !strcmp(v[lo].s, name);
 }
 
 /* The names of the parts ids[0..n) of m in the report, unique: a part's
@@ -311,46 +404,75 @@ static int among(char *const *v, uint32_t n, const char *name) {
  * "name#k" for each of them in file order, k the smallest number that
  * makes a name no part has (instances of one mesh under nodes of one
  * name), with base[i] = that shared name (which `--ignore` takes for all
- * of them) unless a part is named so. out[] and base[] are strings to free
- * (base[i] NULL for a name of its own); 0 when out of memory. */
-static int part_names(const px_mesh *m, const uint32_t *ids, uint32_t n, char **out, char **base) {
-    const char **cand = malloc(sizeof *cand * (n ? n : 1));
-    if (!cand) return 0;
-    for (uint32_t i = 0; i < n; ++i) {
-        const char *node = node_name(m, ids[i]);
-        for (uint32_t j = 0; j < n && node[0]; ++j)
-            if (j != i && !strcmp(node_name(m, ids[j]), node)) node = "";
-        px_mesh_part p;
-        px_mesh_get_part(m, ids[i], &p);
-        cand[i] = node[0] ? node : p.name;
-    }
-    int ok = 1;
-    /* Names of their own first, so that a generated one never takes one. */
-    for (uint32_t i = 0; i < n && ok; ++i) {
-        uint32_t same = 0;
-        for (uint32_t j = 0; j < n; ++j) same += !strcmp(cand[j], cand[i]);
-        if (same == 1) ok = (out[i] = dup_string(cand[i])) != NULL;
-    }
-    for (uint32_t i = 0; i < n && ok; ++i) {
-        if (out[i]) continue;
-        size_t len = strlen(cand[i]) + 16;
-        char *name = malloc(len);
-        ok = name && (base[i] = dup_string(cand[i])) != NULL;
-        for (uint32_t k = 1; ok; ++k) {
-            snprintf(name, len, "%s#%u", cand[i], k);
-            if (!among(out, n, name)) break;
+ * of them) unless a part is named so. A generated "X#k" never equals
+ * another group's "Y#j" (the text after the last '#' is k), so only the
+ * names of their own are checked. O(n log n): sorted names. out[] and
+ * base[] are strings to free (base[i] NULL for a name of its own); 0 when
+ * out of memory. */
+static int part_names(const assembly *as, const px_mesh *m, const uint32_t *ids, uint32_t n, char **out,
+                      char **base) {
+    /* The skipped parts' names count as taken (as->skipped: this file's). */
+    size_t n_sk = 2 * (size_t)as->n_skipped, cnt = n + n_sk ? n + n_sk : 1;
+    const char **cand = calloc(cnt, sizeof *cand);
+    name_ix *v = calloc(cnt, sizeof *v), *own = calloc(cnt, sizeof *own);
+    unsigned char *alone = calloc(cnt, 1);
+    int ok = cand && v && own && alone;
+    uint32_t n_own = 0;
+    if (ok) {
+        for (uint32_t i = 0; i < n; ++i) cand[i] = node_name(m, ids[i]);
+        sort_names(cand, n, v, alone);
+        for (uint32_t i = 0; i < n; ++i) {
+            px_mesh_part p;
+            px_mesh_get_part(m, ids[i], &p);
+            if (!(cand[i][0] && alone[i])) cand[i] = p.name;
         }
-        if (ok)
-            out[i] = name;
-        else
-            free(name);
+        sort_names(cand, n, v, alone);
+        /* Names taken: those of their own and the skipped parts', sorted. */
+        for (uint32_t k = 0; k < n; ++k)
+            if (alone[v[k].i]) own[n_own++] = v[k];
+        for (uint32_t k = 0; k < as->n_skipped; ++k) {
+            own[n_own++] = (name_ix){as->skipped[k].name, UINT32_MAX};
+            if (as->skipped[k].mesh_name) own[n_own++] = (name_ix){as->skipped[k].mesh_name, UINT32_MAX};
+        }
+        qsort(own, n_own, sizeof *own, cmp_name_ix);
     }
     for (uint32_t i = 0; i < n && ok; ++i)
-        if (base[i] && among(out, n, base[i])) {
-            free(base[i]);
-            base[i] = NULL;
+        if (alone[i]) ok = (out[i] = dup_string(cand[i])) != NULL;
+    /* The shared names' groups, each in file order (v's order). */
+    for (uint32_t r = 0; r < n && ok;) {
+        uint32_t e = r + 1;
+        while (e < n && !strcmp(v[e].s, v[r].s)) ++e;
+        uint32_t k = 1;
+        for (uint32_t g = r; g < e && e - r > 1 && ok; ++g) {
+            uint32_t i = v[g].i;
+            size_t len = strlen(cand[i]) + 16;
+            char *name = malloc(len);
+            ok = name && (base[i] = dup_string(cand[i])) != NULL;
+            while (ok) {
+                snprintf(name, len, "%s#%u", cand[i], k++);
+                if (!among(own, n_own, name)) break;
+            }
+            if (ok)
+                out[i] = name;
+            else
+                free(name);
         }
+        r = e;
+    }
+    /* A base that a part or a skipped part is named by names that one
+     * only. */
+    if (ok) {
+        sort_names((const char *const *)out, n, v, alone);
+        for (uint32_t i = 0; i < n; ++i)
+            if (base[i] && (among(v, n, base[i]) || among(own, n_own, base[i]))) {
+                free(base[i]);
+                base[i] = NULL;
+            }
+    }
     free(cand);
+    free(v);
+    free(own);
+    free(alone);
     return ok;
 }
 
@@ -364,7 +486,7 @@ static int load_file(assembly *as, const check_opts *o) {
     uint32_t n = ok ? surface_parts(as, m, o->file, ids, &ok) : 0;
     char **names = ok ? calloc(n ? n : 1, sizeof *names) : NULL;
     char **bases = ok ? calloc(n ? n : 1, sizeof *bases) : NULL;
-    if (ok && !(names && bases && part_names(m, ids, n, names, bases))) {
+    if (ok && !(names && bases && part_names(as, m, ids, n, names, bases))) {
         note("out of memory");
         ok = 0;
     }
@@ -518,6 +640,12 @@ static int has_name(const assembly *as, const char *name, size_t len) {
     return 0;
 }
 
+static int cmp_ipair(const void *x, const void *y) {
+    const ipair *p = x, *q = y;
+    if (p->a != q->a) return p->a < q->a ? -1 : 1;
+    return (p->b > q->b) - (p->b < q->b);
+}
+
 /* Every pair of parts "A,B" names (each of A and B may name several parts;
  * names may hold commas: the split must be the only one that names parts on
  * both sides). Returns the count, or -1 with a message. */
@@ -569,15 +697,17 @@ static long resolve_ignores(const assembly *as, const check_opts *o, ipair **out
                     }
                     v = nv;
                 }
-                ipair pr = {i < j ? i : j, i < j ? j : i};
-                int seen = 0; /* the same pair named twice, or as B,A, counts once */
-                for (size_t k = 0; k < n && !seen; ++k) seen = v[k].a == pr.a && v[k].b == pr.b;
-                if (!seen) v[n++] = pr;
+                v[n++] = (ipair){i < j ? i : j, i < j ? j : i};
             }
         }
     }
+    /* The same pair named twice, or as B,A, counts once. */
+    if (n) qsort(v, n, sizeof *v, cmp_ipair);
+    size_t u = 0;
+    for (size_t k = 0; k < n; ++k)
+        if (!u || v[k].a != v[u - 1].a || v[k].b != v[u - 1].b) v[u++] = v[k];
     *out = v;
-    return (long)n;
+    return (long)u;
 }
 
 /* ---- the check ------------------------------------------------------- */
@@ -589,22 +719,6 @@ static int cmp_finding(const void *x, const void *y) {
 }
 
 /* ---- output ---------------------------------------------------------- */
-
-/* The length of the UTF-8 sequence at c (1 to 4), or 0 when it is not
- * one (a stray, overlong or surrogate byte sequence: a Latin-1 file name). */
-static int utf8_length(const unsigned char *c) {
-    if (c[0] < 0x80) return 1;
-    int n = c[0] >= 0xc2 && c[0] <= 0xdf   ? 2
-            : c[0] >= 0xe0 && c[0] <= 0xef ? 3
-            : c[0] >= 0xf0 && c[0] <= 0xf4 ? 4
-                                           : 0;
-    for (int k = 1; k < n; ++k)
-        if ((c[k] & 0xc0) != 0x80) return 0;
-    if ((c[0] == 0xe0 && c[1] < 0xa0) || (c[0] == 0xed && c[1] >= 0xa0) || (c[0] == 0xf0 && c[1] < 0x90) ||
-        (c[0] == 0xf4 && c[1] >= 0x90))
-        return 0;
-    return n;
-}
 
 /* A JSON string: bytes that are not UTF-8 become U+FFFD (JSON is UTF-8). */
 static void json_string(const char *s) {
@@ -702,37 +816,19 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
  * not UTF-8, so that it cannot break the columns; a UTF-8 character counts
  * as one column (the JSON escapes them its own way; `--ignore` takes the
  * names as they are). */
-/* Bytes shown as \xHH: C0 and C1 controls (U+0080..U+009F, bytes c2 80 to
- * c2 9f), DEL and bytes that are not UTF-8 (n: utf8_length there). */
-static int hidden(const unsigned char *c, int n) {
-    return *c < 0x20 || *c == 0x7f || n == 0 || (n == 2 && c[0] == 0xc2 && c[1] < 0xa0);
-}
-
+/* Columns of s as shown: a UTF-8 character counts as one. */
 static int width(const char *s) {
+    char *e = escaped(s);
     int w = 0;
-    for (const unsigned char *c = (const unsigned char *)s; *c;) {
-        int n = utf8_length(c);
-        w += *c == '\t' || *c == '\n' || *c == '\r' ? 2 : hidden(c, n) ? 4 * (n ? n : 1) : 1;
-        c += n ? n : 1;
-    }
+    for (const unsigned char *c = (const unsigned char *)(e ? e : s); *c; ++c) w += (*c & 0xc0) != 0x80;
+    free(e);
     return w;
 }
 
 static void put_escaped(FILE *f, const char *s) {
-    for (const unsigned char *c = (const unsigned char *)s; *c;) {
-        int n = utf8_length(c);
-        if (*c == '\t')
-            fputs("\\t", f);
-        else if (*c == '\n')
-            fputs("\\n", f);
-        else if (*c == '\r')
-            fputs("\\r", f);
-        else if (hidden(c, n))
-            for (int k = 0; k < (n ? n : 1); ++k) fprintf(f, "\\x%02x", c[k]);
-        else
-            fwrite(c, 1, (size_t)n, f);
-        c += n ? n : 1;
-    }
+    char *e = escaped(s);
+    fputs(e ? e : s, f);
+    free(e);
 }
 
 static void put_name(const char *s, int pad) {
@@ -862,7 +958,7 @@ int check_run(const check_opts *o) {
         d.flags = PX_BODY_STATIC;
         uint32_t id;
         if (px_scene_add_body(scene, &d, &id, &e) != PX_OK) {
-            note("part '%s': %s", as.parts[i].name, e.message);
+            note_part(o->file, as.parts[i].name, e.message);
             goto done;
         }
     }

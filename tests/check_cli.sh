@@ -238,6 +238,14 @@ if [ -n "$A" ]; then
     '{"name": "cube", "primitives": [{"attributes": {"POSITION": 0}}]},
      {"name": "pts", "primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}, '"$tri0"
   expect 1 '^bolt/cube#1 +other +interference' -- "$B" check "$T/skip.gltf" --ignore bolt/cube,other
+  # A part's own name is never a skipped part's: nodes W (mesh a), W (mesh
+  # b, far), a points-only W/a and "other" on the first: that part is W/a#1,
+  # so --ignore W/a,other names the skipped part and leaves the interference.
+  gltf "$T/skip2.gltf" '{"name": "W", "mesh": 0}, {"name": "W", "mesh": 1, "translation": [5, 0, 0]},
+    {"name": "W/a", "mesh": 2}, {"name": "other", "mesh": 1, "translation": [0.25, 0.25, 0]}' \
+    '{"name": "a", "primitives": [{"attributes": {"POSITION": 0}}]}, {"name": "b", "primitives": [{"attributes": {"POSITION": 0}}]},
+     {"name": "pts", "primitives": [{"attributes": {"POSITION": 0}, "mode": 0}]}'
+  expect 1 '^W/a#1 +other +interference' -- "$B" check "$T/skip2.gltf" --ignore W/a,other
   # Names in the table never look alike: a backslash is doubled.
   gltf "$T/bs.gltf" '{"name": "a\\x01", "mesh": 0}, {"name": "a\u0001", "mesh": 0, "translation": [0.25, 0.25, 0]}' "$tri0"
   expect 1 '^a\\\\x01 +a\\x01 +interference' -- "$B" check "$T/bs.gltf"

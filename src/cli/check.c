@@ -150,9 +150,10 @@ static char *escaped(const char *s) {
 
 /* A message about a part of `file`, its name escaped. */
 static void note_part(const char *file, const char *name, const char *what) {
-    char *e = escaped(name);
-    note("'%s': part '%s': %s", file, e ? e : name, what);
+    char *e = escaped(name), *ef = escaped(file);
+    note("'%s': part '%s': %s", ef ? ef : file, e ? e : name, what);
     free(e);
+    free(ef);
 }
 
 /* A mesh of the given parts of `m` alone (vertices and triangles copied,
@@ -313,51 +314,6 @@ static int note_skipped(assembly *as, const char *name, const char *other) {
 
 static const char *node_name(const px_mesh *m, uint32_t id);
 
-/* Indices of the parts of `m` that have triangles (a part of points or
- * lines only has no surface to check: skipped with a note; its names, the
- * node's and px_mesh_load's, stay known to `--ignore`). 0 parts and
- * *ok = 0 when out of memory. */
-static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, uint32_t *ids, int *ok) {
-    uint32_t n = 0, np = px_mesh_part_count(m);
-    for (uint32_t i = 0; i < np; ++i) {
-        px_mesh_part p;
-        px_mesh_get_part(m, i, &p);
-        if (p.triangle_count) {
-            ids[n++] = i;
-            continue;
-        }
-        const char *node = node_name(m, i);
-        char *ep = escaped(p.name), *en = escaped(node);
-        if (node[0] && strcmp(node, p.name))
-            note("note: '%s': part '%s' (node '%s') has no triangles (points or lines only): not checked",
-                 file, ep ? ep : p.name, en ? en : node);
-        else
-            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", file,
-                 ep ? ep : p.name);
-        free(ep);
-        free(en);
-        /* Named as a part would be: its node's name when no other part's
-         * node has it, else the loader's. */
-        int own = node[0] != 0;
-        for (uint32_t j = 0; j < np && own; ++j)
-            if (j != i && !strcmp(node_name(m, j), node)) own = 0;
-        if (!as->folder && !note_skipped(as, own ? node : p.name, p.name)) {
-            note("out of memory");
-            *ok = 0;
-            return 0;
-        }
-    }
-    return n;
-}
-
-/* The name of the node part ids[i] hangs from, or "" for none. */
-static const char *node_name(const px_mesh *m, uint32_t id) {
-    px_mesh_part p;
-    px_mesh_node nd;
-    px_mesh_get_part(m, id, &p);
-    return p.node >= 0 && px_mesh_get_node(m, (uint32_t)p.node, &nd) == PX_OK ? nd.name : "";
-}
-
 /* A string and its part's index, sorted by string, then index. */
 typedef struct name_ix {
     const char *s;
@@ -397,6 +353,66 @@ static int among(const name_ix *v, uint32_t n, const char *name) {
     return lo < n && !strcmp(v[lo].s, name);
 }
 
+/* Indices of the parts of `m` that have triangles (a part of points or
+ * lines only has no surface to check: skipped with a note; its names, the
+ * node's and px_mesh_load's, stay known to `--ignore`). 0 parts and
+ * *ok = 0 when out of memory. */
+static uint32_t surface_parts(assembly *as, const px_mesh *m, const char *file, uint32_t *ids, int *ok) {
+    uint32_t n = 0, np = px_mesh_part_count(m), skipped = 0;
+    for (uint32_t i = 0; i < np; ++i) {
+        px_mesh_part p;
+        px_mesh_get_part(m, i, &p);
+        if (p.triangle_count)
+            ids[n++] = i;
+        else
+            skipped++;
+    }
+    if (!skipped) return n;
+    /* Whose node name no other part's node has (sorted once). */
+    size_t cnt = np ? np : 1;
+    const char **nodes = calloc(cnt, sizeof *nodes);
+    name_ix *v = calloc(cnt, sizeof *v);
+    unsigned char *alone = calloc(cnt, 1);
+    char *ef = escaped(file);
+    *ok = nodes && v && alone;
+    if (*ok) {
+        for (uint32_t i = 0; i < np; ++i) nodes[i] = node_name(m, i);
+        sort_names(nodes, np, v, alone);
+    }
+    for (uint32_t i = 0; i < np && *ok; ++i) {
+        px_mesh_part p;
+        px_mesh_get_part(m, i, &p);
+        if (p.triangle_count) continue;
+        const char *node = nodes[i];
+        char *ep = escaped(p.name), *en = escaped(node);
+        if (node[0] && strcmp(node, p.name))
+            note("note: '%s': part '%s' (node '%s') has no triangles (points or lines only): not checked",
+                 ef ? ef : file, ep ? ep : p.name, en ? en : node);
+        else
+            note("note: '%s': part '%s' has no triangles (points or lines only): not checked", ef ? ef : file,
+                 ep ? ep : p.name);
+        free(ep);
+        free(en);
+        /* Named as a part would be: its node's name when no other part's
+         * node has it, else the loader's. */
+        if (!as->folder) *ok = note_skipped(as, node[0] && alone[i] ? node : p.name, p.name);
+    }
+    if (!*ok) note("out of memory");
+    free(nodes);
+    free(v);
+    free(alone);
+    free(ef);
+    return *ok ? n : 0;
+}
+
+/* The name of the node part ids[i] hangs from, or "" for none. */
+static const char *node_name(const px_mesh *m, uint32_t id) {
+    px_mesh_part p;
+    px_mesh_node nd;
+    px_mesh_get_part(m, id, &p);
+    return p.node >= 0 && px_mesh_get_node(m, (uint32_t)p.node, &nd) == PX_OK ? nd.name : "";
+}
+
 /* The names of the parts ids[0..n) of m in the report, unique: a part's
  * node's name (the name the file gives the body: a COLLADA or glTF node,
  * an OBJ object) when no other part's node has it, else px_mesh_load's
@@ -427,13 +443,17 @@ static int part_names(const assembly *as, const px_mesh *m, const uint32_t *ids,
             if (!(cand[i][0] && alone[i])) cand[i] = p.name;
         }
         sort_names(cand, n, v, alone);
-        /* Names taken: those of their own and the skipped parts', sorted. */
-        for (uint32_t k = 0; k < n; ++k)
-            if (alone[v[k].i]) own[n_own++] = v[k];
+        /* Names taken: the skipped parts' (a part whose name one has is
+         * not alone: it takes a "#k" too), then those of their own. */
         for (uint32_t k = 0; k < as->n_skipped; ++k) {
             own[n_own++] = (name_ix){as->skipped[k].name, UINT32_MAX};
             if (as->skipped[k].mesh_name) own[n_own++] = (name_ix){as->skipped[k].mesh_name, UINT32_MAX};
         }
+        qsort(own, n_own, sizeof *own, cmp_name_ix);
+        for (uint32_t i = 0; i < n; ++i)
+            if (alone[i] && among(own, n_own, cand[i])) alone[i] = 0;
+        for (uint32_t k = 0; k < n; ++k)
+            if (alone[v[k].i]) own[n_own++] = v[k];
         qsort(own, n_own, sizeof *own, cmp_name_ix);
     }
     for (uint32_t i = 0; i < n && ok; ++i)
@@ -443,8 +463,9 @@ static int part_names(const assembly *as, const px_mesh *m, const uint32_t *ids,
         uint32_t e = r + 1;
         while (e < n && !strcmp(v[e].s, v[r].s)) ++e;
         uint32_t k = 1;
-        for (uint32_t g = r; g < e && e - r > 1 && ok; ++g) {
+        for (uint32_t g = r; g < e && ok; ++g) {
             uint32_t i = v[g].i;
+            if (alone[i]) continue;
             size_t len = strlen(cand[i]) + 16;
             char *name = malloc(len);
             ok = name && (base[i] = dup_string(cand[i])) != NULL;
@@ -591,7 +612,9 @@ static int load_folder(assembly *as, const check_opts *o) {
             note("out of memory");
             ok = 0;
         } else if (ok && k == 0) {
-            note("note: '%s' has no triangles: not checked", path);
+            char *ep = escaped(path);
+            note("note: '%s' has no triangles: not checked", ep ? ep : path);
+            free(ep);
             if (!note_skipped(as, names[i], "")) {
                 note("out of memory");
                 ok = 0;

@@ -24,6 +24,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "math/orient.h"
 #include "proxima/io.h"
 #include "proxima/proxima.h"
 #include "test_util.h"
@@ -1254,8 +1255,89 @@ static void test_load_alloc_failures(void) {
     }
 }
 
+/* ---- the exact orientation (math/orient.c) ------------------------------ */
+
+static uint64_t g_orient_rng = 0x9e3779b97f4a7c15ull;
+static uint64_t orient_next(void) {
+    uint64_t z = (g_orient_rng += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+/* Uniform in [-2^bits, 2^bits]. */
+static int64_t orient_int(int bits) {
+    return (int64_t)(orient_next() % ((2ull << bits) + 1)) - ((int64_t)1 << bits);
+}
+
+/* The oracle: the orientation of integer points, in 128-bit arithmetic
+ * (differences up to 2^52, products below 2^105: exact). */
+static int orient_oracle(const int64_t p[2], const int64_t q[2], const int64_t r[2]) {
+    __extension__ typedef __int128 i128;
+    i128 det = (i128)(p[0] - r[0]) * (q[1] - r[1]) - (i128)(p[1] - r[1]) * (q[0] - r[0]);
+    return det > 0 ? 1 : det < 0 ? -1 : 0;
+}
+
+/* pxi_orient2d_sign, the filter and pxi_collinear against the oracle on
+ * exactly collinear integer points (p, p + s d, p + t d, coordinates below
+ * 2^53, so exact as doubles) moved by a unit or less, scaled by powers of
+ * two from 2^-400 to 2^400 (exact, so the sign is the integers'). With
+ * differences near 2^51 a unit's move changes the determinant by less than
+ * the products' rounding: the exact stage decides those. */
+static void test_orient_exact(void) {
+    long wrong = 0, filter_wrong = 0, exact_stage = 0, nonzero_exact = 0, collinear_wrong = 0, n = 0;
+    for (int it = 0; it < 200000; ++it) {
+        int64_t p[3], d[3], pt[3][3];
+        /* A third of the lines long (|d| near 2^40, |s - t| up to 2^12:
+         * differences up to 2^52, where a unit's move is below the
+         * products' rounding), the others shorter. */
+        for (int k = 0; k < 3; ++k) {
+            p[k] = orient_int(50);
+            d[k] = it % 3 ? orient_int(it % 3 == 1 ? 20 : 3)
+                          : (orient_next() % 2 ? 1 : -1) * (((int64_t)1 << 40) + orient_int(30));
+        }
+        int64_t s = orient_int(11), t = orient_int(11);
+        for (int k = 0; k < 3; ++k) {
+            pt[0][k] = p[k];
+            pt[1][k] = p[k] + s * d[k];
+            pt[2][k] = p[k] + t * d[k];
+        }
+        /* One coordinate of one point moved by -1, 0 or 1 (0: collinear). */
+        int m = (int)(orient_next() % 3), c = (int)(orient_next() % 3);
+        pt[m][c] += (int64_t)(orient_next() % 3) - 1;
+        double scale = ldexp(1.0, (int)(orient_next() % 801) - 400), x[3][3];
+        for (int i = 0; i < 3; ++i)
+            for (int k = 0; k < 3; ++k) x[i][k] = (double)pt[i][k] * scale;
+        int all_zero = 1;
+        for (int k = 0; k < 3; ++k) {
+            int i = k, j = (k + 1) % 3;
+            int64_t P[2] = {pt[0][i], pt[0][j]}, Q[2] = {pt[1][i], pt[1][j]}, R[2] = {pt[2][i], pt[2][j]};
+            int want = orient_oracle(P, Q, R);
+            all_zero &= want == 0;
+            int f = pxi_orient2d_filter(x[0][i], x[0][j], x[1][i], x[1][j], x[2][i], x[2][j]);
+            int got = pxi_orient2d_sign(x[0][i], x[0][j], x[1][i], x[1][j], x[2][i], x[2][j]);
+            n++;
+            if (f != 0 && f != want) filter_wrong++;
+            if (got != want) wrong++;
+            if (f == 0) {
+                exact_stage++;
+                if (want != 0) nonzero_exact++;
+            }
+        }
+        if (pxi_collinear(x[0], x[1], x[2]) != all_zero) collinear_wrong++;
+    }
+    CHECK(wrong == 0, "orient2d: %ld of %ld signs differ from the exact one", wrong, n);
+    CHECK(filter_wrong == 0, "orient2d's filter decided %ld of %ld signs wrongly", filter_wrong, n);
+    CHECK(collinear_wrong == 0, "pxi_collinear: %ld of 200000 answers wrong", collinear_wrong);
+    /* The exact stage is exercised, and not only on zeros. */
+    CHECK(
+        exact_stage > n / 4 && nonzero_exact > n / 50,
+        "orient2d: the exact stage decided %ld of %ld signs (%ld nonzero): too few for the test to mean much",
+        exact_stage, n, nonzero_exact);
+}
+
 int main(void) {
     tu_init("test_mesh");
+    test_orient_exact();
     test_validation();
     test_closed();
     test_alloc_failures();

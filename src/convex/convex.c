@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "core/core.h"
+#include "math/orient.h"
 #include "math/vec3.h"
 #include "pxcd.h"
 
@@ -432,22 +433,15 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
 
 /* Whether three points are certainly not collinear: the orientation of
  * their projection on some coordinate plane is nonzero beyond the error
- * bound of its floating-point evaluation (Shewchuk 1997, "Adaptive
- * precision floating-point arithmetic and fast robust geometric
- * predicates", orient2d's first stage: |det| > (3 + 16 eps) eps (|l| + |r|),
- * eps = 2^-53). 0 when no projection decides (nearly or exactly collinear,
- * or products outside the normal range): CGAL's exact predicates decide
- * then. */
+ * bound of its floating-point evaluation (pxi_orient2d_filter, Shewchuk's
+ * orient2d first stage). 0 when no projection decides (nearly or exactly
+ * collinear, or products outside the normal range): CGAL's exact
+ * predicates decide then. */
 static int surely_a_triangle(const double *p) {
     static const int axes[3][2] = {{1, 2}, {2, 0}, {0, 1}};
-    const double eps = 0.5 * DBL_EPSILON;
     for (int k = 0; k < 3; ++k) {
         int i = axes[k][0], j = axes[k][1];
-        double l = (p[i] - p[6 + i]) * (p[3 + j] - p[6 + j]);
-        double r = (p[j] - p[6 + j]) * (p[3 + i] - p[6 + i]);
-        double sum = fabs(l) + fabs(r);
-        if (!(sum > 0x1p-900 && sum < 0x1p900)) continue;
-        if (fabs(l - r) > (3.0 + 16.0 * eps) * eps * sum) return 1;
+        if (pxi_orient2d_filter(p[i], p[j], p[3 + i], p[3 + j], p[6 + i], p[6 + j]) != 0) return 1;
     }
     return 0;
 }

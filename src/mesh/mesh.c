@@ -22,14 +22,12 @@
  * distance from the origin. A closed part of zero computed volume (two
  * coincident triangles of opposite winding) is left as it is.
  *
- * Collinearity is decided exactly: the triangle (a, b, c) is degenerate iff
- * the orientation of its projections on the xy, yz and zx planes are all 0.
- * Each 2-D orientation is Shewchuk's orient2d ("Adaptive precision
- * floating-point arithmetic and fast robust geometric predicates", 1997):
- * the double-precision determinant decides when it exceeds the error bound
- * (3 + 16 eps) eps |terms|, otherwise the determinant is summed exactly as
- * an expansion (two_sum, two_product by fma). Exact for coordinates whose
- * products neither overflow nor underflow (|x| within about 2^-500..2^500).
+ * Collinearity is decided exactly (pxi_collinear, math/orient.c): the
+ * triangle (a, b, c) is degenerate iff the orientations of its projections
+ * on the xy, yz and zx planes are all 0, each by Shewchuk's orient2d
+ * ("Adaptive precision floating-point arithmetic and fast robust geometric
+ * predicates", 1997). Exact for coordinates whose products neither overflow
+ * nor underflow (|x| within about 2^-500..2^500).
  */
 #include "proxima/mesh.h"
 
@@ -40,6 +38,7 @@
 #include <string.h>
 
 #include "core/core.h"
+#include "math/orient.h"
 
 #define PXI_MESH_MAX_COUNT (1ull << 31)
 
@@ -53,82 +52,6 @@ struct px_mesh {
     px_mesh_node *nodes;
     px_mesh_info info;
 };
-
-/* ---- exact orientation (Shewchuk 1997, orient2d) ---------------------- */
-
-static void two_sum(double a, double b, double *x, double *y) {
-    double s = a + b, bv = s - a, av = s - bv;
-    *x = s;
-    *y = (a - av) + (b - bv);
-}
-
-static void two_prod(double a, double b, double *x, double *y) {
-    double p = a * b;
-    *x = p;
-    *y = fma(a, b, -p);
-}
-
-/* Adds b to the nonoverlapping expansion e[0..n) (increasing magnitude) in
- * place; returns the new length (at most n + 1; zeros dropped). */
-static int grow(double *e, int n, double b) {
-    double q = b;
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-        double hh;
-        two_sum(q, e[i], &q, &hh);
-        if (hh != 0) e[m++] = hh;
-    }
-    if (q != 0) e[m++] = q;
-    return m;
-}
-
-/* Sign of (px - rx)(qy - ry) - (py - ry)(qx - rx), exactly. */
-static int orient2d_sign(double px, double py, double qx, double qy, double rx, double ry) {
-    double l = (px - rx) * (qy - ry), r = (py - ry) * (qx - rx);
-    double det = l - r, sum = fabs(l) + fabs(r);
-    if (fabs(det) > (3.0 + 16.0 * DBL_EPSILON) * DBL_EPSILON * sum) return det > 0 ? 1 : -1;
-    if (sum == 0) return 0; /* both products exactly 0 only if a factor is 0 */
-    double a[2], b[2], c[2], d[2];
-    two_sum(px, -rx, &a[0], &a[1]);
-    two_sum(qy, -ry, &b[0], &b[1]);
-    two_sum(py, -ry, &c[0], &c[1]);
-    two_sum(qx, -rx, &d[0], &d[1]);
-    double e[17];
-    int n = 0;
-    for (int i = 0; i < 2; ++i) {
-        for (int j = 0; j < 2; ++j) {
-            double h, t;
-            two_prod(a[i], b[j], &h, &t);
-            n = grow(e, n, h);
-            n = grow(e, n, t);
-            two_prod(-c[i], d[j], &h, &t);
-            n = grow(e, n, h);
-            n = grow(e, n, t);
-        }
-    }
-    if (n == 0) return 0;
-    return e[n - 1] > 0 ? 1 : -1;
-}
-
-/* A power of two that brings magnitudes up to `big` near 1, so that the
- * products below neither overflow nor underflow (1 in the usual range). */
-static double unit_scale(double big) {
-    if (!(big > 0x1p-100 && big < 0x1p100) && big > 0.0 && isfinite(big)) return ldexp(1.0, -ilogb(big));
-    return 1.0;
-}
-
-/* 1 when the three points are collinear (or two coincide), exactly. The
- * points are first scaled by a power of two (exact but for coordinates that
- * underflow far below the largest). */
-static int collinear(const double *a0, const double *b0, const double *c0) {
-    double big = 0.0;
-    for (int k = 0; k < 3; ++k) big = fmax(big, fmax(fabs(a0[k]), fmax(fabs(b0[k]), fabs(c0[k]))));
-    double s = unit_scale(big), a[3], b[3], c[3];
-    for (int k = 0; k < 3; ++k) a[k] = a0[k] * s, b[k] = b0[k] * s, c[k] = c0[k] * s;
-    return orient2d_sign(a[0], a[1], b[0], b[1], c[0], c[1]) == 0 &&
-           orient2d_sign(a[1], a[2], b[1], b[2], c[1], c[2]) == 0 &&
-           orient2d_sign(a[2], a[0], b[2], b[0], c[2], c[0]) == 0;
-}
 
 /* ---- the closed-surface test ------------------------------------------ */
 
@@ -184,7 +107,7 @@ static uint32_t part_closed(px_mesh *m, const px_mesh_part *p, closed_work *w) {
         uint32_t v[3];
         for (int k = 0; k < 3; ++k) v[k] = w->rep[tri[3 * (size_t)t + k] - fv];
         if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) return 0;
-        if (collinear(xyz + 3 * (size_t)v[0], xyz + 3 * (size_t)v[1], xyz + 3 * (size_t)v[2])) return 0;
+        if (pxi_collinear(xyz + 3 * (size_t)v[0], xyz + 3 * (size_t)v[1], xyz + 3 * (size_t)v[2])) return 0;
         for (int k = 0; k < 3; ++k) {
             uint64_t a = v[k], b = v[(k + 1) % 3];
             /* ids < 2^31: (lo << 33) | (hi << 1) | forward fits 64 bits */
@@ -207,7 +130,7 @@ static uint32_t part_closed(px_mesh *m, const px_mesh_part *p, closed_work *w) {
             const double *v = xyz + 3 * (size_t)(tri[3 * (size_t)t + k] - fv);
             big = fmax(big, fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2]))));
         }
-    double sc = unit_scale(big);
+    double sc = pxi_unit_scale(big);
     for (uint32_t t = 0; t < nt; ++t) {
         const double *a = xyz + 3 * (size_t)(tri[3 * (size_t)t] - fv);
         const double *b = xyz + 3 * (size_t)(tri[3 * (size_t)t + 1] - fv);

@@ -1,0 +1,34 @@
+/* Orientation of three points in a plane, and collinearity of three points
+ * in space: J. R. Shewchuk, "Adaptive precision floating-point arithmetic
+ * and fast robust geometric predicates" (Discrete Comput. Geom. 18, 1997),
+ * orient2d. Used by the mesh's closed-surface test (a triangle whose
+ * corners are collinear) and by px_convex_create (three points that are
+ * surely a triangle skip CGAL's hull). */
+#ifndef PXI_MATH_ORIENT_H
+#define PXI_MATH_ORIENT_H
+
+/* The sign of (px - rx)(qy - ry) - (py - ry)(qx - rx) when the
+ * double-precision determinant decides it (Shewchuk's first stage: |det| >
+ * (3 + 16 eps) eps (|l| + |r|), eps = 2^-53), else 0. Only products in the
+ * normal range decide (the bound assumes no underflow nor overflow), so a
+ * nonzero answer is always the exact sign. */
+int pxi_orient2d_filter(double px, double py, double qx, double qy, double rx, double ry);
+
+/* The exact sign, the determinant summed as an expansion where the filter
+ * does not decide. Exact when the coordinates' differences and their
+ * products neither overflow nor underflow (magnitudes within about
+ * 2^-500..2^500 of each other and of 1). */
+int pxi_orient2d_sign(double px, double py, double qx, double qy, double rx, double ry);
+
+/* A power of two that brings magnitudes up to `big` near 1, so that
+ * products and cubes of coordinates neither overflow nor underflow (1 in
+ * the usual range, 2^-100..2^100). */
+double pxi_unit_scale(double big);
+
+/* 1 when the three points (xyz each) are collinear or two coincide:
+ * every coordinate projection's orientation is 0. The points are first
+ * scaled by a power of two that brings the largest magnitude near 1 (exact
+ * but for coordinates that underflow far below the largest). */
+int pxi_collinear(const double *a, const double *b, const double *c);
+
+#endif

@@ -2329,6 +2329,89 @@ static void test_tri_pairs(void) {
     printf("triangle pairs: %d against the oracle, worst error %.3g of the size\n", checked, worst);
 }
 
+/* Ties: two parallel grids of 2 x 24 x 24 triangles 0.25 apart, B sliding
+ * in its plane. Every triangle of A faces one of B at the same distance,
+ * so hundreds of leaf pairs have bounds within rounding of the best. Poses
+ * within rounding of rotations (products of three turns) must prune those
+ * as ties: with an allowance for the frames' disagreement, every tie was
+ * measured again, 10,358 leaf pairs per warm query against 114 without.
+ * The distances are 0.25 to rounding throughout, warm and cold alike. */
+static void test_ties(void) {
+    enum { G = 24 };
+    double v[2 * 3 * (G + 1) * (G + 1)];
+    uint32_t t[2 * 3 * 2 * G * G];
+    uint32_t nv = 0, nt = 0;
+    for (int side = 0; side < 2; ++side) {
+        uint32_t base = nv;
+        for (int i = 0; i <= G; ++i)
+            for (int j = 0; j <= G; ++j) {
+                v[3 * nv] = i / (double)G, v[3 * nv + 1] = j / (double)G, v[3 * nv + 2] = side ? 0.25 : 0.0;
+                nv++;
+            }
+        for (int i = 0; i < G; ++i)
+            for (int j = 0; j < G; ++j) {
+                uint32_t a = base + (uint32_t)(i * (G + 1) + j), b = a + 1, c = a + G + 1, d = c + 1;
+                uint32_t q[6] = {a, c, b, b, c, d};
+                for (int k = 0; k < 6; ++k) t[3 * nt + k] = q[k];
+                nt += 2;
+            }
+    }
+    px_error e;
+    /* A: the lower grid; B: the upper one (its own model, same frame). */
+    px_model *A = tri_model_of(v, nv / 2, t, nt / 2, PX_PIECES_TRIANGLES, &e);
+    uint32_t tb[3 * 2 * G * G];
+    for (uint32_t k = 0; k < 3 * nt / 2; ++k) tb[k] = t[3 * nt / 2 + k] - nv / 2;
+    px_model *B = tri_model_of(v + 3 * nv / 2, nv / 2, tb, nt / 2, PX_PIECES_TRIANGLES, &e);
+    CHECK(A && B, "tie models: %s", e.message);
+    if (!A || !B) {
+        px_model_destroy(A);
+        px_model_destroy(B);
+        return;
+    }
+    /* One rotation R, a product of three turns, for both bodies. */
+    double q1[4] = {cos(0.3), sin(0.3), 0, 0}, q2[4] = {cos(0.7), 0, sin(0.7), 0},
+           q3[4] = {cos(1.1), 0, 0, sin(1.1)};
+    double zero[3] = {0, 0, 0};
+    px_pose r1, r2, r3;
+    px_pose_from_quat(q1, zero, &r1);
+    px_pose_from_quat(q2, zero, &r2);
+    px_pose_from_quat(q3, zero, &r3);
+    double r12[9], r[9];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            r12[3 * i + j] =
+                r1.r[3 * i] * r2.r[j] + r1.r[3 * i + 1] * r2.r[3 + j] + r1.r[3 * i + 2] * r2.r[6 + j];
+        }
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            r[3 * i + j] = r12[3 * i] * r3.r[j] + r12[3 * i + 1] * r3.r[3 + j] + r12[3 * i + 2] * r3.r[6 + j];
+    px_pose pa, pb;
+    CHECK(px_pose_from_rt(r, (double[3]){0.1, -0.2, 0.3}, &pa) == PX_OK, "ties: pose");
+    pb = pa;
+    px_model_cache cache = {0};
+    uint64_t leaf_pairs = 0;
+    int queries = 0;
+    double worst = 0.0;
+    for (int step = 0; step < 40; ++step) {
+        /* B slides by (0.003, 0.002) a step in its plane, up to 0.12, 0.08. */
+        double sx = 0.003 * step, sy = 0.002 * step;
+        for (int k = 0; k < 3; ++k) (&pb.t.x)[k] = (&pa.t.x)[k] + r[3 * k] * sx + r[3 * k + 1] * sy;
+        px_model_distance_result w, c;
+        px_status s1 = px_model_distance(A, &pa, B, &pb, &cache, &w);
+        px_status s2 = px_model_distance(A, &pa, B, &pb, NULL, &c);
+        CHECK(s1 == PX_OK && s2 == PX_OK, "ties: step %d", step);
+        worst = fmax(worst, fmax(fabs(w.distance - 0.25), fabs(c.distance - 0.25)));
+        if (step >= 5) leaf_pairs += w.leaf_pairs, queries++;
+    }
+    CHECK(worst < 1e-14, "ties: distance off 0.25 by %g", worst);
+    double mean = (double)leaf_pairs / queries;
+    CHECK(mean < 1000.0, "ties: %.1f leaf pairs per warm query (ties measured again)", mean);
+    printf("ties: %.1f leaf pairs per warm query, distances within %.2g of 0.25\n", mean, worst);
+    px_model_cache_release(&cache);
+    px_model_destroy(A);
+    px_model_destroy(B);
+}
+
 int main(void) {
     tu_init("test_model");
     test_arguments();
@@ -2343,5 +2426,6 @@ int main(void) {
     test_pxm_lies();
     test_front();
     test_tri_pairs();
+    test_ties();
     return tu_finish();
 }

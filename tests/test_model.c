@@ -2331,11 +2331,14 @@ static void test_tri_pairs(void) {
 
 /* Ties: two parallel grids of 2 x 24 x 24 triangles 0.25 apart, B sliding
  * in its plane. Every triangle of A faces one of B at the same distance,
- * so hundreds of leaf pairs have bounds within rounding of the best. Poses
- * within rounding of rotations (products of three turns) must prune those
- * as ties: with an allowance for the frames' disagreement, every tie was
- * measured again, 10,358 leaf pairs per warm query against 114 without.
- * The distances are 0.25 to rounding throughout, warm and cold alike. */
+ * so hundreds of leaf pairs have bounds within rounding of the best, in an
+ * order the rounding decides. The query must prune them as ties (its tie
+ * window): without it, a warm query measured from 27 to 12,768 leaf pairs
+ * again depending on the rotation, and with the frames' allowance for
+ * poses off rotations but no window every one of them (10,358). Rotations
+ * here are products of 1 to 12 random turns (skews up to ~13 eps each,
+ * both bodies turned alike); the distances are 0.25 to rounding, warm and
+ * cold. */
 static void test_ties(void) {
     enum { G = 24 };
     double v[2 * 3 * (G + 1) * (G + 1)];
@@ -2368,46 +2371,49 @@ static void test_ties(void) {
         px_model_destroy(B);
         return;
     }
-    /* One rotation R, a product of three turns, for both bodies. */
-    double q1[4] = {cos(0.3), sin(0.3), 0, 0}, q2[4] = {cos(0.7), 0, sin(0.7), 0},
-           q3[4] = {cos(1.1), 0, 0, sin(1.1)};
-    double zero[3] = {0, 0, 0};
-    px_pose r1, r2, r3;
-    px_pose_from_quat(q1, zero, &r1);
-    px_pose_from_quat(q2, zero, &r2);
-    px_pose_from_quat(q3, zero, &r3);
-    double r12[9], r[9];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            r12[3 * i + j] =
-                r1.r[3 * i] * r2.r[j] + r1.r[3 * i + 1] * r2.r[3 + j] + r1.r[3 * i + 2] * r2.r[6 + j];
+    pg_rng rng;
+    pg_seed(&rng, 1152);
+    double most = 0.0, worst = 0.0;
+    for (int trial = 0; trial < 24; ++trial) {
+        /* One rotation R, a product of 1 + trial / 2 turns, for both bodies. */
+        double r[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        for (int n = 0; n <= trial / 2; ++n) {
+            double qt[4] = {pg_range(&rng, -1, 1), pg_range(&rng, -1, 1), pg_range(&rng, -1, 1),
+                            pg_range(&rng, -1, 1)};
+            double zero[3] = {0, 0, 0}, o[9];
+            px_pose turn;
+            px_pose_from_quat(qt, zero, &turn);
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                    o[3 * i + j] =
+                        r[3 * i] * turn.r[j] + r[3 * i + 1] * turn.r[3 + j] + r[3 * i + 2] * turn.r[6 + j];
+            memcpy(r, o, sizeof r);
         }
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            r[3 * i + j] = r12[3 * i] * r3.r[j] + r12[3 * i + 1] * r3.r[3 + j] + r12[3 * i + 2] * r3.r[6 + j];
-    px_pose pa, pb;
-    CHECK(px_pose_from_rt(r, (double[3]){0.1, -0.2, 0.3}, &pa) == PX_OK, "ties: pose");
-    pb = pa;
-    px_model_cache cache = {0};
-    uint64_t leaf_pairs = 0;
-    int queries = 0;
-    double worst = 0.0;
-    for (int step = 0; step < 40; ++step) {
-        /* B slides by (0.003, 0.002) a step in its plane, up to 0.12, 0.08. */
-        double sx = 0.003 * step, sy = 0.002 * step;
-        for (int k = 0; k < 3; ++k) (&pb.t.x)[k] = (&pa.t.x)[k] + r[3 * k] * sx + r[3 * k + 1] * sy;
-        px_model_distance_result w, c;
-        px_status s1 = px_model_distance(A, &pa, B, &pb, &cache, &w);
-        px_status s2 = px_model_distance(A, &pa, B, &pb, NULL, &c);
-        CHECK(s1 == PX_OK && s2 == PX_OK, "ties: step %d", step);
-        worst = fmax(worst, fmax(fabs(w.distance - 0.25), fabs(c.distance - 0.25)));
-        if (step >= 5) leaf_pairs += w.leaf_pairs, queries++;
+        px_pose pa, pb;
+        CHECK(px_pose_from_rt(r, (double[3]){0.1, -0.2, 0.3}, &pa) == PX_OK, "ties: pose");
+        pb = pa;
+        px_model_cache cache = {0};
+        uint64_t leaf_pairs = 0;
+        int queries = 0;
+        for (int step = 0; step < 40; ++step) {
+            /* B slides by (0.003, 0.002) a step in its plane, up to 0.12, 0.08. */
+            double sx = 0.003 * step, sy = 0.002 * step;
+            for (int k = 0; k < 3; ++k) (&pb.t.x)[k] = (&pa.t.x)[k] + r[3 * k] * sx + r[3 * k + 1] * sy;
+            px_model_distance_result w, c;
+            px_status s1 = px_model_distance(A, &pa, B, &pb, &cache, &w);
+            px_status s2 = px_model_distance(A, &pa, B, &pb, NULL, &c);
+            CHECK(s1 == PX_OK && s2 == PX_OK, "ties: trial %d step %d", trial, step);
+            worst = fmax(worst, fmax(fabs(w.distance - 0.25), fabs(c.distance - 0.25)));
+            if (step >= 5) leaf_pairs += w.leaf_pairs, queries++;
+        }
+        double mean = (double)leaf_pairs / queries;
+        most = fmax(most, mean);
+        CHECK(mean < 200.0, "ties: trial %d: %.1f leaf pairs per warm query (ties measured again)", trial,
+              mean);
+        px_model_cache_release(&cache);
     }
     CHECK(worst < 1e-14, "ties: distance off 0.25 by %g", worst);
-    double mean = (double)leaf_pairs / queries;
-    CHECK(mean < 1000.0, "ties: %.1f leaf pairs per warm query (ties measured again)", mean);
-    printf("ties: %.1f leaf pairs per warm query, distances within %.2g of 0.25\n", mean, worst);
-    px_model_cache_release(&cache);
+    printf("ties: at most %.1f leaf pairs per warm query, distances within %.2g of 0.25\n", most, worst);
     px_model_destroy(A);
     px_model_destroy(B);
 }

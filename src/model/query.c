@@ -197,9 +197,8 @@ typedef struct qctx {
      * taken in A's frame and leaf distances taken in B's (a polytope's
      * query) differ by up to frel |d| + fpad; pruning allows for it. */
     double frel, fpad;
-    /* Q_DISTANCE keeps a bound lb when frame_lb(lb) < ub, that is when lb
-     * < (ub + fpad) / (1 - frel) (lb < 0 always): that threshold, a few
-     * ulps high where there is an allowance, set with ub (set_ub). */
+    double tie_pad; /* the tie window's part that does not scale with d (set_ub) */
+    /* Q_DISTANCE keeps a bound lb when lb < keep_lt, set with ub (set_ub). */
     double keep_lt;
     px_feature fa, fb;
     uint32_t node_pairs, leaf_pairs;
@@ -232,13 +231,28 @@ static double frame_lb(const qctx *q, double lb) {
     return isfinite(lb) ? lb - q->frel * fabs(lb) - q->fpad : lb;
 }
 
-/* The best distance so far and keep()'s threshold for it: ub raised by
- * the frames' allowance, (fpad + frel ub) / (1 - frel), itself raised by 8
- * eps for its rounding; exactly ub without an allowance. */
+/* The best distance so far and keep()'s threshold for it. A bound lb is
+ * kept when, lowered by the frames' allowance (frame_lb: lb < (ub + fpad) /
+ * (1 - frel), raised by 8 eps for its rounding), it is below ub by more
+ * than a tie window, 128 eps (ub + the models' reach + |t_ab|), which never
+ * takes more than half of ub. Bounds and leaf distances of tied pairs (two
+ * parallel faces: hundreds of triangle pairs at one distance) differ by
+ * rounding only, and their order is the rounding's: without the window,
+ * from a few dozen to every one of them was measured again at every query,
+ * depending on the poses (two parallel grids of 1,152 triangles: 27 to
+ * 12,768 leaf pairs a warm query; the Puma cell's exact wrist pair: 440
+ * instead of 110 us a step). A pair pruned is then at least ub - window
+ * away, so the answer is the minimum over leaf pairs to within the window,
+ * and a pair at distance 0 is never pruned for a positive ub. */
 static void set_ub(qctx *q, double ub) {
     q->ub = ub;
-    q->keep_lt =
-        isfinite(ub) ? ub + (q->fpad + q->frel * ub) / (1.0 - q->frel) * (1.0 + 8.0 * DBL_EPSILON) : ub;
+    if (!isfinite(ub)) {
+        q->keep_lt = ub;
+        return;
+    }
+    double allow = (q->fpad + q->frel * ub) / (1.0 - q->frel) * (1.0 + 8.0 * DBL_EPSILON);
+    double tie = 128.0 * DBL_EPSILON * ub + q->tie_pad;
+    q->keep_lt = pxi_max2(ub + allow - tie, 0.5 * ub);
 }
 
 static int is_leaf(const pxi_mnode *n) { return n->child[1] == PXI_NONE; }
@@ -477,9 +491,11 @@ static qbound leaf_pair(qctx *q, uint32_t ia, uint32_t ib) {
         for (int k = 0; k < 3; ++k) t[k] = pxi_xform(&q->t_ab, t[k]);
         /* A cheap bound first: the two triangles projected on the
          * direction between the best witnesses and on each one's normal. */
-        double limit = q->kind == Q_DISTANCE ? q->ub : q->kind == Q_WITHIN ? q->tol : node_band(q, na, nb);
         out = tri_gap(s, t, q->has_hint ? &q->hint : NULL);
-        if (frame_lb(q, out.lb) > limit) return out;
+        if (q->kind == Q_DISTANCE
+                ? !(out.lb < q->keep_lt)
+                : frame_lb(q, out.lb) > (q->kind == Q_WITHIN ? q->tol : node_band(q, na, nb)))
+            return out;
         d = pxi_tri_tri(s, t, &pa, &pb, &fa, &fb);
         /* The projection gap along the witnesses' direction: for the next
          * query's front (the distance itself has no axis one can trust
@@ -971,19 +987,14 @@ static px_status start(qctx *q, const px_model *a, const px_pose *pa, const px_m
     /* With R^T R = I + E, |E| <= k, a distance measured in one body's
      * frame and in the other's differ by at most about 2k (|d| + the
      * bodies' reach from their origins) (docs/scene.md derives it for the
-     * world frame). Matrices within rounding of a rotation (k up to 16
-     * eps: products of a few rounded rotations) get no allowance: the two
-     * frames then agree to rounding, as two evaluations of one distance
-     * do, and bounds a few ulps above the best are pruned as ties. With
-     * the allowance, every tie was measured at every query: two parallel
-     * faces are hundreds of leaf pairs (the Puma cell's exact wrist pair,
-     * 440 instead of 110 us a step). Beyond that the allowance is the
-     * excess, so that it grows continuously from 0. */
-    double k = pxi_max2(ka + kb - 16.0 * DBL_EPSILON, 0.0);
+     * world frame). Exact rotations: k ~ 1e-16, a pad of ulps, which the
+     * tie window covers (set_ub). */
+    double k = ka + kb + 8.0 * DBL_EPSILON;
     double reach = pxi_len(a->nodes[0].center) + 3.0 * a->nodes[0].radius + pxi_len(b->nodes[0].center) +
                    3.0 * b->nodes[0].radius;
     q->frel = 4.0 * k;
     q->fpad = 2.0 * k * reach;
+    q->tie_pad = 128.0 * DBL_EPSILON * (reach + pxi_len(q->t_ab.t));
     /* Both models in A's frame stay within the models' range. */
     if (!(pxi_max_abs(q->t_ab.t) <= PXI_MODEL_MAX_COORD)) return PX_ERR_RANGE;
     q->cache = cache;

@@ -172,18 +172,29 @@ double pxi_box_gap(const pxi_box *a, const pxi_box *b, const px_pose *t_ab, cons
              sgn(tb));
     }
     if (best > limit) goto out;
-    /* Cross products A_i x B_j, normalised (|A_i x B_j| = sqrt(1 - r_ij^2));
-     * nearly parallel pairs are skipped (their gap is ill-conditioned and
-     * the face axes already cover them). */
+    /* Cross products A_i x B_j, in A's basis c = r_i1j e_i2 - r_i2j e_i1
+     * (B_j's coordinates are r_.j). Every term is taken from c itself: its
+     * length from its two coordinates, B's radius from B's axes' own
+     * coordinates (c . r_.m, 0 for m = j up to rounding). The textbook
+     * shortcuts, |c| = sqrt(1 - r_ij^2) and B's radius by the identities
+     * of an orthonormal B, hold only for exact rotations: with B's axes
+     * off by d (rounding, or a pose's skew) they err by about d / |c|^2,
+     * and for nearly parallel axes the bound came out too large, so the
+     * query pruned the nearest pair (6.8e-10 off with exact quaternion
+     * poses, 2.1e-4 with float-rounded ones, 9 % at a skew of 1e-6; a
+     * review's finding). Along any direction the gap is a lower bound, so
+     * c need not be A_i x B_j exactly, only the terms must be c's. Nearly
+     * parallel pairs are skipped (the face axes cover them). */
     for (int i = 0; i < 3; ++i) {
         int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
         for (int j = 0; j < 3; ++j) {
-            double len2 = 1.0 - r[i][j] * r[i][j];
+            double c1 = r[i1][j], c2 = r[i2][j]; /* c = c1 e_i2 - c2 e_i1 */
+            double len2 = c1 * c1 + c2 * c2;
             if (!(len2 > 1e-6)) continue;
-            int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-            double ra = ha[i1] * ar[i2][j] + ha[i2] * ar[i1][j];
-            double rb = hb[j1] * ar[i][j2] + hb[j2] * ar[i][j1];
-            double ts = t[i2] * r[i1][j] - t[i1] * r[i2][j]; /* d . (A_i x B_j) */
+            double ra = ha[i1] * fabs(c2) + ha[i2] * fabs(c1);
+            double rb = 0.0;
+            for (int m = 0; m < 3; ++m) rb += hb[m] * fabs(c1 * r[i2][m] - c2 * r[i1][m]);
+            double ts = t[i2] * c1 - t[i1] * c2; /* d . c */
             take(&best, &id, &sign, (fabs(ts) - ra - rb - margin) / sqrt(len2), AX_CROSS + 3 * i + j,
                  sgn(ts));
         }
@@ -200,8 +211,10 @@ out:
         else if (id >= AX_B && id < AX_CROSS)
             u = ba[id - AX_B];
         else if (id >= AX_CROSS) {
-            int i = (id - AX_CROSS) / 3, j = (id - AX_CROSS) % 3;
-            u = pxi_scale(pxi_cross(aa[i], ba[j]), 1.0 / sqrt(1.0 - r[i][j] * r[i][j]));
+            int i = (id - AX_CROSS) / 3, j = (id - AX_CROSS) % 3, i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+            double c1 = r[i1][j], c2 = r[i2][j];
+            u = pxi_scale(pxi_sub(pxi_scale(aa[i2], c1), pxi_scale(aa[i1], c2)),
+                          1.0 / sqrt(c1 * c1 + c2 * c2));
         }
         *axis_out = pxi_scale(u, sign);
     }

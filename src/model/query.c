@@ -629,6 +629,22 @@ static double front_bound(const qctx *q, double key) {
     return key - q->drift - 4.0 * DBL_EPSILON * (fabs(key) + q->drift);
 }
 
+/* A key above which an entry is pruned by its key alone: keep(q,
+ * front_bound(q, key)) is then surely false, with a margin far above the
+ * rounding of both (so the full test is needed only below it). The limit
+ * only falls during a query (a better distance lowers keep_lt), so a
+ * threshold taken at its start stays safe. */
+static double prune_key(const qctx *q) {
+    /* The least front bound that prunes: keep_lt, or for the boolean
+     * queries the limit raised by the frames' allowance. */
+    double t = q->kind == Q_DISTANCE ? q->keep_lt : (current_limit(q) + q->band + q->fpad) / (1.0 - q->frel);
+    if (!(t >= 0.0) || !isfinite(t)) return INFINITY;
+    /* front_bound(key) >= key (1 - 8 eps) - drift (1 + 8 eps) for key >= 0. */
+    double k = (t + q->drift * (1.0 + 8.0 * DBL_EPSILON)) / (1.0 - 8.0 * DBL_EPSILON);
+    k = k * (1.0 + 64.0 * DBL_EPSILON) + 0x1p-1000;
+    return isfinite(k) ? k : INFINITY;
+}
+
 /* B's motion since ring slot k, computed on first use in this query. */
 static void ring_motion(qctx *q, uint32_t k) {
     if (q->ready & (1u << k)) return;
@@ -807,7 +823,15 @@ static void descend(qctx *q) {
     uint32_t w = 0;
     if (warm) {
         uint32_t n = mc->n_front;
+        const double kt = prune_key(q);
         for (uint32_t i = 0; i < n; ++i) {
+            /* Entries pruned by their key stay as they are (moved down
+             * over expanded ones, if any). */
+            if (mc->front[i].key > kt) {
+                if (w != i) mc->front[w] = mc->front[i];
+                w++;
+                continue;
+            }
             mc_front f = mc->front[i];
             if (done(q) || !keep(q, front_bound(q, f.key))) {
                 mc->front[w++] = f;

@@ -1328,6 +1328,30 @@ static void test_orient_exact(void) {
     CHECK(wrong == 0, "orient2d: %ld of %ld signs differ from the exact one", wrong, n);
     CHECK(filter_wrong == 0, "orient2d's filter decided %ld of %ld signs wrongly", filter_wrong, n);
     CHECK(collinear_wrong == 0, "pxi_collinear: %ld of 200000 answers wrong", collinear_wrong);
+    /* A pillow of two triangles over three collinear points, at normal and
+     * subnormal magnitudes: open (degenerate triangles). Subnormal ones made
+     * the unit scale 2^1073, infinite: NaN, and a trap under FE_INVALID (a
+     * review's finding). */
+    const double ts[5] = {1.0, 0x1p-1000, 0x1p-1022, 0x1p-1060, 0x1p-1074};
+    for (int k = 0; k < 5; ++k) {
+        double t = ts[k], xyz[9] = {t, 2 * t, 0, 2 * t, 4 * t, 0, 3 * t, 6 * t, 0};
+        uint32_t tri[6] = {0, 1, 2, 0, 2, 1};
+        px_mesh_desc d;
+        memset(&d, 0, sizeof d);
+        d.xyz = xyz;
+        d.vertex_count = 3;
+        d.triangles = tri;
+        d.triangle_count = 2;
+        px_error e;
+        px_mesh *m = px_mesh_create(&d, NULL, &e);
+        px_mesh_info info = {0};
+        if (m) px_mesh_get_info(m, &info);
+        CHECK(m && info.closed_parts == 0, "collinear pillow at %a: %s, %u closed parts", t,
+              m ? "created" : e.message, info.closed_parts);
+        px_mesh_destroy(m);
+        CHECK(pxi_unit_scale(t) > 0.0 && isfinite(pxi_unit_scale(t)), "unit scale of %a: %g", t,
+              pxi_unit_scale(t));
+    }
     /* The exact stage is exercised, and not only on zeros. */
     CHECK(
         exact_stage > n / 4 && nonzero_exact > n / 50,

@@ -68,7 +68,11 @@ int pxi_orient2d_sign(double px, double py, double qx, double qy, double rx, dou
 }
 
 double pxi_unit_scale(double big) {
-    if (!(big > 0x1p-100 && big < 0x1p100) && big > 0.0 && isfinite(big)) return ldexp(1.0, -ilogb(big));
+    if (!(big > 0x1p-100 && big < 0x1p100) && big > 0.0 && isfinite(big)) {
+        /* Subnormal magnitudes would need more than 2^1023 (infinite). */
+        int e = ilogb(big);
+        return ldexp(1.0, e < -1023 ? 1023 : -e);
+    }
     return 1.0;
 }
 

@@ -15,20 +15,26 @@
 int pxi_orient2d_filter(double px, double py, double qx, double qy, double rx, double ry);
 
 /* The exact sign, the determinant summed as an expansion where the filter
- * does not decide. Exact when the coordinates' differences and their
- * products neither overflow nor underflow (magnitudes within about
- * 2^-500..2^500 of each other and of 1). */
+ * does not decide. Exact when every nonzero coordinate lies between 2^-400
+ * and 2^400: the coordinates are then multiples of 2^-452, so are the
+ * differences and their rounding errors, and every product's error term is
+ * a normal number (fma computes it exactly). Far below that (coordinates
+ * near 2^-489) a review found nonzero determinants taken for 0. */
 int pxi_orient2d_sign(double px, double py, double qx, double qy, double rx, double ry);
 
 /* A power of two that brings magnitudes up to `big` near 1, so that
  * products and cubes of coordinates neither overflow nor underflow (1 in
- * the usual range, 2^-100..2^100). */
+ * the usual range, 2^-100..2^100; at most 2^1023, which leaves subnormal
+ * magnitudes near 2^-50). */
 double pxi_unit_scale(double big);
 
 /* 1 when the three points (xyz each) are collinear or two coincide:
  * every coordinate projection's orientation is 0. The points are first
  * scaled by a power of two that brings the largest magnitude near 1 (exact
- * but for coordinates that underflow far below the largest). */
+ * but for coordinates that underflow far below the largest). Exact when
+ * every nonzero coordinate is at least 2^-400 of the largest (see
+ * pxi_orient2d_sign); far below that a triangle may be taken for
+ * collinear. */
 int pxi_collinear(const double *a, const double *b, const double *c);
 
 #endif

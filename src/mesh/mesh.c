@@ -26,8 +26,8 @@
  * triangle (a, b, c) is degenerate iff the orientations of its projections
  * on the xy, yz and zx planes are all 0, each by Shewchuk's orient2d
  * ("Adaptive precision floating-point arithmetic and fast robust geometric
- * predicates", 1997). Exact for coordinates whose products neither overflow
- * nor underflow (|x| within about 2^-500..2^500).
+ * predicates", 1997). Exact when every nonzero coordinate of a triangle is
+ * at least 2^-400 of its largest.
  */
 #include "proxima/mesh.h"
 

@@ -211,8 +211,12 @@ PX_API void px_model_cache_release(px_model_cache *cache);
 
 /// Result of px_model_distance.
 typedef struct px_model_distance_result {
-    /// Exact minimum distance over leaf pairs (pieces as solids for convex
+    /// Minimum distance over leaf pairs (pieces as solids for convex
     /// leaves, triangles for triangle leaves); 0 when two pieces touch.
+    /// Leaf pairs tied with the best to within 128 eps (distance + the
+    /// models' reach + the distance between their frames) may be pruned
+    /// (docs/model.md, "Ties"), so the answer is that minimum to within
+    /// this window, whatever the cache holds.
     double distance;
     /// distance + h_a + h_b of the leaves realising it (h_overlap when the
     /// distance is 0): with coarse leaves, the distance of the original

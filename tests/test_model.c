@@ -2330,6 +2330,17 @@ static void test_tri_pairs(void) {
     printf("triangle pairs: %d against the oracle, worst error %.3g of the size\n", checked, worst);
 }
 
+/* r = r R(q): turned by the rotation of quaternion q (any length). */
+static void turn_by(double r[9], const double q[4]) {
+    double zero[3] = {0, 0, 0}, o[9];
+    px_pose t;
+    px_pose_from_quat(q, zero, &t);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            o[3 * i + j] = r[3 * i] * t.r[j] + r[3 * i + 1] * t.r[3 + j] + r[3 * i + 2] * t.r[6 + j];
+    memcpy(r, o, sizeof o);
+}
+
 /* The oriented boxes' gap (pxi_box_gap) is a lower bound of the distance
  * for nearly parallel boxes too. Two 1 x 1 x 0.1 slabs (two pieces each,
  * so their roots have boxes) face each other, B turned by 1e-4..1e-2 rad
@@ -2363,26 +2374,17 @@ static void test_box_gap_parallel(void) {
     double worst = 0.0;
     for (int it = 0; it < 30000; ++it) {
         int kind = it % 3;
-        double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, zero[3] = {0, 0, 0};
+        double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
         for (int turn = 0; turn < (kind == 2 ? 3 : 1); ++turn) {
             double q[4] = {pg_range(&rng, -1, 1), pg_range(&rng, -1, 1), pg_range(&rng, -1, 1),
-                           pg_range(&rng, -1, 1)},
-                   o[9];
-            px_pose t;
-            px_pose_from_quat(q, zero, &t);
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j)
-                    o[3 * i + j] = R[3 * i] * t.r[j] + R[3 * i + 1] * t.r[3 + j] + R[3 * i + 2] * t.r[6 + j];
-            memcpy(R, o, sizeof R);
+                           pg_range(&rng, -1, 1)};
+            turn_by(R, q);
         }
         double th = pow(10.0, pg_range(&rng, -4, -2)) * (pg_uniform(&rng) < 0.5 ? -1 : 1);
         double qz[4] = {cos(th / 2), 0, 0, sin(th / 2)}, rb[9], ra[9];
-        px_pose z;
-        px_pose_from_quat(qz, zero, &z);
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-                rb[3 * i + j] = R[3 * i] * z.r[j] + R[3 * i + 1] * z.r[3 + j] + R[3 * i + 2] * z.r[6 + j];
         memcpy(ra, R, sizeof ra);
+        memcpy(rb, R, sizeof rb);
+        turn_by(rb, qz);
         if (kind == 1)
             for (int i = 0; i < 9; ++i) ra[i] = (float)ra[i], rb[i] = (float)rb[i];
         double gap = 0.01 + pg_uniform(&rng),
@@ -2517,14 +2519,7 @@ static void test_ties(void) {
         for (int n = 0; n <= trial / 2; ++n) {
             double qt[4] = {pg_range(&rng, -1, 1), pg_range(&rng, -1, 1), pg_range(&rng, -1, 1),
                             pg_range(&rng, -1, 1)};
-            double zero[3] = {0, 0, 0}, o[9];
-            px_pose turn;
-            px_pose_from_quat(qt, zero, &turn);
-            for (int i = 0; i < 3; ++i)
-                for (int j = 0; j < 3; ++j)
-                    o[3 * i + j] =
-                        r[3 * i] * turn.r[j] + r[3 * i + 1] * turn.r[3 + j] + r[3 * i + 2] * turn.r[6 + j];
-            memcpy(r, o, sizeof r);
+            turn_by(r, qt);
         }
         px_pose pa, pb;
         CHECK(px_pose_from_rt(r, (double[3]){0.1, -0.2, 0.3}, &pa) == PX_OK, "ties: pose");

@@ -839,24 +839,28 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
  * not UTF-8, so that it cannot break the columns; a UTF-8 character counts
  * as one column (the JSON escapes them its own way; `--ignore` takes the
  * names as they are). */
-/* Columns of s as shown: a UTF-8 character counts as one. */
+
+/* Columns of text already escaped: a UTF-8 character counts as one. */
+static int columns(const char *e) {
+    int w = 0;
+    for (const unsigned char *c = (const unsigned char *)e; *c; ++c) w += (*c & 0xc0) != 0x80;
+    return w;
+}
+
+/* Columns of s as shown. */
 static int width(const char *s) {
     char *e = escaped(s);
-    int w = 0;
-    for (const unsigned char *c = (const unsigned char *)(e ? e : s); *c; ++c) w += (*c & 0xc0) != 0x80;
+    int w = columns(e ? e : s);
     free(e);
     return w;
 }
 
-static void put_escaped(FILE *f, const char *s) {
-    char *e = escaped(s);
-    fputs(e ? e : s, f);
-    free(e);
-}
-
 static void put_name(const char *s, int pad) {
-    put_escaped(stdout, s);
-    for (int w = width(s); w < pad; ++w) putchar(' ');
+    char *e = escaped(s);
+    const char *shown = e ? e : s;
+    fputs(shown, stdout);
+    for (int w = columns(shown); w < pad; ++w) putchar(' ');
+    free(e);
 }
 
 /* The shortest %g form of x that reads back as x (the clearance as given). */
@@ -885,8 +889,9 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
     if (fs->n) {
         int wa = width("part a"), wb = width("part b");
         for (size_t i = 0; i < fs->n; ++i) {
-            if (width(as->parts[fs->v[i].a].name) > wa) wa = width(as->parts[fs->v[i].a].name);
-            if (width(as->parts[fs->v[i].b].name) > wb) wb = width(as->parts[fs->v[i].b].name);
+            int na = width(as->parts[fs->v[i].a].name), nb = width(as->parts[fs->v[i].b].name);
+            if (na > wa) wa = na;
+            if (nb > wb) wb = nb;
         }
         printf("\n%-*s  %-*s  %-12s  %-14s  %s%-38s  %s\n", wa, "part a", wb, "part b", "status", "distance",
                exact ? "" : "upper bound     ", "point a (world)", "point b (world)");
@@ -933,12 +938,13 @@ static void note_open_parts(const assembly *as) {
     for (uint32_t i = 0; i < as->count; ++i) {
         if (as->parts[i].closed) continue;
         if (open++ >= 8) continue;
-        fputs("proxima: note: part '", stderr);
-        put_escaped(stderr, as->parts[i].name);
-        fputs("' is not a closed surface (a hole, an edge of three or more triangles, or a flipped, repeated "
-              "or "
-              "zero-area triangle): it is checked as a surface, and a part inside it is not found\n",
-              stderr);
+        char *e = escaped(as->parts[i].name);
+        note("note: part '%s' is not a closed surface (a hole, an edge of three or more triangles, or a "
+             "flipped, repeated or zero-area triangle): it is checked as a surface, and a part inside it is "
+             "not "
+             "found",
+             e ? e : as->parts[i].name);
+        free(e);
     }
     if (open > 8) note("note: and %u more open parts", open - 8);
 }

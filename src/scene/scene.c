@@ -1718,31 +1718,10 @@ px_status px_scene_set_velocity(px_scene *s, uint32_t id, px_vec3 v, double w, p
     return mark_dirty(s, id);
 }
 
-/* Heapsort of the reports by key (keys are unique: one entry per pair),
- * without the generic sort's callback and byte swaps: thousands of
- * reports a step at 10,000 bodies. */
-static void rep_down(srep *v, size_t i, size_t n) {
-    srep x = v[i];
-    for (;;) {
-        size_t k = 2 * i + 1;
-        if (k >= n) break;
-        if (k + 1 < n && v[k + 1].ab > v[k].ab) ++k;
-        if (v[k].ab <= x.ab) break;
-        v[i] = v[k];
-        i = k;
-    }
-    v[i] = x;
-}
-
-static void sort_reps(srep *v, size_t n) {
-    if (n < 2) return;
-    for (size_t i = n / 2; i-- > 0;) rep_down(v, i, n);
-    for (size_t end = n - 1; end > 0; --end) {
-        srep t = v[0];
-        v[0] = v[end];
-        v[end] = t;
-        rep_down(v, 0, end);
-    }
+/* Reports by key (unique: one entry per pair). */
+static int cmp_srep(const void *x, const void *y) {
+    const srep *a = x, *b = y;
+    return (a->ab > b->ab) - (a->ab < b->ab);
 }
 
 static int cmp_event(const void *x, const void *y) {
@@ -1886,7 +1865,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         s->n_rep = 0;
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     }
-    sort_reps(s->rep, s->n_rep);
+    sort(s->rep, s->n_rep, sizeof *s->rep, cmp_srep);
     for (uint32_t i = 0; i < s->n_rep; ++i) s->out[i] = s->pair[s->rep[i].pair].res;
     /* Events, in (a, b) order. */
     if (!GROW(s, s->ev, s->cap_ev, s->n_pending)) {

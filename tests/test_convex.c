@@ -5,12 +5,15 @@
  * coplanar merging (cube with face centres and edge midpoints), degenerate
  * inputs with their documented statuses, memory per vertex, and the
  * allocator: leak count and failure injection at every allocation. */
+#include <float.h>
 #include <stdint.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include "access.h"
 #include "check.h"
+#include "convex/convex.h" /* the inner ball (pxi), tested directly below */
+#include "math/vec3.h"
 #include "oracle.h"
 #include "proxima/proxima.h"
 #include "px_gen.h"
@@ -612,8 +615,99 @@ static void test_triangle_without_cgal(int count) {
     printf("  triangles without CGAL: %d equal to CGAL's, %d refused by both\n", compared, refused);
 }
 
+/* The inner ball each solid keeps (the scene's test for deeply overlapping
+ * pairs) must lie inside the hull of the vertices. Oracle, from the vertices
+ * alone (not the face planes the ball was computed from): a ball (c, r) is
+ * inside a convex set iff every direction u has support h(u) >= u.c + r; the
+ * tight directions are the facet normals, also tried with 2,000 random ones.
+ * Also: the ball is not tiny on round and box-like bodies (a search that
+ * stops at the vertices' mean would still pass the first test), and flat
+ * bodies have none. */
+static void test_inner_ball(void) {
+    pg_rng rng;
+    pg_seed(&rng, 3101);
+    double *xyz = malloc(3 * 600 * sizeof *xyz);
+    double worst = INFINITY, least_round = INFINITY;
+    int bodies = 0;
+    for (int i = 0; i < tu_scaled(180); ++i) {
+        pg_kind kind = (pg_kind)(i % PG_KIND_COUNT);
+        size_t n =
+            pg_shape(&rng, kind, (size_t)pg_log_int(&rng, 8, 600), pow(10.0, pg_range(&rng, -6, 6)), xyz);
+        /* Far from the origin now and then: stored coordinates are then
+         * relative to an origin in the body. */
+        double shift = i % 3 == 0 ? 1e7 * pg_range(&rng, -1, 1) : 0.0;
+        for (size_t k = 0; k < 3 * n; ++k) xyz[k] += shift;
+        px_convex *c = px_convex_create(xyz, n, NULL, NULL);
+        if (!c) continue;
+        ++bodies;
+        /* In the stored frame (body frame minus the origin), where the ball
+         * is kept: adding the origin back rounds by an ulp of it. */
+        px_vec3 ic = c->inner_center;
+        double r = c->inner_radius, half_width = INFINITY;
+        CHECK(r >= 0.0 && r <= c->radius, "inner ball #%d (%s): radius %g of %g", i, pg_kind_name(kind), r,
+              c->radius);
+        double slack = INFINITY;
+        for (uint32_t f = 0; f < c->nf + 2000; ++f) {
+            px_vec3 u = f < c->nf ? c->f[f].n : pg_unit(&rng);
+            double h = -INFINITY, l = INFINITY;
+            for (uint32_t v = 0; v < c->nv; ++v) {
+                double t = pxi_dot(u, pxi_sub(c->v[v], ic));
+                h = t > h ? t : h;
+                l = t < l ? t : l;
+            }
+            if (h - r < slack) slack = h - r;
+            if (f < c->nf && 0.5 * (h - l) < half_width) half_width = 0.5 * (h - l);
+        }
+        if (r > 0.0) {
+            /* Positive up to the rounding of the products above. */
+            double noise = 8.0 * DBL_EPSILON * (c->scale + c->radius);
+            CHECK(slack >= -noise, "inner ball #%d (%s, n=%zu): sticks out by %g (radius %g)", i,
+                  pg_kind_name(kind), n, -slack, r);
+            if (slack / c->radius < worst) worst = slack / c->radius;
+        }
+        /* Boxes and points on a sphere: at least half of the half-width
+         * across the faces (for a box the largest possible, reached at its
+         * centre, the vertices' mean). */
+        if (kind == PG_SPHERE || kind == PG_BOX) {
+            CHECK(r >= 0.5 * half_width, "inner ball #%d (%s): radius %g, half-width %g", i,
+                  pg_kind_name(kind), r, half_width);
+            if (r / half_width < least_round) least_round = r / half_width;
+        }
+        px_convex_destroy(c);
+    }
+    /* A unit cube: the inscribed ball is radius 1/2 at the centre. A
+     * cone over a fine base (the vertices' mean sits near the base): the
+     * search moves up. */
+    double cube[24];
+    pg_box(0.5, 0.5, 0.5, cube);
+    px_convex *c = px_convex_create(cube, 8, NULL, NULL);
+    CHECK(c && fabs(c->inner_radius - 0.5) < 1e-9, "cube: inner radius %g", c ? c->inner_radius : -1.0);
+    px_convex_destroy(c);
+    size_t nb = 0;
+    for (int k = 0; k < 200; ++k, ++nb) {
+        xyz[3 * nb] = cos(2 * M_PI * k / 200), xyz[3 * nb + 1] = sin(2 * M_PI * k / 200), xyz[3 * nb + 2] = 0;
+    }
+    xyz[3 * nb] = 0, xyz[3 * nb + 1] = 0, xyz[3 * nb + 2] = 3, ++nb;
+    c = px_convex_create(xyz, nb, NULL, NULL);
+    /* The cone's inscribed ball: radius 3 / (1 + sqrt 10) = 0.72 about
+     * (0, 0, 0.72); from the mean (height 3 / 201) straight up. */
+    CHECK(c && c->inner_radius > 0.6, "cone: inner radius %g (best 0.72)", c ? c->inner_radius : -1.0);
+    px_convex_destroy(c);
+    /* Flat: a square has no inner ball. */
+    double sq[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    c = px_convex_create(sq, 4, NULL, NULL);
+    CHECK(c && c->inner_radius == 0.0, "square: inner radius %g", c ? c->inner_radius : -1.0);
+    px_convex_destroy(c);
+    printf(
+        "  inner balls: %d bodies, least slack %.3g of the radius; boxes and spheres: at least %.2f of the "
+        "half-width\n",
+        bodies, worst, least_round);
+    free(xyz);
+}
+
 int main(void) {
     tu_init("test_convex");
+    test_inner_ball();
     test_triangle_without_cgal(tu_scaled(20000));
     test_inside_flat_edge();
     test_extent_and_weld();

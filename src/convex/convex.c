@@ -110,6 +110,8 @@ static int polygon_plane_ok(const px_vec3 *v, const uint32_t *ids, uint32_t n, p
     return 1;
 }
 
+static void inner_ball(px_convex *c);
+
 static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_error *err) {
     int ok = 1;
     size_t nhalf = h->face_offsets[h->face_count];
@@ -357,10 +359,64 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_e
         if (hi - lo > wmax) wmax = hi - lo;
     }
     c->roundness = wmax > 0.0 ? wmin / wmax : 1.0;
+    inner_ball(c);
     return PX_OK;
 }
 
 static px_status validate_local(const px_convex *c, px_error *err);
+
+/* Depth of stored-frame point w in a solid: its least height below a face
+ * plane (negative outside), and that face. */
+static double depth_at(const px_convex *c, px_vec3 w, uint32_t *nearest) {
+    double m = INFINITY;
+    for (uint32_t f = 0; f < c->nf; ++f) {
+        double h = c->f[f].d - pxi_dot(c->f[f].n, w);
+        if (h < m) {
+            m = h;
+            *nearest = f;
+        }
+    }
+    return m;
+}
+
+/* A large ball inside a solid, not the largest (that is a linear program,
+ * the Chebyshev centre): from the vertices' mean, a few moves straight away
+ * from the nearest face plane, each as far as the depth grows (the depth
+ * along a line is concave, piecewise linear: bisection on the sign of its
+ * slope). The depth is then lowered by the rounding of the face planes
+ * (unit normals and offsets from the vertices, exact coplanarity from
+ * CGAL: a few ulps of the coordinates), so that the ball is inside the
+ * hull of the vertices. At most 4 x 24 passes over the faces. */
+static void inner_ball(px_convex *c) {
+    c->inner_center = c->center;
+    c->inner_radius = 0.0;
+    if (c->dim != 3 || !(c->scale > 0.0) || !pxi_len_ok(c->scale)) return;
+    uint32_t f0 = 0;
+    px_vec3 w = c->center;
+    double rho = depth_at(c, w, &f0);
+    for (int it = 0; it < 4 && rho > 0.0; ++it) {
+        px_vec3 u = pxi_neg(c->f[f0].n);
+        double lo = 0.0, hi = 2.0 * c->radius;
+        for (int k = 0; k < 24; ++k) {
+            double t = 0.5 * (lo + hi);
+            uint32_t g = 0;
+            depth_at(c, pxi_madd(w, u, t), &g);
+            if (pxi_dot(c->f[g].n, u) < 0.0) /* the nearest plane recedes: deeper on */
+                lo = t;
+            else
+                hi = t;
+        }
+        uint32_t g = 0;
+        px_vec3 w2 = pxi_madd(w, u, lo);
+        double r2 = depth_at(c, w2, &g);
+        if (!(r2 > rho * (1.0 + 1e-3))) break;
+        w = w2, rho = r2, f0 = g;
+    }
+    rho -= 256.0 * DBL_EPSILON * (c->scale + pxi_max_abs(w) + c->radius);
+    if (!(rho > 1e-6 * c->radius)) return;
+    c->inner_center = w;
+    c->inner_radius = rho;
+}
 
 static uint32_t default_lut_resolution(uint32_t nv) {
     /* About four cells per vertex, between 2 and 256 cells per cube side:

@@ -96,6 +96,11 @@ struct px_convex {
     double scale;     /* max |coordinate| of v, for relative tolerances */
     double reach;     /* radius + 4 max|center|: with twice max|t|, a cheap bound on a pair's size */
     double roundness; /* least / greatest width over 13 directions, in (0, 1]: 1 for a ball-like body */
+    /* A ball inside the solid (stored frame; radius 0: none, as for a flat
+     * body): two bodies whose inner balls overlap intersect, which the
+     * scene uses to skip the query of a deeply overlapping pair. */
+    px_vec3 inner_center;
+    double inner_radius;
     pxi_lut lut;
     size_t bytes;       /* everything allocated for this polytope */
     px_allocator alloc; /* what allocated it, and frees it */

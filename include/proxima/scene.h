@@ -208,7 +208,8 @@ typedef struct px_scene_stats {
     uint32_t violations;      ///< bodies that moved more than their bounds allow
     uint64_t candidate_pairs; ///< pairs whose fat boxes overlap (queued)
     uint64_t pairs_due;       ///< pairs whose time came in this step (the close ones included)
-    uint64_t pairs_checked;   ///< of those, pairs measured by a narrow-phase query
+    uint64_t pairs_checked;   ///< of those, pairs measured by a narrow-phase query (not those
+                              ///< whose polytopes' inner balls overlap: intersecting, no query)
     uint64_t swaps;           ///< sweep-and-prune swaps in this step
     size_t memory_bytes;      ///< everything the scene owns now
 } px_scene_stats;

@@ -70,6 +70,8 @@ typedef struct sbody {
     double radius;  /* largest distance from center to the body */
     px_vec3 sc;     /* bounding sphere: centre (body frame) and radius */
     double sr;
+    px_vec3 ic; /* a polytope's inner ball (pxi inner_center + origin, body frame; ir 0: none) */
+    double ir;
     double vmax, wmax;  /* speed bounds */
     double sk, sk_last; /* skews (how far from rotations) of pose and last */
     double reach;       /* |sc| + 3 sr: bounds |body-frame point - origin| (frame_pad) */
@@ -1030,6 +1032,28 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
     return pxi_len(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
 }
 
+/* Two polytopes whose inner balls overlap intersect (the balls' test of
+ * inner sphere trees: R. Weller, G. Zachmann, "Inner sphere trees for
+ * proximity and penetration queries", RSS 2009): deeply overlapping pairs,
+ * which would otherwise cost a walk that ends in a scan of every face, are
+ * answered from their poses. The posed ball of radius r stays a ball of
+ * radius at least r (1 - skew) about the posed centre (|R^-1| <= 1 + skew);
+ * the overlap must also beat the rounding of the centres and the frames'
+ * allowance (frame_pad), so that a query in either body's frame would find
+ * the solids intersecting too. On success: a common point (on the segment
+ * between the centres, inside both balls) in *w. */
+static int inner_overlap(const px_scene *s, const sbody *x, const sbody *y, px_vec3 *w) {
+    if (!(x->ir > 0.0) || !(y->ir > 0.0)) return 0;
+    px_vec3 cx = pxi_xform(&x->pose, x->ic), cy = pxi_xform(&y->pose, y->ic);
+    double rx = x->ir * (1.0 - x->sk), ry = y->ir * (1.0 - y->sk);
+    double d = pxi_len(pxi_sub(cy, cx));
+    double slack = 16.0 * DBL_EPSILON * (pxi_max_abs(cx) + pxi_max_abs(cy) + x->reach + y->reach) +
+                   frame_pad(s, x) + frame_pad(s, y);
+    if (!(d + slack < rx + ry)) return 0;
+    *w = pxi_madd(cx, pxi_sub(cy, cx), rx / (rx + ry));
+    return 1;
+}
+
 /* Measures pair q. Unless `exact`, a pair whose bounding spheres, or for
  * models whose root hulls, are farther apart than the report distance is
  * not measured further: that lower bound keys it (the pair is not
@@ -1057,6 +1081,10 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
         r->upper_bound = INFINITY;
         r->point_a = r->point_b = pxi_v(0.0, 0.0, 0.0);
         r->leaf_a = r->leaf_b = UINT32_MAX;
+    } else if (q->kind == K_CONVEX && inner_overlap(s, x, y, &r->point_a)) {
+        r->distance = r->upper_bound = 0.0;
+        r->point_b = r->point_a;
+        r->leaf_a = r->leaf_b = 0;
     } else if (q->kind == K_CONVEX) {
         px_distance_result d;
         (*checked)++;
@@ -1209,6 +1237,18 @@ static px_status update_pair(const px_scene *s, uint32_t p, double time, sdone *
 #define S_INLINE static inline
 #endif
 
+S_INLINE void prefetch_feature(const px_convex *c, px_feature f) {
+    if (f.type == PX_FEATURE_VERTEX && f.index < c->nv) {
+        S_PREFETCH(&c->v[f.index]);
+        S_PREFETCH(&c->v_first[f.index]);
+    } else if (f.type == PX_FEATURE_EDGE && f.index < c->ne) {
+        S_PREFETCH(&c->e[f.index]);
+        S_PREFETCH((const char *)&c->e[f.index] + 64);
+    } else if (f.type == PX_FEATURE_FACE && f.index < c->nf) {
+        S_PREFETCH(&c->f[f.index]);
+    }
+}
+
 S_INLINE void prefetch_due(const px_scene *s, const uint32_t *items, uint32_t i, uint32_t end) {
     if (i + S_AHEAD < end) {
         const spair *q = &s->pair[items[i + S_AHEAD]];
@@ -1220,6 +1260,23 @@ S_INLINE void prefetch_due(const px_scene *s, const uint32_t *items, uint32_t i,
         const spair *q = &s->pair[items[i + S_AHEAD / 2]];
         S_PREFETCH(&s->body[q->a]);
         S_PREFETCH(&s->body[q->b]);
+    }
+    /* A polytope pair within the report distance is measured: the headers
+     * of its polytopes two updates ahead, then the features its walk
+     * starts from (one ahead). */
+    if (i + 2 < end) {
+        const spair *q = &s->pair[items[i + 2]];
+        if (q->kind == K_CONVEX && q->gap <= 0.0) {
+            S_PREFETCH(s->body[q->a].convex);
+            S_PREFETCH(s->body[q->b].convex);
+        }
+    }
+    if (i + 1 < end) {
+        const spair *q = &s->pair[items[i + 1]];
+        if (q->kind == K_CONVEX && q->gap <= 0.0) {
+            prefetch_feature(s->body[q->a].convex, q->cache.convex.feature_a);
+            prefetch_feature(s->body[q->b].convex, q->cache.convex.feature_b);
+        }
     }
 }
 
@@ -1599,6 +1656,10 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->radius = r * (1.0 + 8.0 * DBL_EPSILON);
     b->sc = sc;
     b->sr = sr * (1.0 + 8.0 * DBL_EPSILON);
+    if (d->convex && d->convex->inner_radius > 0.0) {
+        b->ic = pxi_add(d->convex->inner_center, d->convex->origin);
+        b->ir = d->convex->inner_radius;
+    }
     b->reach = pxi_len(sc) + 3.0 * b->sr;
     int fixed = (d->flags & PX_BODY_STATIC) != 0;
     b->vmax = fixed ? 0.0 : d->max_speed;

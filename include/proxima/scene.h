@@ -178,7 +178,10 @@ typedef struct px_scene_pair {
     /// b), and for coarse model leaves its certified upper bound (equal to
     /// distance otherwise).
     double distance, upper_bound;
-    px_vec3 point_a, point_b; ///< witness points on a and on b
+    /// Witness points on a and on b. Intersecting bodies (distance 0): a
+    /// point common to both, twice (for polytopes whose inner balls
+    /// overlap, answered without a query, a point inside both).
+    px_vec3 point_a, point_b;
     /// Leaves of each body realising the distance (0 for a convex body).
     uint32_t leaf_a, leaf_b;
     /// 1 when distance <= margin.

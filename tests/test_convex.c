@@ -675,6 +675,58 @@ static void test_inner_ball(void) {
         }
         px_convex_destroy(c);
     }
+    /* Needles 1e-4.5 to 1e-6 wide (8 random points, turned): their sliver
+     * faces' stored planes tilt by up to 1e-11 rad, far above rounding, and
+     * a ball from the stored planes alone stuck out by 4e-12 (a review's
+     * finding). The oracle's directions are the faces' normals from the
+     * vertices in long double, near the true facets' normals. */
+    int needles = 0, with_ball = 0;
+    for (int i = 0; i < tu_scaled(3000); ++i) {
+        double b = pow(10.0, -pg_range(&rng, 4.5, 6)), q[4], rot[9], p[24];
+        for (int k = 0; k < 8; ++k)
+            xyz[3 * k] = pg_range(&rng, -b, b), xyz[3 * k + 1] = pg_range(&rng, -b, b),
+                    xyz[3 * k + 2] = pg_range(&rng, -1, 1);
+        pg_quat_uniform(&rng, q);
+        pg_rot_from_quat(q, rot);
+        for (int k = 0; k < 8; ++k) {
+            px_vec3 v = pg_rot_apply(rot, pxi_v(xyz[3 * k], xyz[3 * k + 1], xyz[3 * k + 2]));
+            p[3 * k] = v.x, p[3 * k + 1] = v.y, p[3 * k + 2] = v.z;
+        }
+        px_convex *nd = px_convex_create(p, 8, NULL, NULL);
+        if (!nd) continue;
+        ++needles;
+        if (nd->inner_radius > 0.0) {
+            ++with_ball;
+            const px_vec3 w = nd->inner_center;
+            double out = -INFINITY;
+            for (uint32_t f = 0; f < nd->nf; ++f) {
+                const uint32_t *ids = nd->f_verts + nd->f[f].first;
+                const px_vec3 o = nd->v[ids[0]];
+                long double sx = 0, sy = 0, sz = 0;
+                for (uint32_t k = 0; k < nd->f[f].count; ++k) {
+                    px_vec3 A = nd->v[ids[k]], B = nd->v[ids[(k + 1) % nd->f[f].count]];
+                    long double ax = (long double)A.x - o.x, ay = (long double)A.y - o.y,
+                                az = (long double)A.z - o.z;
+                    long double bx = (long double)B.x - o.x, by = (long double)B.y - o.y,
+                                bz = (long double)B.z - o.z;
+                    sx += (ay - by) * (az + bz), sy += (az - bz) * (ax + bx), sz += (ax - bx) * (ay + by);
+                }
+                long double l = sqrtl(sx * sx + sy * sy + sz * sz), h = -INFINITY;
+                if (!(l > 0)) continue;
+                sx /= l, sy /= l, sz /= l;
+                for (uint32_t v = 0; v < nd->nv; ++v) {
+                    long double t =
+                        sx * (nd->v[v].x - w.x) + sy * (nd->v[v].y - w.y) + sz * (nd->v[v].z - w.z);
+                    if (t > h) h = t;
+                }
+                if ((double)(nd->inner_radius - h) > out) out = (double)(nd->inner_radius - h);
+            }
+            CHECK(out <= 8.0 * DBL_EPSILON * nd->scale,
+                  "needle #%d (width %.3g): the inner ball sticks out by %g", i, b, out);
+        }
+        px_convex_destroy(nd);
+    }
+    printf("  needles: %d, %d with an inner ball, none sticking out\n", needles, with_ball);
     /* A unit cube: the inscribed ball is radius 1/2 at the centre. A
      * cone over a fine base (the vertices' mean sits near the base): the
      * search moves up. */

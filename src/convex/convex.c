@@ -379,14 +379,51 @@ static double depth_at(const px_convex *c, px_vec3 w, uint32_t *nearest) {
     return m;
 }
 
+/* A lower bound on the depth of w in the hull of the vertices. The stored
+ * plane of face f is off the true one (through its exactly coplanar
+ * vertices): the difference n.x - d - (n*.x - d*) is affine, equal at each
+ * vertex of the face to its residual e_k = n.v_k - d, so at w it is at
+ * most E + g |w - v|, E bounding the residuals (with their rounding), g the
+ * tilt: on the face's largest inscribed triangle an affine function bounded
+ * by E at the corners has a gradient of at most 4 E / (least altitude), and
+ * that triangle has at least 0.41 of the polygon's area A (3 sqrt 3 / 4 pi,
+ * for any convex polygon), so g <= 10 E M / A (M: the largest distance from
+ * the face's first vertex, at least half its diameter). A sliver's plane
+ * can tilt by far more than rounding suggests (a 1e-5 wide face of length 2
+ * by 2e-11 rad): this is what keeps its ball inside. A face whose area is
+ * rounding gives no bound (-inf: no ball). */
+static double certified_depth(const px_convex *c, px_vec3 w) {
+    double best = INFINITY;
+    for (uint32_t f = 0; f < c->nf; ++f) {
+        const pxi_face *F = &c->f[f];
+        const uint32_t *ids = c->f_verts + F->first;
+        const px_vec3 o = c->v[ids[0]];
+        double e = 0.0, m = 0.0, big = pxi_max_abs(o);
+        px_vec3 area = {0, 0, 0};
+        for (uint32_t k = 0; k < F->count; ++k) {
+            px_vec3 v = c->v[ids[k]], a = pxi_sub(v, o), b = pxi_sub(c->v[ids[(k + 1) % F->count]], o);
+            e = pxi_max2(e, fabs(pxi_dot(F->n, v) - F->d));
+            m = pxi_max2(m, pxi_len(a));
+            big = pxi_max2(big, pxi_max_abs(v));
+            area = pxi_add(area, pxi_cross(a, b));
+        }
+        e += 16.0 * DBL_EPSILON * big;                                         /* the residuals' rounding */
+        double a = 0.5 * pxi_len(area) - 8.0 * F->count * DBL_EPSILON * m * m; /* and the area's */
+        if (!(a > 0.0)) return -INFINITY;
+        double g = 10.0 * e * m / a;
+        double h = F->d - pxi_dot(F->n, w) - e - g * (pxi_len(pxi_sub(w, o)) + 2.0 * m);
+        best = pxi_min2(best, h);
+    }
+    return best;
+}
+
 /* A large ball inside a solid, not the largest (that is a linear program,
  * the Chebyshev centre): from the vertices' mean, a few moves straight away
  * from the nearest face plane, each as far as the depth grows (the depth
  * along a line is concave, piecewise linear: bisection on the sign of its
- * slope). The depth is then lowered by the rounding of the face planes
- * (unit normals and offsets from the vertices, exact coplanarity from
- * CGAL: a few ulps of the coordinates), so that the ball is inside the
- * hull of the vertices. At most 4 x 24 passes over the faces. */
+ * slope). Its radius is then the certified depth of the centre (above),
+ * lowered by the rounding of the unit normals and of the products (a few
+ * ulps of the coordinates). At most 4 x 24 + 2 passes over the faces. */
 static void inner_ball(px_convex *c) {
     c->inner_center = c->center;
     c->inner_radius = 0.0;
@@ -412,7 +449,7 @@ static void inner_ball(px_convex *c) {
         if (!(r2 > rho * (1.0 + 1e-3))) break;
         w = w2, rho = r2, f0 = g;
     }
-    rho -= 256.0 * DBL_EPSILON * (c->scale + pxi_max_abs(w) + c->radius);
+    rho = certified_depth(c, w) - 256.0 * DBL_EPSILON * (c->scale + pxi_max_abs(w) + c->radius);
     if (!(rho > 1e-6 * c->radius)) return;
     c->inner_center = w;
     c->inner_radius = rho;

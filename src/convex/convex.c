@@ -379,40 +379,29 @@ static double depth_at(const px_convex *c, px_vec3 w, uint32_t *nearest) {
     return m;
 }
 
-/* A lower bound on the depth of w in the hull of the vertices. The stored
- * plane of face f is off the true one (through its exactly coplanar
- * vertices): the difference n.x - d - (n*.x - d*) is affine, equal at each
- * vertex of the face to its residual e_k = n.v_k - d, so at w it is at
- * most E + g |w - v|, E bounding the residuals (with their rounding), g the
- * tilt: on the face's largest inscribed triangle an affine function bounded
- * by E at the corners has a gradient of at most 4 E / (least altitude), and
- * that triangle has at least 0.41 of the polygon's area A (3 sqrt 3 / 4 pi,
- * for any convex polygon), so g <= 10 E M / A (M: the largest distance from
- * the face's first vertex, at least half its diameter). A sliver's plane
- * can tilt by far more than rounding suggests (a 1e-5 wide face of length 2
- * by 2e-11 rad): this is what keeps its ball inside. A face whose area is
- * rounding gives no bound (-inf: no ball). */
+/* A lower bound on the depth of interior point w in the hull of the
+ * vertices. A stored face plane is off the true facet's (through the
+ * face's exactly coplanar vertices): a sliver's Newell normal tilts by up to
+ * 1e-11 rad, far more than rounding suggests. But the nearest facet F of w
+ * holds the foot p of w on its plane (were p outside F, the segment from w
+ * to p would leave the hull through a nearer facet), and the difference
+ * between the stored and the true plane function, affine, is at most its
+ * largest value at F's vertices there (their residuals |n.v_k - d|, with
+ * their rounding) and only grows from p to w (by s (1 - cos tilt), s the
+ * depth). So the least over faces of the stored depth less the face's
+ * largest residual is at most the true depth; a normal a few ulps off
+ * unit length is left to the caller's margin. */
 static double certified_depth(const px_convex *c, px_vec3 w) {
     double best = INFINITY;
     for (uint32_t f = 0; f < c->nf; ++f) {
         const pxi_face *F = &c->f[f];
-        const uint32_t *ids = c->f_verts + F->first;
-        const px_vec3 o = c->v[ids[0]];
-        double e = 0.0, m = 0.0, big = pxi_max_abs(o);
-        px_vec3 area = {0, 0, 0};
+        double e = 0.0, big = 0.0;
         for (uint32_t k = 0; k < F->count; ++k) {
-            px_vec3 v = c->v[ids[k]], a = pxi_sub(v, o), b = pxi_sub(c->v[ids[(k + 1) % F->count]], o);
+            px_vec3 v = c->v[c->f_verts[F->first + k]];
             e = pxi_max2(e, fabs(pxi_dot(F->n, v) - F->d));
-            m = pxi_max2(m, pxi_len(a));
             big = pxi_max2(big, pxi_max_abs(v));
-            area = pxi_add(area, pxi_cross(a, b));
         }
-        e += 16.0 * DBL_EPSILON * big;                                         /* the residuals' rounding */
-        double a = 0.5 * pxi_len(area) - 8.0 * F->count * DBL_EPSILON * m * m; /* and the area's */
-        if (!(a > 0.0)) return -INFINITY;
-        double g = 10.0 * e * m / a;
-        double h = F->d - pxi_dot(F->n, w) - e - g * (pxi_len(pxi_sub(w, o)) + 2.0 * m);
-        best = pxi_min2(best, h);
+        best = pxi_min2(best, F->d - pxi_dot(F->n, w) - (e + 16.0 * DBL_EPSILON * big));
     }
     return best;
 }
@@ -423,7 +412,8 @@ static double certified_depth(const px_convex *c, px_vec3 w) {
  * along a line is concave, piecewise linear: bisection on the sign of its
  * slope). Its radius is then the certified depth of the centre (above),
  * lowered by the rounding of the unit normals and of the products (a few
- * ulps of the coordinates). At most 4 x 24 + 2 passes over the faces. */
+ * ulps of the coordinates, and of the radius for the normals' length). At
+ * most 4 x 24 + 2 passes over the faces. */
 static void inner_ball(px_convex *c) {
     c->inner_center = c->center;
     c->inner_radius = 0.0;

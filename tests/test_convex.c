@@ -735,6 +735,16 @@ static void test_inner_ball(void) {
     px_convex *c = px_convex_create(cube, 8, NULL, NULL);
     CHECK(c && fabs(c->inner_radius - 0.5) < 1e-9, "cube: inner radius %g", c ? c->inner_radius : -1.0);
     px_convex_destroy(c);
+    /* At every scale the library takes (a bound that squared areas lost
+     * the ball below 2^-270). */
+    for (int k = -480; k <= 480; k += 120) {
+        double h = ldexp(1.0, k), box[24];
+        pg_box(h, h, h, box);
+        c = px_convex_create(box, 8, NULL, NULL);
+        CHECK(c && fabs(c->inner_radius / h - 1.0) < 1e-9, "cube of half-side 2^%d: inner radius %g", k,
+              c ? c->inner_radius / h : -1.0);
+        px_convex_destroy(c);
+    }
     size_t nb = 0;
     for (int k = 0; k < 200; ++k, ++nb) {
         xyz[3 * nb] = cos(2 * M_PI * k / 200), xyz[3 * nb + 1] = sin(2 * M_PI * k / 200), xyz[3 * nb + 2] = 0;

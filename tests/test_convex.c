@@ -617,11 +617,12 @@ static void test_triangle_without_cgal(int count) {
 
 /* The inner ball each solid keeps (the scene's test for deeply overlapping
  * pairs) must lie inside the hull of the vertices. Oracle, from the vertices
- * alone (not the face planes the ball was computed from): a ball (c, r) is
- * inside a convex set iff every direction u has support h(u) >= u.c + r; the
- * tight directions are the facet normals, also tried with 2,000 random ones.
- * Also: the ball is not tiny on round and box-like bodies (a search that
- * stops at the vertices' mean would still pass the first test), and flat
+ * alone (not the face planes' offsets the ball was computed from): a ball
+ * (c, r) is inside a convex set iff every direction u has support
+ * h(u) >= u.c + r; the tight directions are the true facet normals, here the
+ * stored ones (near the true ones but on slivers: the needles below take
+ * them in long double) and 2,000 random ones. Also: the ball is not tiny on
+ * sphere hulls and boxes (a radius of 0 would pass the first test), and flat
  * bodies have none. */
 static void test_inner_ball(void) {
     pg_rng rng;

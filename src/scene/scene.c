@@ -70,7 +70,8 @@ typedef struct sbody {
     double radius;  /* largest distance from center to the body */
     px_vec3 sc;     /* bounding sphere: centre (body frame) and radius */
     double sr;
-    px_vec3 ic; /* a polytope's inner ball (pxi inner_center + origin, body frame; ir 0: none) */
+    px_vec3 ic; /* a polytope's inner ball (inner_center + origin, body frame; ir 0: none),
+                 * copied here so that inner_overlap reads no polytope memory */
     double ir;
     double vmax, wmax;  /* speed bounds */
     double sk, sk_last; /* skews (how far from rotations) of pose and last */
@@ -1035,13 +1036,13 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
 /* Two polytopes whose inner balls overlap intersect (the balls' test of
  * inner sphere trees: R. Weller, G. Zachmann, "Inner sphere trees for
  * proximity and penetration queries", RSS 2009): deeply overlapping pairs,
- * which would otherwise cost a walk that ends in a scan of every face, are
- * answered from their poses. The posed ball of radius r stays a ball of
- * radius at least r (1 - skew) about the posed centre (|R^-1| <= 1 + skew);
- * the overlap must also beat the rounding of the centres and the frames'
- * allowance (frame_pad), so that a query in either body's frame would find
- * the solids intersecting too. On success: a common point (on the segment
- * between the centres, inside both balls) in *w. */
+ * which would otherwise each cost a query, are answered from their poses.
+ * The posed ball of radius r stays a ball of radius at least r (1 - skew)
+ * about the posed centre (|R^-1| <= 1 + skew); the overlap must also beat
+ * the rounding of the centres and the frames' allowance (frame_pad), so
+ * that a query in either body's frame would find the solids intersecting
+ * too. On success: a common point (on the segment between the centres,
+ * inside both balls) in *w. */
 static int inner_overlap(const px_scene *s, const sbody *x, const sbody *y, px_vec3 *w) {
     if (!(x->ir > 0.0) || !(y->ir > 0.0)) return 0;
     px_vec3 cx = pxi_xform(&x->pose, x->ic), cy = pxi_xform(&y->pose, y->ic);

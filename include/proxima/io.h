@@ -49,8 +49,8 @@
 /// malformed file cannot make the import allocate memory the file cannot
 /// back, loop forever, or crash Assimp 5.2 (Debian bookworm's 5.2.5, whose
 /// readers the checks follow). Headers are read from the first 64 KiB; PLY
-/// and OFF bodies are walked through once; COLLADA, glTF, AC3D, FBX,
-/// OpenGEX and XML documents are read whole. Refused with PX_ERR_IO, the
+/// and OFF bodies are walked through once; ASCII STL, COLLADA, glTF, AC3D,
+/// FBX, OpenGEX and XML documents are read whole. Refused with PX_ERR_IO, the
 /// message naming the file and the problem:
 /// - anything but a regular file (directory, device, pipe), an empty file,
 ///   or a file of more than PX_IO_MAX_FILE_BYTES;
@@ -80,6 +80,13 @@
 ///   is not a number below the vertex count or with fewer indices than its
 ///   count, more faces of 10 or more vertices (which Assimp drops) than the
 ///   declared face count, and a UTF-16 byte-order mark;
+/// - ASCII STL (text starting with `solid`): the solids are read as Assimp
+///   reads them; refused, with the line, are a facet without `normal`, a
+///   normal or vertex without three numbers on its line, a vertex before
+///   any facet or a fourth one in a facet (Assimp drops it), a facet of
+///   fewer than three vertices, a number with more than 19 digits before
+///   its point or in its exponent (Assimp reads one above 2^64 as 0), a
+///   NUL byte (Assimp stops there) and a solid name over 1023 bytes;
 /// - COLLADA and glTF node graphs: a cycle (a node its own descendant,
 ///   through nesting, <instance_node> or glTF "children"), a node expanding
 ///   to more than PX_IO_MAX_NODES node instances or a file defining more

@@ -382,11 +382,12 @@ static int stl_is_ascii(const io_head *h) {
  * starts after a UTF-8 byte-order mark, while the size still includes it).
  * Such a file must then really hold n triangles: exactly 84 + 50 n bytes, no
  * byte-order mark, and 4 n (3 vertices and a face per triangle) within
- * PX_IO_MAX_ELEMENTS. Otherwise Assimp parses ASCII STL, which has no counts;
+ * PX_IO_MAX_ELEMENTS. Otherwise Assimp parses ASCII STL, which has no counts
+ * and is walked as Assimp reads it (stl.c);
  * a `.stl` file (by_extension) must then be ASCII (stl_is_ascii), so that a
  * truncated or padded binary STL is reported as such instead of being parsed
- * as text. Files sniffed as STL get only the binary checks: they may well be
- * another format. */
+ * as text. Files sniffed as STL get the binary checks, and the walk when
+ * they start with `solid`: otherwise they may well be another format. */
 static px_status check_stl(const io_head *h, int by_extension, px_error *err) {
     const size_t skip = has_utf8_bom(h) ? 3 : 0;
     if (h->size >= 84 && h->len >= 84 + skip) {
@@ -407,7 +408,13 @@ static px_status check_stl(const io_head *h, int by_extension, px_error *err) {
             return PX_OK;
         }
     }
-    if (!by_extension || stl_is_ascii(h)) return PX_OK;
+    if (!by_extension || stl_is_ascii(h)) {
+        /* Text Assimp reads as ASCII STL: `solid` after spaces and tabs. */
+        size_t p = skip;
+        while (p < h->len && (h->data[p] == ' ' || h->data[p] == '\t')) ++p;
+        if (h->len - p > 5 && memcmp(h->data + p, "solid", 5) == 0) return pxi_check_stl_ascii(h, err);
+        return PX_OK;
+    }
     if (h->size < 84)
         return pxi_error(
             err, PX_ERR_IO,

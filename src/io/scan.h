@@ -89,6 +89,10 @@ px_status pxi_check_ply(const io_head *h, px_error *err);
 px_status pxi_check_dae(const io_head *h, px_error *err);
 px_status pxi_check_gltf(const io_head *h, px_error *err);
 
+/* An ASCII STL file (Assimp's test: `solid` after spaces, not of binary STL
+ * size) walked as Assimp 5.2 reads it (stl.c). */
+px_status pxi_check_stl_ascii(const io_head *h, px_error *err);
+
 /* Nesting depth of AC3D, FBX, OpenGEX and XML files, and BVH files refused (nest.c). */
 px_status pxi_check_nesting(const io_head *h, px_error *err);
 

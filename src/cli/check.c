@@ -497,8 +497,105 @@ static int part_names(const assembly *as, const px_mesh *m, const uint32_t *ids,
     return ok;
 }
 
+/* An OBJ file whose objects Assimp 5.2 would mix up: it reads an `o` name
+ * up to its first space, and an `o` naming an earlier object (`o` or `g`)
+ * continues that object, so `o bolt 1` and `o bolt 2` would be one part
+ * "bolt", whose pieces are never checked against each other; and when
+ * another object came between, the faces after the `o` go to that other
+ * object's part (its mesh is still the current one). Refused (0, a note)
+ * rather than checked so; 1 otherwise, or when the file cannot be read
+ * here (the loader then says why). Names are compared as Assimp keeps
+ * them: an `o` name's first word, a `g` name's whole line less its edges'
+ * blanks; a `g` naming the active group changes nothing, another `g`
+ * starts a new object. */
+static int obj_objects_distinct(const char *path) {
+    const char *dot = strrchr(path, '.');
+    if (!dot || strcasecmp(dot + 1, "obj") != 0) return 1;
+    FILE *f = fopen(path, "rb");
+    if (!f) return 1;
+    typedef struct seen {
+        char *key, *full;
+        unsigned long line;
+    } seen;
+    seen *v = NULL;
+    size_t n = 0, cap = 0, len = 0, current = SIZE_MAX, group = SIZE_MAX;
+    char *line = NULL;
+    unsigned long lineno = 0;
+    int ok = 1;
+    ssize_t got;
+    while (ok && (got = getline(&line, &len, f)) >= 0) {
+        ++lineno;
+        char *c = line, *e = line + got;
+        while (c < e && (*c == ' ' || *c == '\t')) ++c;
+        int is_o = *c == 'o';
+        if (!(is_o || *c == 'g') || !(c[1] == ' ' || c[1] == '\t')) continue;
+        c += 2;
+        while (c < e && (*c == ' ' || *c == '\t')) ++c;
+        while (e > c && (e[-1] == '\n' || e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t')) --e;
+        if (e == c) continue;
+        size_t key_len = (size_t)(e - c), full_len = key_len;
+        if (is_o)
+            for (size_t k = 0; k < key_len; ++k)
+                if (c[k] == ' ' || c[k] == '\t') {
+                    key_len = k;
+                    break;
+                }
+        size_t found = SIZE_MAX;
+        for (size_t i = 0; i < n && found == SIZE_MAX; ++i)
+            if (strlen(v[i].key) == key_len && memcmp(v[i].key, c, key_len) == 0) found = i;
+        if (!is_o && group != SIZE_MAX && strlen(v[group].key) == key_len &&
+            memcmp(v[group].key, c, key_len) == 0)
+            continue; /* the active group again */
+        if (is_o && found != SIZE_MAX) {
+            if (strlen(v[found].full) != full_len || memcmp(v[found].full, c, full_len) != 0) {
+                note("'%s' line %lu: object '%.*s' is '%s' to the loader, as is '%s' on line %lu (Assimp "
+                     "5.2 reads an object name up to its first space and merges objects of one name): "
+                     "they would be one part, never checked against each other; give each object a "
+                     "distinct name without spaces",
+                     path, lineno, (int)full_len, c, v[found].key, v[found].full, v[found].line);
+                ok = 0;
+            } else if (found != current) {
+                note("'%s' line %lu: object '%s' (line %lu) continues after object '%s' (line %lu), and "
+                     "Assimp 5.2 would put its faces from here into the part of '%s': give each object a "
+                     "distinct name, or keep an object's lines together",
+                     path, lineno, v[found].full, v[found].line, v[current].full, v[current].line,
+                     v[current].full);
+                ok = 0;
+            }
+            continue;
+        }
+        if (n == cap) {
+            size_t nc = cap ? 2 * cap : 16;
+            seen *w = realloc(v, sizeof *w * nc);
+            if (!w) break; /* not checked further: the loader has the last word */
+            v = w;
+            cap = nc;
+        }
+        v[n].key = strndup(c, key_len);
+        v[n].full = strndup(c, full_len);
+        v[n].line = lineno;
+        if (!v[n].key || !v[n].full) {
+            free(v[n].key);
+            free(v[n].full);
+            break;
+        }
+        current = n;
+        if (!is_o) group = n;
+        ++n;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        free(v[i].key);
+        free(v[i].full);
+    }
+    free(v);
+    free(line);
+    fclose(f);
+    return ok;
+}
+
 /* One file: each part with triangles is a part of the assembly. */
 static int load_file(assembly *as, const check_opts *o) {
+    if (!obj_objects_distinct(o->file)) return 0;
     px_mesh *m = load(o->file, o);
     if (!m) return 0;
     uint32_t np = px_mesh_part_count(m);

@@ -660,6 +660,85 @@ static void test_containment(void) {
     px_model_destroy(box);
 }
 
+/* Static model bodies (an assembly check): a pair of two static bodies is
+ * never measured again, so its node-pair cache is given back after its
+ * query. 40 overlapping boxes of 2,000 triangles (every pair in contact):
+ * the scene keeps a record per pair, not up to model_cache_bytes (before,
+ * about 20 KB a pair). */
+static void test_static_caches(void) {
+    const int n = 40;
+    px_error e;
+    /* a box with its faces split into 2 x 10 x 10 triangles each: deep fronts */
+    enum { G = 10 };
+    double xyz[6 * (G + 1) * (G + 1) * 3];
+    uint32_t tri[6 * G * G * 6];
+    uint32_t nv = 0, nt = 0;
+    for (int f = 0; f < 6; ++f) {
+        int ax = f / 2, sgn = f % 2 ? 1 : -1, u = (ax + 1) % 3, w = (ax + 2) % 3;
+        uint32_t base = nv;
+        for (int i = 0; i <= G; ++i)
+            for (int j = 0; j <= G; ++j, ++nv) {
+                xyz[3 * nv + ax] = sgn;
+                xyz[3 * nv + u] = -1.0 + 2.0 * i / G;
+                xyz[3 * nv + w] = -1.0 + 2.0 * j / G;
+            }
+        for (int i = 0; i < G; ++i)
+            for (int j = 0; j < G; ++j) {
+                uint32_t a = base + (uint32_t)(i * (G + 1) + j), b = a + G + 1, c = a + 1, d = b + 1;
+                uint32_t q[6] = {a, b, c, c, b, d};
+                if (sgn < 0) q[1] = c, q[2] = b, q[4] = d, q[5] = b;
+                memcpy(tri + 3 * nt, q, sizeof q);
+                nt += 2;
+            }
+    }
+    px_mesh_desc md;
+    memset(&md, 0, sizeof md);
+    md.xyz = xyz;
+    md.vertex_count = nv;
+    md.triangles = tri;
+    md.triangle_count = nt;
+    px_mesh *mesh = px_mesh_create(&md, NULL, &e);
+    px_model_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.pieces = PX_PIECES_TRIANGLES;
+    px_model *box = mesh ? px_model_create_from_mesh(mesh, &mo, &e) : NULL;
+    CHECK(box != NULL, "static caches: box model: %s", e.message);
+    px_mesh_destroy(mesh);
+    if (!box) return;
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    o.margin = o.report_distance = 0.01;
+    px_scene *s = px_scene_create(&o, &e);
+    for (int i = 0; i < n; ++i) {
+        px_body_desc d;
+        memset(&d, 0, sizeof d);
+        d.model = box;
+        double q[4] = {srand1(), srand1(), srand1(), 1.0}, t[3] = {0.3 * srand1(), 0.3 * srand1(), 0.3 * srand1()};
+        double l = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        for (int k = 0; k < 4; ++k) q[k] /= l;
+        CHECK(px_pose_from_quat(q, t, &d.pose) == PX_OK, "static caches: pose");
+        d.flags = PX_BODY_STATIC;
+        uint32_t id;
+        CHECK(px_scene_add_body(s, &d, &id, &e) == PX_OK, "static caches: add: %s", e.message);
+    }
+    px_scene_stats before;
+    px_scene_get_stats(s, &before);
+    CHECK(px_scene_step(s, 0.0, &e) == PX_OK, "static caches: step: %s", e.message);
+    size_t np;
+    const px_scene_pair *p = px_scene_pairs(s, &np);
+    size_t contacts = 0;
+    for (size_t i = 0; i < np; ++i) contacts += p[i].contact;
+    px_scene_stats st;
+    px_scene_get_stats(s, &st);
+    size_t pairs = (size_t)n * (n - 1) / 2;
+    double per_pair = ((double)st.memory_bytes - (double)before.memory_bytes) / (double)pairs;
+    CHECK(contacts == pairs, "static caches: %zu of %zu pairs in contact", contacts, pairs);
+    CHECK(per_pair < 2048.0, "static caches: %.0f bytes a pair after the step", per_pair);
+    printf("static caches: %zu pairs in contact, %.0f bytes a pair after the step\n", pairs, per_pair);
+    px_scene_destroy(s);
+    px_model_destroy(box);
+}
+
 /* Allocation: bodies moving periodically meet the same pairs every period,
  * so once the first period is over, steps allocate nothing. */
 static size_t n_allocs;
@@ -1427,6 +1506,7 @@ int main(void) {
     test_savings();
     test_inner_balls();
     test_containment();
+    test_static_caches();
     test_no_allocation();
     test_no_allocation_model();
     test_review_cases();

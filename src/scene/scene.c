@@ -1134,9 +1134,13 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
     /* q->contact follows once the step collects the pair (an event when
      * it changes). */
     r->contact = r->distance <= s->margin;
-    /* A model pair far apart for its size is queried rarely: its node-pair
-     * cache is given back, so that memory follows the close pairs. */
-    if (q->kind != K_CONVEX && q->gap > 0.5 * (x->size + y->size) && q->cache.model.memory_bytes > 0)
+    /* A model pair far apart for its size is queried rarely, and one of
+     * two static bodies never again (unless the frame allowance grows): its
+     * node-pair cache is given back, so that memory follows the close
+     * moving pairs (an assembly check of many touching parts would
+     * otherwise keep up to model_cache_bytes per pair). */
+    if (q->kind != K_CONVEX && q->cache.model.memory_bytes > 0 &&
+        (q->gap > 0.5 * (x->size + y->size) || (x->flags & y->flags & PX_BODY_STATIC)))
         px_model_cache_release(&q->cache.model);
     return PX_OK;
 }

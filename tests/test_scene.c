@@ -713,7 +713,8 @@ static void test_static_caches(void) {
         px_body_desc d;
         memset(&d, 0, sizeof d);
         d.model = box;
-        double q[4] = {srand1(), srand1(), srand1(), 1.0}, t[3] = {0.3 * srand1(), 0.3 * srand1(), 0.3 * srand1()};
+        double q[4] = {srand1(), srand1(), srand1(), 1.0},
+               t[3] = {0.3 * srand1(), 0.3 * srand1(), 0.3 * srand1()};
         double l = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
         for (int k = 0; k < 4; ++k) q[k] /= l;
         CHECK(px_pose_from_quat(q, t, &d.pose) == PX_OK, "static caches: pose");
@@ -737,6 +738,83 @@ static void test_static_caches(void) {
     printf("static caches: %zu pairs in contact, %.0f bytes a pair after the step\n", pairs, per_pair);
     px_scene_destroy(s);
     px_model_destroy(box);
+}
+
+/* Bodies at tiny scales (a review's finding): lengths of moves below about
+ * 1e-154 underflowed in their squares, so a body of half-side 1e-170 never
+ * travelled, never left its fat box and was never paired. Cubes of
+ * half-side s from 1e-300 to 1e-120, one approaching another within its
+ * speed bound while turning, one teleported onto it, checked at every
+ * step against px_distance. */
+static void test_tiny_scales(void) {
+    const double scales[] = {1e-300, 1e-250, 1e-200, 1e-170, 1e-160, 1e-120};
+    for (size_t si = 0; si < sizeof scales / sizeof scales[0]; ++si) {
+        const double sz = scales[si];
+        double box[24];
+        for (int c = 0; c < 8; ++c)
+            for (int k = 0; k < 3; ++k) box[3 * c + k] = (c >> k) & 1 ? sz : -sz;
+        px_error e;
+        px_convex *cv = px_convex_create(box, 8, NULL, &e);
+        CHECK(cv != NULL, "tiny %g: cube: %s", sz, e.message);
+        if (!cv) continue;
+        px_scene_options o;
+        memset(&o, 0, sizeof o);
+        o.report_distance = sz;
+        o.margin = 0.1 * sz;
+        px_scene *s = px_scene_create(&o, &e);
+        px_body_desc d;
+        memset(&d, 0, sizeof d);
+        d.convex = cv;
+        d.pose = px_pose_identity();
+        d.max_speed = sz;
+        d.max_angular_speed = 0.3;
+        uint32_t id[3];
+        CHECK(px_scene_add_body(s, &d, &id[0], &e) == PX_OK, "tiny: add");
+        d.pose.t.x = 10 * sz;
+        CHECK(px_scene_add_body(s, &d, &id[1], &e) == PX_OK, "tiny: add");
+        d.pose.t.x = -100 * sz;
+        CHECK(px_scene_add_body(s, &d, &id[2], &e) == PX_OK, "tiny: add");
+        int found = 0;
+        for (int k = 0; k <= 14; ++k) {
+            px_pose p[3];
+            p[0] = px_pose_identity();
+            /* body 1: 0.8 s a step toward body 0, turning 0.25 rad a step */
+            double ang = 0.25 * k, q[4] = {0, 0, sin(0.5 * ang), cos(0.5 * ang)},
+                   t[3] = {(10.0 - 0.8 * k) * sz, 0, 0};
+            px_pose_from_quat(q, t, &p[1]);
+            /* body 2: far, then teleported onto body 0 at step 7 */
+            p[2] = px_pose_identity();
+            p[2].t.x = k < 7 ? -100 * sz : 0.5 * sz;
+            CHECK(px_scene_set_pose(s, id[1], &p[1], &e) == PX_OK &&
+                      px_scene_set_pose(s, id[2], &p[2], &e) == PX_OK,
+                  "tiny: pose");
+            CHECK(px_scene_step(s, (double)k, &e) == PX_OK, "tiny %g: step: %s", sz, e.message);
+            size_t n;
+            const px_scene_pair *pr = px_scene_pairs(s, &n);
+            for (int a = 0; a < 3; ++a)
+                for (int b = a + 1; b < 3; ++b) {
+                    px_distance_result r;
+                    px_distance(cv, &p[a], cv, &p[b], NULL, NULL, &r);
+                    const px_scene_pair *hit = NULL;
+                    for (size_t i = 0; i < n; ++i)
+                        if (pr[i].body_a == (uint32_t)a && pr[i].body_b == (uint32_t)b) hit = &pr[i];
+                    if (r.distance <= o.report_distance) {
+                        ++found;
+                        CHECK(hit && fabs(hit->distance - r.distance) <= 1e-9 * sz,
+                              "tiny %g: step %d: pair (%d, %d) at %g s %s (scene %g s)", sz, k, a, b,
+                              r.distance / sz, hit ? "misreported" : "missed",
+                              hit ? hit->distance / sz : -1.0);
+                    } else {
+                        CHECK(!hit || hit->distance > o.report_distance * 0.999999,
+                              "tiny %g: step %d: pair (%d, %d) reported at %g s, is %g s", sz, k, a, b,
+                              hit ? hit->distance / sz : -1.0, r.distance / sz);
+                    }
+                }
+        }
+        CHECK(found >= 10, "tiny %g: %d close pairs over the steps", sz, found);
+        px_scene_destroy(s);
+        px_convex_destroy(cv);
+    }
 }
 
 /* Allocation: bodies moving periodically meet the same pairs every period,
@@ -1507,6 +1585,7 @@ int main(void) {
     test_inner_balls();
     test_containment();
     test_static_caches();
+    test_tiny_scales();
     test_no_allocation();
     test_no_allocation_model();
     test_review_cases();

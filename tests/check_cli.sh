@@ -190,7 +190,7 @@ if [ -n "$A" ]; then
   printf 'o bolt 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no bolt 2\nv 0 0 0.05\nv 1 0 0.05\nv 0 1 0.05\nf 4 5 6\n' >"$T/bolts.obj"
   expect 2 "line 6: object 'bolt 2' is 'bolt' to the loader, as is 'bolt 1' on line 1" -- "$B" check "$T/bolts.obj"
   printf 'g bolt\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no bolt\t1\nv 0 0 0.05\nv 1 0 0.05\nv 0 1 0.05\nf 4 5 6\n' >"$T/bolts_g.obj"
-  expect 2 "line 6: object 'bolt.1' is 'bolt' to the loader, as is 'bolt' on line 1" -- "$B" check "$T/bolts_g.obj"
+  expect 2 "line 6: object 'bolt\\\\t1' is 'bolt' to the loader, as is 'bolt' on line 1" -- "$B" check "$T/bolts_g.obj"
   # An object continued after another: Assimp 5.2 puts its later faces
   # into the other's part (here the bolt's second triangle into the nut,
   # reported 0.05 from the bolt). Consecutive `o` of one name are one part.
@@ -198,6 +198,16 @@ if [ -n "$A" ]; then
   expect 2 "line 11: object 'bolt' \(line 1\) continues after object 'nut' \(line 6\)" -- "$B" check "$T/same.obj" --clearance 0.1
   printf 'g a\no bolt\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no bolt\nv 0 0 0.05\nv 1 0 0.05\nv 0 1 0.05\nf 4 5 6\ng a\no nut\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 7 8 9\n' >"$T/same2.obj"
   expect 0 "found: +nothing" -- "$B" check "$T/same2.obj" --clearance 0.1
+  # A file name with a line break is shown escaped on the assembly line
+  # and in notes; a clearance below the double range is refused.
+  NL="$T/$(printf 'nl\nfake: x')"
+  mkdir -p "$NL" && cp "$T/bolts.obj" "$NL/"
+  expect 2 "line 6: object 'bolt 2'" -- "$B" check "$NL/bolts.obj"
+  expect 2 'nl\\nfake: x/bolts.obj. line 6' -- "$B" check "$NL/bolts.obj"
+  printf 'o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$NL/a.obj"
+  rm "$NL/bolts.obj"
+  expect 0 'assembly: +.*nl\\nfake: x \(folder, 1 part' -- "$B" check "$NL"
+  expect 2 "'1e-400' is beyond the range of doubles" -- "$B" check "$NL" --clearance 1e-400
   # The JSON lists the skipped parts by both their names.
   expect 0 '"skipped": \[$' -- "$B" check "$T/amb.obj" --ignore 'a,b,c' --json
   expect 0 '\{"name": "a,b", "mesh_name": "a,b/a,b"\},' -- "$B" check "$T/amb.obj" --ignore 'a,b,c' --json

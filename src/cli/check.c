@@ -82,13 +82,25 @@ static void note(const char *fmt, ...)
 #endif
     ;
 
+/* A note on one line: control bytes of what it quotes (a file name with a
+ * line break, a library message naming such a file) are shown as \n, \r,
+ * \t or \xHH; names the callers escaped hold none. */
 static void note(const char *fmt, ...) {
+    char buf[2048];
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "proxima: ");
-    vfprintf(stderr, fmt, ap);
-    fprintf(stderr, "\n");
+    vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
+    fprintf(stderr, "proxima: ");
+    for (const unsigned char *c = (const unsigned char *)buf; *c; ++c) {
+        if (*c == '\n' || *c == '\r' || *c == '\t')
+            fprintf(stderr, "\\%c", *c == '\n' ? 'n' : *c == '\r' ? 'r' : 't');
+        else if (*c < 0x20 || *c == 0x7f)
+            fprintf(stderr, "\\x%02x", *c);
+        else
+            fputc(*c, stderr);
+    }
+    fputc('\n', stderr);
 }
 
 static char *dup_string(const char *s) {
@@ -975,8 +987,10 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
     uint32_t closed = 0;
     for (uint32_t i = 0; i < as->count; ++i) closed += as->parts[i].closed;
     int exact = o->pieces == PX_PIECES_TRIANGLES;
-    printf("assembly:  %s (%s, %u part%s, %u closed)\n", o->file, as->folder ? "folder" : "file", as->count,
-           as->count == 1 ? "" : "s", closed);
+    char *ef = escaped(o->file);
+    printf("assembly:  %s (%s, %u part%s, %u closed)\n", ef ? ef : "?", as->folder ? "folder" : "file",
+           as->count, as->count == 1 ? "" : "s", closed);
+    free(ef);
     printf("check:     interference and clearance %s, %s", c,
            exact                          ? "exact (triangle leaves)"
            : o->pieces == PX_PIECES_PARTS ? "one hull per part (distance brackets)"

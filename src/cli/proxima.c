@@ -148,16 +148,19 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             if (!has_value) return usage_error("%s needs a number", a);
             char *end;
             const char *v = argv[++i];
+            errno = 0;
             o->tolerance = strtod(v, &end);
-            if (end == v || *end || !(o->tolerance >= PX_MODEL_MIN_TOLERANCE && o->tolerance <= 1.0))
+            if (end == v || *end || errno == ERANGE ||
+                !(o->tolerance >= PX_MODEL_MIN_TOLERANCE && o->tolerance <= 1.0))
                 return usage_error("--tolerance takes a number in [%g, 1], not '%s'", PX_MODEL_MIN_TOLERANCE,
                                    v);
         } else if (!strcmp(a, "--scale")) {
             if (!has_value) return usage_error("%s needs a number", a);
             char *end;
             const char *v = argv[++i];
+            errno = 0;
             o->scale = strtod(v, &end);
-            if (end == v || *end || !isfinite(o->scale) || !(o->scale > 0.0))
+            if (end == v || *end || errno == ERANGE || !isfinite(o->scale) || !(o->scale > 0.0))
                 return usage_error("--scale takes a positive number, not '%s'", v);
         } else if (!strcmp(a, "--pose-a") || !strcmp(a, "--pose-b")) {
             if (!has_value) return usage_error("%s needs tx,ty,tz[,qw,qx,qy,qz]", a);
@@ -170,7 +173,10 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             if (!has_value) return usage_error("%s needs a number", a);
             char *end;
             const char *v = argv[++i];
+            errno = 0;
             o->clearance = strtod(v, &end);
+            if (end != v && !*end && errno == ERANGE)
+                return usage_error("--clearance '%s' is beyond the range of doubles", v);
             if (end == v || *end || !isfinite(o->clearance) || !(o->clearance >= 0.0))
                 return usage_error("--clearance takes a finite number >= 0, not '%s'", v);
             o->has_clearance = 1;
@@ -368,8 +374,11 @@ static int cmd_distance(const opts *o) {
     if (st == PX_OK) st = px_model_collide(a, &o->pose[0], b, &o->pose[1], NULL, &c);
     int rc = 0;
     if (st != PX_OK) {
-        fprintf(stderr, "proxima: distance of '%s' and '%s': %s\n", o->files[0], o->files[1],
-                px_status_string(st));
+        fprintf(stderr, "proxima: distance of '%s' and '%s': %s%s\n", o->files[0], o->files[1],
+                px_status_string(st),
+                st == PX_ERR_RANGE ? " (the poses place the models more than 2^250, about 1.8e75, "
+                                     "apart)"
+                                   : "");
         rc = 1;
     } else {
         printf("distance:    %.17g\n", r.distance);

@@ -144,8 +144,9 @@ typedef struct px_body_desc {
 PX_API px_status px_scene_add_body(px_scene *scene, const px_body_desc *desc, uint32_t *id, px_error *err);
 
 /// Removes a body; its contacts end (reported by the next step as ended
-/// events) and its pairs are freed. PX_ERR_INVALID_ARGUMENT for an unknown
-/// id.
+/// events), its pairs are freed and its exclusions forgotten: a body added
+/// later under the same id is paired with every other (a contact then
+/// begins anew). PX_ERR_INVALID_ARGUMENT for an unknown id.
 PX_API px_status px_scene_remove_body(px_scene *scene, uint32_t id, px_error *err);
 
 /// The body's user pointer (NULL for an unknown id).
@@ -223,7 +224,9 @@ typedef struct px_scene_stats {
 /// px_scene_events hold this step's results. PX_ERR_OUT_OF_MEMORY leaves
 /// the scene consistent: the next step sorts the broad phase anew and
 /// finds every pair the failure could have lost. PX_ERR_INVALID_ARGUMENT for a
-/// time that goes back or is not finite; a query error (PX_ERR_RANGE for
+/// time that goes back or is not finite (the step is refused before it
+/// starts: nothing changes, and the last step's results stay readable); a
+/// query error (PX_ERR_RANGE for
 /// bodies placed more than 2^250 apart) stops the step with the pair named
 /// in `err`, and the next step checks again.
 PX_API px_status px_scene_step(px_scene *scene, double time, px_error *err);

@@ -1560,6 +1560,12 @@ int main(void) {
         {"convex", 40, quick ? 60 : 200, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 0, 0, 0, 0, 0},
         {"convex dense", 60, quick ? 40 : 150, 0, 5.0, 0.08, 0.1, 0.05, 0.25, 0, 0, 0, 0, 0, 0, 0},
         {"teleports", 40, quick ? 50 : 150, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 13, 0, 0, 0, 0, 0, 0},
+        /* half the bodies teleported at every step: the arrays are sorted
+         * anew and stale pairs dropped (rebuild, drop_stale) */
+        {"mass teleports", 60, quick ? 30 : 80, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 2, 0, 0, 0, 0, 0, 0},
+        {"mass teleports, models, churn, statics", 60, quick ? 30 : 80, 3, 7.0, 0.05, 0.05, 0.1, 0.4, 2, 1, 0,
+         1, 0, 0, 0},
+        {"mass teleports, filters", 60, quick ? 30 : 80, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 2, 0, 1, 0, 0, 0, 0},
         {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0, 0, 0},
         {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0, 0, 0},
         {"filters", 40, quick ? 60 : 150, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 0, 1, 0, 0, 0, 0},

@@ -895,6 +895,25 @@ static int rebuild(px_scene *s) {
     return 1;
 }
 
+/* 1 when fat boxes x and y overlap or touch. */
+static int boxes_meet(const double x[6], const double y[6]) {
+    for (int k = 0; k < 3; ++k)
+        if (x[k] > y[3 + k] || y[k] > x[3 + k]) return 0;
+    return 1;
+}
+
+/* After rebuild: drops every pair whose boxes no longer overlap (a pair in
+ * contact through remove_pair, so that its contact ends once the moves
+ * are settled). */
+static void drop_stale(px_scene *s) {
+    for (uint32_t p = 0; p < s->n_pair; ++p) {
+        const spair *q = &s->pair[p];
+        if (q->a == S_NONE || q->doomed) continue;
+        if (!overlap_on(s, q->a, q->b, 0) || !overlap_on(s, q->a, q->b, 1) || !overlap_on(s, q->a, q->b, 2))
+            remove_pair(s, q->a, q->b);
+    }
+}
+
 /* Puts a newly added body into the sorted arrays: its endpoints start past
  * every other at +inf and sift down, pairs being added only on the last
  * axis, once the other two hold their values (btAxisSweep3::addHandle). */
@@ -1829,16 +1848,38 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         for (uint32_t i = 0; i < s->n_body; ++i)
             if (s->body[i].alive && s->body[i].chain && !s->body[i].dirty) mark_dirty(s, i);
     int ok = 1;
+    /* The bodies whose fat box moved are kept at the front of `dirty`;
+     * `far` counts those whose new box misses the old one. */
+    uint32_t n_moved = 0, far = 0;
     for (uint32_t i = 0; i < s->n_dirty; ++i) {
         uint32_t id = s->dirty[i];
         sbody *b = &s->body[id];
         b->dirty = 0;
         measure(s, id, dt, !s->stepped);
+        double old[6];
+        memcpy(old, b->fat, sizeof old);
+        int fitted = b->fitted;
         /* A body added since the last step is sorted in below, at its
          * refitted box. */
-        if (refit(s, b) && !b->added) ok &= resort(s, id);
+        if (refit(s, b) && !b->added) {
+            s->dirty[n_moved++] = id;
+            far += fitted && !boxes_meet(old, b->fat);
+        }
     }
     s->n_dirty = 0;
+    /* Many bodies teleported: sifting each through the endpoints between
+     * its old and new places would cost O(n) swaps apiece, so the arrays
+     * are sorted anew and the pairs compared with the boxes (rebuild,
+     * drop_stale), as for many bodies added at once. */
+    if (far > 16 && far * 8 > s->alive) {
+        s->stats.box_updates += n_moved;
+        if (rebuild(s))
+            drop_stale(s);
+        else
+            ok = 0;
+    } else {
+        for (uint32_t i = 0; i < n_moved; ++i) ok &= resort(s, s->dirty[i]);
+    }
     /* A pose more skewed than any before widened the frame allowance
      * (frame_pad): every box is checked against it, and every pair is
      * measured anew (its gap was keyed with the old one). */

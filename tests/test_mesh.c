@@ -635,9 +635,10 @@ static size_t tet_stl_binary(unsigned char *buf, int nan) {
 /* glTF 2 (or GLB) with three nodes using one tetrahedron mesh: base
  * (translation 10 in x) with children arm (5 in y) and mirror (scale -1 in
  * x). Positions and indices in a buffer (tet.bin, or the GLB's chunk). */
-static const char *write_gltf(int glb) {
+static const char *write_gltf_ex(int glb, int variant) {
     static const float pos[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-    static const uint16_t idx[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    uint16_t idx[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+    if (variant == 1) idx[11] = 4; /* out of range: Assimp drops that triangle */
     unsigned char bin[72];
     unsigned char *p = bin;
     for (int i = 0; i < 12; ++i) p = put_f32(p, pos[i]);
@@ -659,8 +660,8 @@ static const char *write_gltf(int glb) {
         "{\"buffer\": 0, \"byteOffset\": 48, \"byteLength\": 24}],\n"
         "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\",\n"
         "\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n"
-        "{\"bufferView\": 1, \"componentType\": 5123, \"count\": 12, \"type\": \"SCALAR\"}]}",
-        glb ? "" : "\"uri\": \"tet.bin\", ");
+        "{\"bufferView\": 1, \"componentType\": 5123, \"count\": %d, \"type\": \"SCALAR\"}]}",
+        glb ? "" : "\"uri\": \"tet.bin\", ", variant == 2 ? 11 : 12);
     if (!glb) {
         write_file("tet.bin", bin, sizeof bin);
         return write_file("tet.gltf", json, (size_t)-1);
@@ -681,6 +682,8 @@ static const char *write_gltf(int glb) {
     p += sizeof bin;
     return write_file("tet.glb", out, (size_t)(p - out));
 }
+
+static const char *write_gltf(int glb) { return write_gltf_ex(glb, 0); }
 
 static void test_load_formats(void) {
     /* OBJ: one node and one part per object; quads triangulated; corners
@@ -1071,6 +1074,15 @@ static void test_bad_files(void) {
     tet_stl_binary(stl, 0);
     stl[83] = 0x7f; /* 2^30-odd triangles declared */
     EXPECT_LOAD_ERROR(write_file("absurd.stl", stl, sizeof stl), "triangles");
+    /* glTF: an index out of range (Assimp drops its triangle with a
+     * warning only: the triangle counts tell), and an index count that is
+     * not a multiple of 3, in .gltf and .glb */
+    for (int glb = 0; glb < 2; ++glb) {
+        EXPECT_LOAD_ERROR(write_gltf_ex(glb, 1),
+                          "1 of its 4 glTF triangles have a vertex index out of range");
+        EXPECT_LOAD_ERROR(write_gltf_ex(glb, 2),
+                          "glTF mesh primitive 0 is a triangle list whose index count");
+    }
     /* a cyclic node graph (glTF children 0 -> 1 -> 0) */
     EXPECT_LOAD_ERROR(
         write_file("cycle.gltf",

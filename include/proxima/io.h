@@ -219,7 +219,10 @@ extern "C" {
 ///   both functions;
 /// - PX_ERR_IO: everything `px_convex_create_from_file` refuses (the file's
 ///   checks and limits, Assimp's failures), and a face index out of its
-///   mesh's range, a NaN or infinite coordinate (also after the node
+///   mesh's range (for glTF, whose importer drops such a triangle with a
+///   warning only: fewer triangles than the file's triangle lists hold,
+///   when every primitive the scene reaches is a triangle list; and an
+///   index count that is not a multiple of 3), a NaN or infinite coordinate (also after the node
 ///   transform or the scale), polygons too large to triangulate (the
 ///   squares of the sizes of all polygons of 5 or more corners sum to more
 ///   than 2^28: ear clipping is quadratic), more than PX_IO_MAX_ELEMENTS

@@ -746,6 +746,16 @@ typedef struct json {
     u32 nroots, rcap;
     u32 *scene_end; /* end index in roots of each scene */
     u32 nscenes, scap;
+    /* For the count of triangles Assimp must return (pxi_check_gltf): each
+     * accessor's "count" (~0u: none or not a plain 32-bit count), and each
+     * mesh primitive's indices accessor, POSITION accessor and mode (~0u:
+     * absent), three entries a primitive. */
+    u32 *acc_count, nacc, acc_cap;
+    u32 *prim, nprim, prim_cap;
+    u32 *mesh_end, nmesh, mesh_cap;     /* each mesh's end in prim, in primitives */
+    u32 *node_mesh, nnode_mesh, nm_cap; /* (node, mesh) pairs of the nodes' "mesh" members */
+    u32 scene;                          /* the "scene" member (~0u: none, 0 is taken) */
+    int meshes_v1;                      /* "meshes" is not an array (glTF 1.0) */
 } json;
 
 static void j_ws(json *j) {
@@ -926,6 +936,18 @@ static int push_u32(json *j, u32 **a, u32 *len, u32 *cap, u32 v) {
     return 1;
 }
 
+/* Member `want` of an object: its value into *out when it is a plain
+ * 32-bit count (else ~0u); any other member is skipped. */
+static int j_plain_u32(json *j, const unsigned char *k, size_t n, const char *want, int depth, u32 *out) {
+    if (!key_is(k, n, want)) return j_value(j, depth);
+    j_ws(j);
+    if (j->p >= j->end || *j->p < '0' || *j->p > '9') return j_value(j, depth);
+    u64 v;
+    if (!j_number(j, &v)) return 0;
+    *out = v == ~0ull ? ~0u : (u32)v;
+    return 1;
+}
+
 /* An element of a "children" or a scene's "nodes" array: a node index. */
 typedef struct j_list_ctx {
     u32 owner; /* the parent node, or ~0u for a scene */
@@ -954,6 +976,12 @@ typedef struct j_node_ctx {
 
 static int node_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     j_node_ctx *c = ctx;
+    if (key_is(k, n, "mesh") && !c->v1) {
+        u32 m = ~0u;
+        if (!j_plain_u32(j, k, n, "mesh", depth, &m)) return 0;
+        return m == ~0u || (push_u32(j, &j->node_mesh, &j->nnode_mesh, &j->nm_cap, c->index) &&
+                            push_u32(j, &j->node_mesh, &j->nnode_mesh, &j->nm_cap, m));
+    }
     if (!key_is(k, n, "children")) return j_value(j, depth);
     if (c->v1) {
         j->v1_children = 1;
@@ -1000,14 +1028,96 @@ static int scene_element(json *j, u32 index, int depth, void *ctx) {
  * an accessor without a buffer view (the review's gltf_sparse.gltf: 1.8 GB
  * before std::bad_alloc). */
 static int accessor_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
-    (void)ctx;
     if (key_is(k, n, "sparse")) return j->sparse = 1, 0;
-    return j_value(j, depth);
+    return j_plain_u32(j, k, n, "count", depth, ctx);
 }
 
 static int accessor_element(json *j, u32 index, int depth, void *ctx) {
     (void)index, (void)ctx;
-    return j_object(j, depth, accessor_member, NULL);
+    u32 count = ~0u;
+    if (!j_object(j, depth, accessor_member, &count)) return 0;
+    return push_u32(j, &j->acc_count, &j->nacc, &j->acc_cap, count);
+}
+
+/* A mesh primitive: "indices", "mode" and "attributes"."POSITION". */
+static int attribute_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    return j_plain_u32(j, k, n, "POSITION", depth, &((u32 *)ctx)[1]);
+}
+
+static int primitive_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    u32 *pr = ctx;
+    if (key_is(k, n, "attributes")) return j_object(j, depth, attribute_member, pr);
+    if (key_is(k, n, "mode")) return j_plain_u32(j, k, n, "mode", depth, &pr[2]);
+    return j_plain_u32(j, k, n, "indices", depth, &pr[0]);
+}
+
+static int primitive_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index, (void)ctx;
+    u32 pr[3] = {~0u, ~0u, ~0u};
+    if (!j_object(j, depth, primitive_member, pr)) return 0;
+    for (int i = 0; i < 3; ++i)
+        if (!push_u32(j, &j->prim, &j->nprim, &j->prim_cap, pr[i])) return 0;
+    return 1;
+}
+
+static int mesh_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    (void)ctx;
+    if (!key_is(k, n, "primitives")) return j_value(j, depth);
+    return j_array(j, depth, primitive_element, NULL);
+}
+
+static int mesh_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index, (void)ctx;
+    if (!j_object(j, depth, mesh_member, NULL)) return 0;
+    return push_u32(j, &j->mesh_end, &j->nmesh, &j->mesh_cap, j->nprim / 3);
+}
+
+/* The triangles Assimp 5.2's glTF 2.0 importer makes: it reads the meshes
+ * of the nodes reachable from the scene the "scene" member names (0 by
+ * default; glTF2Asset.inl Asset::Load, lazily), each mesh once, one
+ * triangle per three indices of a triangle list (mode 4, the default) with
+ * a known index count (or, without indices, POSITION count). ~0ull when
+ * that is not known (another mode, glTF 1.0, no such scene); 0 with *bad
+ * set to the first mesh primitive whose count is not a multiple of 3
+ * (Assimp drops the indices left over). `reach` holds one byte per node,
+ * `used` one per mesh (zeroed). */
+static u64 gltf_triangles(const json *j, unsigned char *reach, unsigned char *used, u32 *bad) {
+    *bad = ~0u;
+    u32 scene = j->scene == ~0u ? 0 : j->scene;
+    if (j->meshes_v1 || scene >= j->nscenes) return ~0ull;
+    int any = 0;
+    for (u32 r = scene ? j->scene_end[scene - 1] : 0; r < j->scene_end[scene]; ++r)
+        reach[j->roots[r]] = 1, any = 1;
+    /* The child links are scanned in rounds until nothing new is reached:
+     * at most the graph's depth plus one, which g_walk bounded by
+     * PXI_MAX_NODE_DEPTH. */
+    for (int changed = any; changed;) {
+        changed = 0;
+        for (u32 e = 0; e < j->g.m; ++e)
+            if (reach[j->g.from[e]] && !reach[j->g.to[e]]) reach[j->g.to[e]] = 1, changed = 1;
+    }
+    for (u32 i = 0; i + 1 < j->nnode_mesh; i += 2) {
+        u32 node = j->node_mesh[i], mesh = j->node_mesh[i + 1];
+        if (node < j->nodes && reach[node]) {
+            if (mesh >= j->nmesh) return ~0ull;
+            used[mesh] = 1;
+        }
+    }
+    u64 total = 0;
+    for (u32 m = 0; m < j->nmesh; ++m) {
+        if (!used[m]) continue;
+        for (u32 p = m ? j->mesh_end[m - 1] : 0; p < j->mesh_end[m]; ++p) {
+            const u32 *pr = &j->prim[3 * p];
+            u32 acc = pr[0] != ~0u ? pr[0] : pr[1], mode = pr[2];
+            if ((mode != ~0u && mode != 4) || acc >= j->nacc || j->acc_count[acc] == ~0u) return ~0ull;
+            if (j->acc_count[acc] % 3 != 0) {
+                *bad = p;
+                return 0;
+            }
+            total += j->acc_count[acc] / 3;
+        }
+    }
+    return total;
 }
 
 static int top_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
@@ -1019,6 +1129,12 @@ static int top_member(json *j, const unsigned char *k, size_t n, int depth, void
         return j_array(j, depth, node_element, NULL);
     }
     if (key_is(k, n, "accessors")) return j_array(j, depth, accessor_element, NULL);
+    if (key_is(k, n, "scene")) return j_plain_u32(j, k, n, "scene", depth, &j->scene);
+    if (key_is(k, n, "meshes")) {
+        j_ws(j);
+        if (j->p < j->end && *j->p != '[') j->meshes_v1 = 1;
+        return j_array(j, depth, mesh_element, NULL);
+    }
     if (key_is(k, n, "scenes")) {
         if (j->have_scenes++) return j->dup = 1, 0;
         j_ws(j);
@@ -1061,6 +1177,7 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
     if (st != PX_OK) return st;
     json j;
     memset(&j, 0, sizeof j);
+    j.scene = ~0u;
     j.p = doc;
     j.end = doc + len;
     j.g.alloc = h->alloc;
@@ -1155,8 +1272,35 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
             goto done;
         }
     }
+    u32 bad = ~0u;
+    u64 tri = ~0ull;
+    unsigned char *reach = pxi_alloc(h->alloc, (size_t)j.nodes + 1),
+                  *used = pxi_alloc(h->alloc, (size_t)j.nmesh + 1);
+    if (reach && used) {
+        memset(reach, 0, (size_t)j.nodes + 1);
+        memset(used, 0, (size_t)j.nmesh + 1);
+        tri = gltf_triangles(&j, reach, used, &bad);
+    }
+    if (reach) pxi_free(h->alloc, reach, (size_t)j.nodes + 1);
+    if (used) pxi_free(h->alloc, used, (size_t)j.nmesh + 1);
+    if (!reach || !used) {
+        st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
+        goto done;
+    }
+    if (bad != ~0u) {
+        st = pxi_error(err, PX_ERR_IO,
+                       "mesh file '%s': glTF mesh primitive %u is a triangle list whose index count is not "
+                       "a multiple of 3 (Assimp 5.2 would drop the indices left over)",
+                       h->path, bad);
+        goto done;
+    }
+    if (h->gltf_triangles) *h->gltf_triangles = tri;
 done:
     if (count) pxi_free(h->alloc, count, (size_t)(j.nodes ? j.nodes : 1) * sizeof(u64));
+    if (j.acc_count) pxi_free(h->alloc, j.acc_count, (size_t)j.acc_cap * sizeof(u32));
+    if (j.prim) pxi_free(h->alloc, j.prim, (size_t)j.prim_cap * sizeof(u32));
+    if (j.mesh_end) pxi_free(h->alloc, j.mesh_end, (size_t)j.mesh_cap * sizeof(u32));
+    if (j.node_mesh) pxi_free(h->alloc, j.node_mesh, (size_t)j.nm_cap * sizeof(u32));
     if (j.roots) pxi_free(h->alloc, j.roots, (size_t)j.rcap * sizeof(u32));
     if (j.scene_end) pxi_free(h->alloc, j.scene_end, (size_t)j.scap * sizeof(u32));
     g_free(&j.g);

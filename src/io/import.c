@@ -25,6 +25,7 @@
 #include <threads.h>
 
 #include <assimp/cimport.h>
+#include <assimp/scene.h>
 
 #include "core/core.h"
 #include "io/fs.h"
@@ -94,6 +95,18 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s' contains no meshes", path);
     } else if (!scene->mRootNode) {
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s' has no root node", path);
+    }
+    if (st == PX_OK && id->gltf_triangles != ~0ull) {
+        /* glTF2Importer drops a triangle with an index out of range (a
+         * warning only): the counts tell. */
+        unsigned long long got = 0;
+        for (unsigned i = 0; i < scene->mNumMeshes; ++i)
+            if (scene->mMeshes[i]) got += scene->mMeshes[i]->mNumFaces;
+        if (got < id->gltf_triangles)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': %llu of its %llu glTF triangles have a vertex index out of range "
+                           "(Assimp 5.2 dropped them)",
+                           path, id->gltf_triangles - got, id->gltf_triangles);
     }
     if (st == PX_OK && check) st = check(path, id, scene, ctx, err);
     if (st == PX_OK && post_flags) {

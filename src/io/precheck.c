@@ -603,6 +603,8 @@ px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_
     }
     io_head h;
     memset(&h, 0, sizeof h);
+    id->gltf_triangles = ~0ull;
+    h.gltf_triangles = &id->gltf_triangles;
     h.path = path;
     h.size = (u64)fsb.st_size;
     h.alloc = alloc;

@@ -9,6 +9,10 @@
 typedef struct pxi_file_id {
     unsigned long long dev, ino, size;
     long long mtime_sec, mtime_nsec;
+    /* glTF: the triangles Assimp 5.2 must return, all its primitives being
+     * triangle lists of known counts (~0: not known, or not glTF). Fewer
+     * mean it dropped some: their indices were out of range. */
+    unsigned long long gltf_triangles;
 } pxi_file_id;
 
 /* Checks the file at `path` (non-NULL, non-empty) before it is imported:

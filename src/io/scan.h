@@ -36,6 +36,7 @@ typedef struct io_head {
     size_t len;                /* min(size, PXI_IO_HEAD_BYTES) */
     io_reader *rd;             /* the whole file, for the checks that stream over it */
     const px_allocator *alloc; /* for the checks' own buffers */
+    u64 *gltf_triangles;       /* out (pxi_check_gltf): the triangles Assimp must return, ~0: unknown */
 } io_head;
 
 /* a + b and a * b saturated at ULLONG_MAX: declared counts are untrusted. */

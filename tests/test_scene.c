@@ -89,7 +89,7 @@ typedef struct sim {
     int bodies, steps, models; /* models: every k-th body is an L model (0: none) */
     double box, speed, spin, margin, report;
     int teleport_every; /* 0: never */
-    int churn;          /* add and remove bodies now and then */
+    int churn;          /* add and remove bodies now and then (2: many at once) */
     int filters;        /* groups, masks and excluded pairs */
     int statics;        /* some static bodies */
     int accel;          /* accelerating bodies with velocities */
@@ -191,7 +191,7 @@ static uint64_t run(const sim *c, int verbose) {
     px_scene *s = px_scene_create(&o, &e);
     CHECK(s != NULL, "create: %s", e.message);
     if (!s) return 0;
-    int cap = c->bodies + 64;
+    int cap = c->bodies + (c->churn == 2 ? 40 * c->steps : 64);
     sim_body *b = calloc((size_t)cap, sizeof *b);
     int n = c->bodies;
     for (int i = 0; i < n; ++i) add_sim_body(s, c, &b[i], i);
@@ -234,7 +234,23 @@ static uint64_t run(const sim *c, int verbose) {
                 CHECK(px_scene_set_velocity(s, x->id, x->v, x->w, &e) == PX_OK, "set velocity: %s",
                       e.message);
         }
-        if (c->churn && step > 0 && step % 7 == 0) {
+        if (c->churn == 2 && step > 0 && step % 5 == 0) {
+            /* Mass churn: a third of the bodies removed at once (their
+             * endpoints leave the arrays in one pass at the step), new ones
+             * added, and one of those removed again before the step. */
+            for (int i = 0; i < n; ++i)
+                if (b[i].alive && urand() < 0.33) {
+                    CHECK(px_scene_remove_body(s, b[i].id, &e) == PX_OK, "remove: %s", e.message);
+                    free_sim_body(&b[i]);
+                }
+            int first = n;
+            for (int k = 0; k < 15 && n < cap; ++k, ++n) add_sim_body(s, c, &b[n], n);
+            if (n > first) {
+                CHECK(px_scene_remove_body(s, b[first].id, &e) == PX_OK, "remove: %s", e.message);
+                free_sim_body(&b[first]);
+            }
+        }
+        if (c->churn == 1 && step > 0 && step % 7 == 0) {
             int victim = (int)(urand() * n);
             if (b[victim].alive) {
                 CHECK(px_scene_remove_body(s, b[victim].id, &e) == PX_OK, "remove: %s", e.message);
@@ -1565,6 +1581,7 @@ int main(void) {
         {"mass teleports", 60, quick ? 30 : 80, 0, 8.0, 0.05, 0.05, 0.1, 0.4, 2, 0, 0, 0, 0, 0, 0},
         {"mass teleports, models, churn, statics", 60, quick ? 30 : 80, 3, 7.0, 0.05, 0.05, 0.1, 0.4, 2, 1, 0,
          1, 0, 0, 0},
+        {"mass churn", 60, quick ? 40 : 100, 3, 7.0, 0.05, 0.05, 0.1, 0.4, 0, 2, 0, 1, 0, 0, 0},
         {"mass teleports, filters", 60, quick ? 30 : 80, 0, 7.0, 0.05, 0.05, 0.1, 0.4, 2, 0, 1, 0, 0, 0, 0},
         {"models", 30, quick ? 40 : 120, 2, 7.0, 0.05, 0.05, 0.1, 0.5, 0, 0, 0, 0, 0, 0, 0},
         {"churn", 40, quick ? 60 : 150, 3, 8.0, 0.05, 0.05, 0.1, 0.4, 0, 1, 0, 0, 0, 0, 0},

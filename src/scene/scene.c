@@ -44,6 +44,7 @@
 #include "narrow/narrow.h"
 
 #define S_NONE UINT32_MAX
+#define S_TOMB UINT32_MAX /* a removed body's endpoint (sep.id) */
 #define S_PI 3.14159265358979323846
 /* The fat box's slack, relative to the body's box half-diagonal. */
 #define S_SLACK 0.125
@@ -150,6 +151,7 @@ struct px_scene {
     uint32_t *ep; /* per body, 6 positions: its min and max on each axis (apart from
                    * the bodies, so that sifting touches little memory) */
     uint32_t n_ep, cap_axis[3];
+    uint32_t n_tomb; /* endpoints of removed bodies still in each array (id S_TOMB) */
     spair *pair;
     uint32_t n_pair, cap_pair, free_pair, live_pairs;
     shash pairs, excluded;
@@ -599,9 +601,10 @@ static double displacement(px_vec3 center, double radius, const px_pose *p, cons
      * without the libm call; capped at pi. */
     double theta = sn < 0.7071 ? 2.0 * sn / sqrt(1.0 - sn * sn) : S_PI;
     double d = pxi_len_safe(pxi_sub(cq, cp)) + (theta + sk) * radius;
-    /* Rounding of the points and of theta: a few ulps of the coordinates. */
+    /* Rounding of the points and of theta: a few ulps of the coordinates
+     * (sqrt 3 max|c| >= |c|, without a square that could underflow). */
     return d * (1.0 + 16.0 * DBL_EPSILON) +
-           16.0 * DBL_EPSILON * (pxi_len_safe(cp) + pxi_len_safe(cq) + radius);
+           16.0 * DBL_EPSILON * (1.7320508075688774 * (pxi_max_abs(cp) + pxi_max_abs(cq)) + radius);
 }
 
 /* The same bound by a matrix norm, for any two matrices (no rotation
@@ -623,7 +626,7 @@ static double moved_points(px_vec3 center, double radius, const px_pose *p, cons
     double n1 = pxi_max2(col[0], pxi_max2(col[1], col[2])), ni = pxi_max2(row[0], pxi_max2(row[1], row[2]));
     double d = pxi_len_safe(pxi_sub(cq, cp)) + sqrt(pxi_min2(f, n1 * ni)) * radius;
     return d * (1.0 + 16.0 * DBL_EPSILON) +
-           16.0 * DBL_EPSILON * (pxi_len_safe(cp) + pxi_len_safe(cq) + radius);
+           16.0 * DBL_EPSILON * (1.7320508075688774 * (pxi_max_abs(cp) + pxi_max_abs(cq)) + radius);
 }
 
 /* ---- sweep and prune ------------------------------------------------------ */
@@ -868,6 +871,7 @@ static int rebuild(px_scene *s) {
         n += 2;
     }
     s->n_ep = n;
+    s->n_tomb = 0;
     for (int k = 0; k < 3; ++k) {
         sort(s->axis[k], n, sizeof(sep), cmp_sep);
         for (uint32_t i = 0; i < n; ++i) EP(s, s->axis[k][i].id >> 1, k, s->axis[k][i].id & 1) = i;
@@ -937,19 +941,30 @@ static int insert(px_scene *s, uint32_t id) {
     return ok;
 }
 
-/* Takes a body's endpoints out of the arrays. */
-static void extract(px_scene *s, uint32_t id) {
+/* Marks a removed body's endpoints as tombstones, which the next step
+ * takes out of the arrays all at once (compact): removing many bodies
+ * costs one pass over the arrays, not one each. */
+static void entomb(px_scene *s, uint32_t id) {
+    for (int k = 0; k < 3; ++k)
+        for (int m = 0; m < 2; ++m) s->axis[k][EP(s, id, k, m)].id = S_TOMB;
+    s->n_tomb += 2;
+}
+
+/* Takes the tombstones out of the arrays (before anything sifts). */
+static void compact(px_scene *s) {
+    if (!s->n_tomb) return;
     for (int k = 0; k < 3; ++k) {
         sep *e = s->axis[k];
         uint32_t w = 0;
         for (uint32_t i = 0; i < s->n_ep; ++i) {
-            if (e[i].id >> 1 == id) continue;
+            if (e[i].id == S_TOMB) continue;
             e[w] = e[i];
             EP(s, e[w].id >> 1, k, e[w].id & 1) = w;
             ++w;
         }
     }
-    s->n_ep -= 2;
+    s->n_ep -= s->n_tomb;
+    s->n_tomb = 0;
 }
 
 /* ---- motion ------------------------------------------------------------ */
@@ -1719,7 +1734,7 @@ px_status px_scene_remove_body(px_scene *s, uint32_t id, px_error *err) {
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_remove_body: out of memory");
     while (b->first_pair != S_NONE) free_pair(s, b->first_pair, 0);
     if (!b->added)
-        extract(s, id);
+        entomb(s, id);
     else
         s->added--;
     if (b->chain) s->chains--;
@@ -1835,6 +1850,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     if (!GROW(s, s->pending, s->cap_pending, s->n_pending + s->live_pairs + 1) ||
         !GROW(s, s->doomed, s->cap_doomed, s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    compact(s);
     double dt = s->stepped ? time - s->time : INFINITY;
     uint64_t checked0 = 0;
     s->stats.swaps = 0;

@@ -1083,6 +1083,17 @@ static void test_bad_files(void) {
         EXPECT_LOAD_ERROR(write_gltf_ex(glb, 2),
                           "glTF mesh primitive 0 is a triangle list whose index count");
     }
+    /* OBJ: Assimp 5.2 skips a line that starts with blank space (here a
+     * vertex and a face would be lost); a continuation line may */
+    EXPECT_LOAD_ERROR(write_file("indent.obj", "v 0 0 0\n  v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", (size_t)-1),
+                      "line 2: a line that starts with blank space");
+    {
+        px_mesh *mc = load(
+            write_file("cont.obj", "v 0 0 0\r\nv 1 0 0\nv 0 1 0\nf 1 \\\n  2 3\n  \n  # note\n", (size_t)-1),
+            0);
+        CHECK(mc && px_mesh_triangle_count(mc) == 1, "continued OBJ line");
+        px_mesh_destroy(mc);
+    }
     /* a cyclic node graph (glTF children 0 -> 1 -> 0) */
     EXPECT_LOAD_ERROR(
         write_file("cycle.gltf",

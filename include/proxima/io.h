@@ -87,6 +87,9 @@
 ///   fewer than three vertices, a number with more than 19 digits before
 ///   its point or in its exponent (Assimp reads one above 2^64 as 0), a
 ///   NUL byte (Assimp stops there) and a solid name over 1023 bytes;
+/// - OBJ: a line that starts with blank space (not a continuation, blank or
+///   comment line), which Assimp 5.2 skips whole, losing the vertex, face
+///   or object it holds;
 /// - COLLADA and glTF node graphs: a cycle (a node its own descendant,
 ///   through nesting, <instance_node> or glTF "children"), a node expanding
 ///   to more than PX_IO_MAX_NODES node instances or a file defining more

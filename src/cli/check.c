@@ -509,6 +509,36 @@ static int part_names(const assembly *as, const px_mesh *m, const uint32_t *ids,
     return ok;
 }
 
+/* The next line of an OBJ file without its end ("\n", "\r\n" or a lone
+ * "\r", as Assimp ends lines), into *line (grown as getline does); its
+ * length, or -1 at the end of the file or when out of memory. */
+static ssize_t obj_line(FILE *f, char **line, size_t *cap) {
+    size_t n = 0;
+    int c = getc(f);
+    if (c == EOF) return -1;
+    for (; c != EOF && c != '\n' && c != '\r'; c = getc(f)) {
+        if (n + 2 > *cap) {
+            size_t nc = *cap ? 2 * *cap : 256;
+            char *b = realloc(*line, nc);
+            if (!b) return -1;
+            *line = b;
+            *cap = nc;
+        }
+        (*line)[n++] = (char)c;
+    }
+    if (c == '\r') {
+        int d = getc(f);
+        if (d != '\n' && d != EOF) ungetc(d, f);
+    }
+    if (!*line) {
+        *line = malloc(256);
+        if (!*line) return -1;
+        *cap = 256;
+    }
+    (*line)[n] = '\0';
+    return (ssize_t)n;
+}
+
 /* An OBJ file whose objects Assimp 5.2 would mix up: it reads an `o` name
  * up to its first space, and an `o` naming an earlier object (`o` or `g`)
  * continues that object, so `o bolt 1` and `o bolt 2` would be one part
@@ -530,20 +560,34 @@ static int obj_objects_distinct(const char *path) {
         unsigned long line;
     } seen;
     seen *v = NULL;
-    size_t n = 0, cap = 0, len = 0, current = SIZE_MAX, group = SIZE_MAX;
+    /* current: the object whose mesh takes the faces; meant: the one the
+     * file means them for (they differ after an `o` or `g` that names an
+     * earlier object). */
+    size_t n = 0, cap = 0, len = 0, current = SIZE_MAX, meant = SIZE_MAX, group = SIZE_MAX;
     char *line = NULL;
     unsigned long lineno = 0;
     int ok = 1;
     ssize_t got;
-    while (ok && (got = getline(&line, &len, f)) >= 0) {
+    while (ok && (got = obj_line(f, &line, &len)) >= 0) {
         ++lineno;
+        /* Assimp reads a keyword only at the start of a line. */
         char *c = line, *e = line + got;
-        while (c < e && (*c == ' ' || *c == '\t')) ++c;
-        int is_o = *c == 'o';
-        if (!(is_o || *c == 'g') || !(c[1] == ' ' || c[1] == '\t')) continue;
+        int is_o = *c == 'o', blank = c[0] && (c[1] == ' ' || c[1] == '\t');
+        if ((*c == 'f' || *c == 'l' || *c == 'p') && blank && meant != current) {
+            note("'%s' line %lu: object '%s' (line %lu) continues after object '%s' (line %lu), and Assimp "
+                 "5.2 puts the faces from here into the part of '%s' (unless a new material started a mesh): "
+                 "give each object a distinct name, or keep an object's lines together",
+                 path, lineno, v[meant].full, v[meant].line, v[current].full, v[current].line,
+                 v[current].full);
+            ok = 0;
+            break;
+        }
+        if (!(is_o || *c == 'g') || !blank) continue;
         c += 2;
         while (c < e && (*c == ' ' || *c == '\t')) ++c;
-        while (e > c && (e[-1] == '\n' || e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t')) --e;
+        /* An `o` name is its first word; a `g` name keeps trailing blanks. */
+        if (is_o)
+            while (e > c && (e[-1] == ' ' || e[-1] == '\t')) --e;
         if (e == c) continue;
         size_t key_len = (size_t)(e - c), full_len = key_len;
         if (is_o)
@@ -556,8 +600,13 @@ static int obj_objects_distinct(const char *path) {
         for (size_t i = 0; i < n && found == SIZE_MAX; ++i)
             if (strlen(v[i].key) == key_len && memcmp(v[i].key, c, key_len) == 0) found = i;
         if (!is_o && group != SIZE_MAX && strlen(v[group].key) == key_len &&
-            memcmp(v[group].key, c, key_len) == 0)
-            continue; /* the active group again */
+            memcmp(v[group].key, c, key_len) == 0) {
+            /* The active group again: Assimp changes nothing, so after
+             * another object the faces that follow go on into that
+             * object's part. */
+            meant = group;
+            continue;
+        }
         if (is_o && found != SIZE_MAX) {
             if (strlen(v[found].full) != full_len || memcmp(v[found].full, c, full_len) != 0) {
                 note("'%s' line %lu: object '%.*s' is '%s' to the loader, as is '%s' on line %lu (Assimp "
@@ -566,14 +615,8 @@ static int obj_objects_distinct(const char *path) {
                      "distinct name without spaces",
                      path, lineno, (int)full_len, c, v[found].key, v[found].full, v[found].line);
                 ok = 0;
-            } else if (found != current) {
-                note("'%s' line %lu: object '%s' (line %lu) continues after object '%s' (line %lu), and "
-                     "Assimp 5.2 would put its faces from here into the part of '%s': give each object a "
-                     "distinct name, or keep an object's lines together",
-                     path, lineno, v[found].full, v[found].line, v[current].full, v[current].line,
-                     v[current].full);
-                ok = 0;
             }
+            meant = found; /* Assimp's current mesh stays current's */
             continue;
         }
         if (n == cap) {
@@ -591,7 +634,7 @@ static int obj_objects_distinct(const char *path) {
             free(v[n].full);
             break;
         }
-        current = n;
+        current = meant = n;
         if (!is_o) group = n;
         ++n;
     }

@@ -150,7 +150,7 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             const char *v = argv[++i];
             errno = 0;
             o->tolerance = strtod(v, &end);
-            if (end == v || *end || errno == ERANGE ||
+            if (end == v || *end || (errno == ERANGE && (isinf(o->tolerance) || o->tolerance == 0.0)) ||
                 !(o->tolerance >= PX_MODEL_MIN_TOLERANCE && o->tolerance <= 1.0))
                 return usage_error("--tolerance takes a number in [%g, 1], not '%s'", PX_MODEL_MIN_TOLERANCE,
                                    v);
@@ -160,7 +160,8 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             const char *v = argv[++i];
             errno = 0;
             o->scale = strtod(v, &end);
-            if (end == v || *end || errno == ERANGE || !isfinite(o->scale) || !(o->scale > 0.0))
+            if (end == v || *end || (errno == ERANGE && (isinf(o->scale) || o->scale == 0.0)) ||
+                !isfinite(o->scale) || !(o->scale > 0.0))
                 return usage_error("--scale takes a positive number, not '%s'", v);
         } else if (!strcmp(a, "--pose-a") || !strcmp(a, "--pose-b")) {
             if (!has_value) return usage_error("%s needs tx,ty,tz[,qw,qx,qy,qz]", a);
@@ -175,7 +176,7 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             const char *v = argv[++i];
             errno = 0;
             o->clearance = strtod(v, &end);
-            if (end != v && !*end && errno == ERANGE)
+            if (end != v && !*end && errno == ERANGE && (isinf(o->clearance) || o->clearance == 0.0))
                 return usage_error("--clearance '%s' is beyond the range of doubles", v);
             if (end == v || *end || !isfinite(o->clearance) || !(o->clearance >= 0.0))
                 return usage_error("--clearance takes a finite number >= 0, not '%s'", v);

@@ -808,7 +808,15 @@ static double room(const double fat[6], const double w[6], double g) {
     return r;
 }
 
-/* New fat box when the grown world box leaves the old one; 1 when moved.
+/* 1 when fat boxes x and y overlap or touch. */
+static int boxes_meet(const double x[6], const double y[6]) {
+    for (int k = 0; k < 3; ++k)
+        if (x[k] > y[3 + k] || y[k] > x[3 + k]) return 0;
+    return 1;
+}
+
+/* New fat box when the grown world box leaves the old one; 1 when moved,
+ * 2 when the new box misses the old one (a teleport).
  * Each check records the room left between the grown box and the fat box:
  * until the body's travel since then uses that room up, no point of it can
  * have left, and no box is computed. */
@@ -819,13 +827,14 @@ static int refit(px_scene *s, sbody *b) {
     world_box(b, w);
     int moved = 0;
     if (!b->fitted || room(b->fat, w, g) < 0.0) {
-        double slack = g + S_SLACK * b->size;
+        double slack = g + S_SLACK * b->size, fat[6];
         for (int i = 0; i < 3; ++i) {
-            b->fat[i] = w[i] - slack;
-            b->fat[3 + i] = w[3 + i] + slack;
+            fat[i] = w[i] - slack;
+            fat[3 + i] = w[3 + i] + slack;
         }
+        moved = b->fitted && !boxes_meet(b->fat, fat) ? 2 : 1;
+        memcpy(b->fat, fat, sizeof fat);
         b->fitted = 1;
-        moved = 1;
     }
     b->fit_travel = b->travel;
     b->fit_room = pxi_max2(room(b->fat, w, g), 0.0);
@@ -896,13 +905,6 @@ static int rebuild(px_scene *s) {
         active[n_active++] = b;
     }
     s->added = 0;
-    return 1;
-}
-
-/* 1 when fat boxes x and y overlap or touch. */
-static int boxes_meet(const double x[6], const double y[6]) {
-    for (int k = 0; k < 3; ++k)
-        if (x[k] > y[3 + k] || y[k] > x[3 + k]) return 0;
     return 1;
 }
 
@@ -1872,14 +1874,12 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         sbody *b = &s->body[id];
         b->dirty = 0;
         measure(s, id, dt, !s->stepped);
-        double old[6];
-        memcpy(old, b->fat, sizeof old);
-        int fitted = b->fitted;
         /* A body added since the last step is sorted in below, at its
          * refitted box. */
-        if (refit(s, b) && !b->added) {
+        int moved = refit(s, b);
+        if (moved && !b->added) {
             s->dirty[n_moved++] = id;
-            far += fitted && !boxes_meet(old, b->fat);
+            far += moved == 2;
         }
     }
     s->n_dirty = 0;

@@ -571,6 +571,14 @@ static void remove_pair(px_scene *s, uint32_t a, uint32_t b) {
 
 /* ---- motion bounds ----------------------------------------------------- */
 
+/* |v| without underflow: the plain root when its square is far from the
+ * subnormal range (coordinates stay below 2^251, so squares never
+ * overflow), pxi_len_safe's scaling below (bodies down to 2^-1000). */
+static inline double len_s(px_vec3 v) {
+    double l2 = pxi_dot(v, v);
+    return l2 >= 0x1p-900 ? sqrt(l2) : pxi_len_safe(v);
+}
+
 /* x >= 0 rounded up: at least the exact value of the operation that gave
  * x (rounding to nearest is off by at most half an ulp, and x eps is at
  * least one ulp of x; the smallest subnormal covers 0 and subnormals). */
@@ -600,7 +608,7 @@ static double displacement(px_vec3 center, double radius, const px_pose *p, cons
     /* theta = 2 asin(sn) <= 2 sn / sqrt(1 - sn^2) (asin x <= x / sqrt(1 - x^2)),
      * without the libm call; capped at pi. */
     double theta = sn < 0.7071 ? 2.0 * sn / sqrt(1.0 - sn * sn) : S_PI;
-    double d = pxi_len_safe(pxi_sub(cq, cp)) + (theta + sk) * radius;
+    double d = len_s(pxi_sub(cq, cp)) + (theta + sk) * radius;
     /* Rounding of the points and of theta: a few ulps of the coordinates
      * (sqrt 3 max|c| >= |c|, without a square that could underflow). */
     return d * (1.0 + 16.0 * DBL_EPSILON) +
@@ -624,7 +632,7 @@ static double moved_points(px_vec3 center, double radius, const px_pose *p, cons
             col[j] += fabs(m);
         }
     double n1 = pxi_max2(col[0], pxi_max2(col[1], col[2])), ni = pxi_max2(row[0], pxi_max2(row[1], row[2]));
-    double d = pxi_len_safe(pxi_sub(cq, cp)) + sqrt(pxi_min2(f, n1 * ni)) * radius;
+    double d = len_s(pxi_sub(cq, cp)) + sqrt(pxi_min2(f, n1 * ni)) * radius;
     return d * (1.0 + 16.0 * DBL_EPSILON) +
            16.0 * DBL_EPSILON * (1.7320508075688774 * (pxi_max_abs(cp) + pxi_max_abs(cq)) + radius);
 }
@@ -1068,7 +1076,7 @@ static double root_gap(const sbody *x, const sbody *y, px_pair_cache *cache) {
         if (pxi_distance_checked(hx, &x->pose, hy, &y->pose, cache, &d) == PX_OK) return d.distance;
     }
     px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
-    return pxi_len_safe(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
+    return len_s(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y);
 }
 
 /* Two polytopes whose inner balls overlap intersect (the balls' test of
@@ -1085,7 +1093,7 @@ static int inner_overlap(const px_scene *s, const sbody *x, const sbody *y, px_v
     if (!(x->ir > 0.0) || !(y->ir > 0.0)) return 0;
     px_vec3 cx = pxi_xform(&x->pose, x->ic), cy = pxi_xform(&y->pose, y->ic);
     double rx = x->ir * (1.0 - x->sk), ry = y->ir * (1.0 - y->sk);
-    double d = pxi_len_safe(pxi_sub(cy, cx));
+    double d = len_s(pxi_sub(cy, cx));
     double slack = 16.0 * DBL_EPSILON * (pxi_max_abs(cx) + pxi_max_abs(cy) + x->reach + y->reach) +
                    frame_pad(s, x) + frame_pad(s, y);
     if (!(d + slack < rx + ry)) return 0;
@@ -1111,7 +1119,7 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
         /* The bounding spheres first (a pair entering the sweep would
          * otherwise start with a cold query), then the root hulls. */
         px_vec3 cx = pxi_xform(&x->pose, x->sc), cy = pxi_xform(&y->pose, y->sc);
-        lb = frame_low(s, x, y, pxi_len_safe(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y));
+        lb = frame_low(s, x, y, len_s(pxi_sub(cx, cy)) - sphere_r(x) - sphere_r(y));
         if (q->kind != K_CONVEX && !(lb - 64.0 * DBL_EPSILON * (place + fabs(lb)) > s->report))
             lb = pxi_max2(lb, frame_low(s, x, y, root_gap(x, y, &q->root)));
     }
@@ -1676,11 +1684,11 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->center = d->center;
     b->lo = lo;
     b->hi = hi;
-    b->size = 0.5 * pxi_len_safe(pxi_sub(hi, lo));
+    b->size = 0.5 * len_s(pxi_sub(hi, lo));
     double r = 0.0;
     for (int c = 0; c < 8; ++c) {
         px_vec3 p = pxi_v(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
-        r = pxi_max2(r, pxi_len_safe(pxi_sub(p, d->center)));
+        r = pxi_max2(r, len_s(pxi_sub(p, d->center)));
     }
     /* The bounding sphere (the model's root, the polytope's) often bounds
      * the radius about `center` tighter than the box's corners. */
@@ -1695,7 +1703,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
         sc = bd.center;
         sr = bd.radius;
     }
-    r = pxi_min2(r, pxi_len_safe(pxi_sub(sc, d->center)) + sr);
+    r = pxi_min2(r, len_s(pxi_sub(sc, d->center)) + sr);
     b->radius = r * (1.0 + 8.0 * DBL_EPSILON);
     b->sc = sc;
     b->sr = sr * (1.0 + 8.0 * DBL_EPSILON);
@@ -1703,7 +1711,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
         b->ic = pxi_add(d->convex->inner_center, d->convex->origin);
         b->ir = d->convex->inner_radius;
     }
-    b->reach = pxi_len_safe(sc) + 3.0 * b->sr;
+    b->reach = len_s(sc) + 3.0 * b->sr;
     int fixed = (d->flags & PX_BODY_STATIC) != 0;
     b->vmax = fixed ? 0.0 : d->max_speed;
     b->wmax = fixed ? 0.0 : d->max_angular_speed;
@@ -1809,7 +1817,7 @@ px_status px_scene_set_velocity(px_scene *s, uint32_t id, px_vec3 v, double w, p
     if (!body_ok(s, id))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_velocity: no body %u in the scene", id);
     sbody *b = &s->body[id];
-    double lin = pxi_len_safe(v);
+    double lin = len_s(v);
     if (!pxi_is_finite3(v) || !isfinite(w) || w < 0.0 || lin > b->vmax || w > b->wmax)
         return pxi_error(
             err, PX_ERR_INVALID_ARGUMENT,

@@ -134,6 +134,23 @@ if [ -n "$A" ]; then
   expect 1 "^e_gap.stl +f_gap.stl +clearance +0.5 +21 1 0 +21.5 1 0" -- "$B" check "$T/stl" --clearance 0.75
   expect 1 "^g_shell +h_inner +b inside a +0 " -- "$B" check "$T/boxes.obj" --clearance 0.75
   expect 1 "found: +5 pairs: 2 interfering, 2 inside another part, 1 closer than 0.75" -- "$B" check "$T/boxes.dae" --clearance 0.75
+  # A part of two cubes, one inside a box and one outside: only part of
+  # it is inside (a review found "a inside b" said of it).
+  cube() { # cube NAME X0 HALF VERTEX_OFFSET
+    local i=$4
+    [ -n "$1" ] && echo "o $1"
+    for x in -1 1; do for y in -1 1; do for z in -1 1; do
+      awk -v c="$2" -v h="$3" -v x=$x -v y=$y -v z=$z 'BEGIN { print "v", c + x * h, y * h, z * h }'
+    done; done; done
+    for f in "1 2 4" "1 4 3" "5 7 8" "5 8 6" "1 5 6" "1 6 2" "3 4 8" "3 8 7" "1 3 7" "1 7 5" "2 6 8" "2 8 4"; do
+      set -- $f
+      echo "f $(($1 + i)) $(($2 + i)) $(($3 + i))"
+    done
+  }
+  { cube two 0 0.25 0; cube "" 10 0.25 8; cube big 0 1.5 16; cube small 20 0.25 24; cube box 20 1.5 32; } >"$T/partial.obj"
+  expect 1 "^two +big +part of a in b +0 " -- "$B" check "$T/partial.obj"
+  expect 1 "^small +box +a inside b +0 " -- "$B" check "$T/partial.obj"
+  ok '"$B" check "$T/partial.obj" --json | grep -q "\"part_a\": \"two\", \"part_b\": \"big\", .*\"inside\": \"part of a\"}"' "check --json: part of a inside"
   # --ignore: the pairs touching by design; then clean (exit 0), with the
   # closest pair named.
   IGN="--ignore a_overlap.stl,b_overlap.stl --ignore c_touch.stl,d_touch.stl --ignore g_shell.stl,h_inner.stl --ignore i_sheet.stl,g_shell.stl"

@@ -661,7 +661,7 @@ static void test_containment(void) {
         int inside = fabs(p.t.x) < h && r.distance > 0;
         double want = inside ? 0.0 : r.distance;
         if (want <= o.report_distance) {
-            CHECK(n == 1 && pr[0].distance == want && pr[0].contained == (uint32_t)(inside ? 2 : 0) &&
+            CHECK(n == 1 && pr[0].distance == want && pr[0].contained == (uint32_t)(inside ? 2 | 8 : 0) &&
                       pr[0].contact == (want <= o.margin),
                   "containment: x %.2f: %zu pairs, distance %g (want %g), contained %u", p.t.x, n,
                   n ? pr[0].distance : -1.0, want, n ? pr[0].contained : 9u);
@@ -674,6 +674,86 @@ static void test_containment(void) {
     px_scene_destroy(s);
     px_convex_destroy(small);
     px_model_destroy(box);
+}
+
+/* Two closed cubes of half-side h, centred at x = 0 and x = gap: one model
+ * of two connected pieces. */
+static px_model *two_cubes(double h, double gap) {
+    double xyz[48];
+    for (int c = 0; c < 16; ++c)
+        for (int k = 0; k < 3; ++k) xyz[3 * c + k] = ((c & 7) >> k) & 1 ? h : -h;
+    for (int c = 8; c < 16; ++c) xyz[3 * c] += gap;
+    const uint32_t one[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                              2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    uint32_t tri[72];
+    for (int i = 0; i < 36; ++i) tri[i] = one[i], tri[36 + i] = one[i] + 8;
+    px_mesh_desc md;
+    memset(&md, 0, sizeof md);
+    md.xyz = xyz;
+    md.vertex_count = 16;
+    md.triangles = tri;
+    md.triangle_count = 24;
+    px_mesh *mesh = px_mesh_create(&md, NULL, NULL);
+    px_model_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.pieces = PX_PIECES_TRIANGLES;
+    px_model *m = mesh ? px_model_create_from_mesh(mesh, &mo, NULL) : NULL;
+    px_mesh_destroy(mesh);
+    return m;
+}
+
+/* A body of two pieces whose one piece lies inside a closed box and the
+ * other outside: contained says a piece is inside (bit 0 or 1) but not
+ * all of it (bits 2 and 3 clear); with both pieces inside it says all. */
+static void test_partial_containment(void) {
+    px_error e;
+    px_model *box = box_triangles(1.5), *two = two_cubes(0.25, 10.0), *near = two_cubes(0.25, 1.0);
+    CHECK(box && two && near, "models");
+    px_scene_options o;
+    memset(&o, 0, sizeof o);
+    px_scene *s = px_scene_create(&o, &e);
+    px_body_desc d;
+    memset(&d, 0, sizeof d);
+    d.pose = px_pose_identity();
+    d.flags = PX_BODY_STATIC;
+    uint32_t id[3];
+    d.model = two;
+    CHECK(px_scene_add_body(s, &d, &id[0], &e) == PX_OK, "add two");
+    d.model = box;
+    CHECK(px_scene_add_body(s, &d, &id[1], &e) == PX_OK, "add box");
+    d.model = near;
+    d.pose.t.x = -0.5; /* its cubes at -0.5 and 0.5: both inside the box */
+    d.pose.t.y = 30.0;
+    CHECK(px_scene_add_body(s, &d, &id[2], &e) == PX_OK, "add near");
+    px_pose boxed = px_pose_identity();
+    boxed.t.y = 30.0;
+    memset(&d, 0, sizeof d);
+    d.model = box;
+    d.pose = boxed;
+    d.flags = PX_BODY_STATIC;
+    uint32_t id4;
+    CHECK(px_scene_add_body(s, &d, &id4, &e) == PX_OK, "add second box");
+    CHECK(px_scene_step(s, 0, &e) == PX_OK, "step: %s", e.message);
+    size_t n;
+    const px_scene_pair *pr = px_scene_pairs(s, &n);
+    int seen = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (pr[i].body_a == id[0] && pr[i].body_b == id[1]) {
+            CHECK(pr[i].distance == 0.0 && pr[i].contained == 1, "one of two pieces inside: contained %u",
+                  pr[i].contained);
+            seen |= 1;
+        }
+        if (pr[i].body_a == id[2] && pr[i].body_b == id4) {
+            CHECK(pr[i].distance == 0.0 && pr[i].contained == (1 | 4), "both pieces inside: contained %u",
+                  pr[i].contained);
+            seen |= 2;
+        }
+    }
+    CHECK(seen == 3, "both pairs reported (%d, %zu pairs)", seen, n);
+    px_scene_destroy(s);
+    px_model_destroy(box);
+    px_model_destroy(two);
+    px_model_destroy(near);
 }
 
 /* Static model bodies (an assembly check): a pair of two static bodies is
@@ -1607,6 +1687,7 @@ int main(void) {
     test_savings();
     test_inner_balls();
     test_containment();
+    test_partial_containment();
     test_static_caches();
     test_tiny_scales();
     test_no_allocation();

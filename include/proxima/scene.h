@@ -190,9 +190,11 @@ typedef struct px_scene_pair {
     /// Nonzero when one body lies inside a closed part of the other
     /// without touching its surface: bit 0 (1) when a piece of body_a lies
     /// inside body_b, bit 1 (2) when a piece of body_b lies inside body_a
-    /// (3: both, for bodies of several pieces). Distance (and upper_bound)
-    /// is then 0, as between solids, and the witness points are the
-    /// closest points of the two surfaces.
+    /// (both, for bodies of several pieces); bit 2 (4) with bit 0 when
+    /// every piece of body_a lies inside body_b (all of it), bit 3 (8)
+    /// with bit 1 when all of body_b lies inside body_a. Distance (and
+    /// upper_bound) is then 0, as between solids, and the witness points
+    /// are the closest points of the two surfaces.
     uint32_t contained;
 } px_scene_pair;
 

@@ -51,7 +51,7 @@ typedef struct finding {
     int status;    /* F_* */
     double distance, upper;
     px_vec3 pa, pb;
-    int inside; /* 0: not told, 1: a inside b, 2: b inside a */
+    int inside; /* 0: not told, 1: a inside b, 2: b inside a, 3: part of a in b, 4: part of b in a */
 } finding;
 
 typedef struct findings {
@@ -965,10 +965,8 @@ static void print_json(const assembly *as, const check_opts *o, const findings *
         printf(", \"point_b\": ");
         json_vec(f->pb);
         printf(", \"surface_distance\": %.17g", gap(f));
-        printf(", \"inside\": %s}", f->status != F_INSIDE ? "null"
-                                    : f->inside == 1      ? "\"a\""
-                                    : f->inside == 2      ? "\"b\""
-                                                          : "null");
+        static const char *inside_json[] = {"null", "\"a\"", "\"b\"", "\"part of a\"", "\"part of b\""};
+        printf(", \"inside\": %s}", f->status == F_INSIDE ? inside_json[f->inside] : "null");
     }
     printf("%s],\n  \"counts\": {\"interference\": %zu, \"inside\": %zu, \"clearance\": %zu, \"possible\": "
            "%zu},\n",
@@ -1047,21 +1045,22 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
             if (na > wa) wa = na;
             if (nb > wb) wb = nb;
         }
-        printf("\n%-*s  %-*s  %-12s  %-14s  %s%-38s  %s\n", wa, "part a", wb, "part b", "status", "distance",
+        printf("\n%-*s  %-*s  %-14s  %-14s  %s%-38s  %s\n", wa, "part a", wb, "part b", "status", "distance",
                exact ? "" : "upper bound     ", "point a (world)", "point b (world)");
         for (size_t i = 0; i < fs->n; ++i) {
             const finding *f = &fs->v[i];
             char st[32], pa[96], pb[96], up[32] = "";
+            static const char *inside_table[] = {"inside", "a inside b", "b inside a", "part of a in b",
+                                                 "part of b in a"};
             snprintf(st, sizeof st, "%s",
-                     f->status == F_INSIDE && f->inside ? (f->inside == 1 ? "a inside b" : "b inside a")
-                                                        : status_name[f->status]);
+                     f->status == F_INSIDE ? inside_table[f->inside] : status_name[f->status]);
             snprintf(pa, sizeof pa, "%.9g %.9g %.9g", f->pa.x, f->pa.y, f->pa.z);
             snprintf(pb, sizeof pb, "%.9g %.9g %.9g", f->pb.x, f->pb.y, f->pb.z);
             if (!exact) snprintf(up, sizeof up, "%-14.9g  ", f->upper);
             put_name(as->parts[f->a].name, wa);
             printf("  ");
             put_name(as->parts[f->b].name, wb);
-            printf("  %-12s  %-14.9g  %s%-38s  %s\n", st, f->distance, up, pa, pb);
+            printf("  %-14s  %-14.9g  %s%-38s  %s\n", st, f->distance, up, pa, pb);
         }
         printf("\n");
         printf("found:     %zu pairs: %zu interfering, %zu inside another part, %zu closer than %s", fs->n,
@@ -1177,9 +1176,11 @@ int check_run(const check_opts *o) {
             f->status = F_POSSIBLE;
         else if (p->upper_bound > 0.0 && f->status == F_INTERFERENCE)
             f->status = F_CLEARANCE;
-        /* Which one is inside: the scene says (1: a inside b, 2: b inside
-         * a; 3, pieces of each inside the other, names neither). */
-        f->inside = p->contained == 1 ? 1 : p->contained == 2 ? 2 : 0;
+        /* Which one is inside: the scene says (bit 0: a piece of a inside
+         * b, bit 2: all of a; bits 1 and 3 the same for b). Pieces of each
+         * inside the other name neither. */
+        uint32_t c = p->contained;
+        f->inside = (c & 3) == 1 ? (c & 4 ? 1 : 3) : (c & 3) == 2 ? (c & 8 ? 2 : 4) : 0;
         f->distance = p->distance;
         f->upper = p->upper_bound;
         f->pa = p->point_a;

@@ -1045,11 +1045,13 @@ static double safe_time(const px_scene *s, const spair *q, double g) {
  * surfaces being apart: one representative point per connected piece of
  * `in` (its first vertex for a polytope) tested against `out`'s solid, after
  * a test against its box. Only triangle trees need this: convex leaves are
- * solids to the distance query already. */
+ * solids to the distance query already. 0: no piece inside, 1: some, 3:
+ * every piece (each connected piece lies wholly inside or wholly outside
+ * when the surfaces are apart, so then all of `in` is inside). */
 static int inside_solid(const sbody *in, const sbody *out) {
     const px_model *m = out->model;
     if (!m || m->pieces != PX_PIECES_TRIANGLES || m->solid_parts == 0) return 0;
-    uint32_t n = in->model ? in->model->n_reps : 1;
+    uint32_t n = in->model ? in->model->n_reps : 1, k = 0;
     for (uint32_t i = 0; i < n; ++i) {
         px_vec3 p;
         if (in->model)
@@ -1060,9 +1062,9 @@ static int inside_solid(const sbody *in, const sbody *out) {
         if (l.x < out->lo.x || l.y < out->lo.y || l.z < out->lo.z || l.x > out->hi.x || l.y > out->hi.y ||
             l.z > out->hi.z)
             continue;
-        if (pxi_model_point_inside(m, l)) return 1;
+        k += pxi_model_point_inside(m, l) != 0;
     }
-    return 0;
+    return k == 0 ? 0 : k == n ? 3 : 1;
 }
 
 /* A lower bound on the distance of a model pair: between the hulls of the
@@ -1160,7 +1162,11 @@ static px_status query(const px_scene *s, spair *q, const sbody *x, const sbody 
             r->leaf_a = swap ? d.leaf_b : d.leaf_a;
             r->leaf_b = swap ? d.leaf_a : d.leaf_b;
             /* Solids: a body inside the other's closed part touches it. */
-            if (d.distance > 0.0) r->contained = (uint32_t)(inside_solid(x, y) | inside_solid(y, x) << 1);
+            if (d.distance > 0.0) {
+                /* Bits 0 and 2 from x in y, bits 1 and 3 from y in x. */
+                uint32_t xy = (uint32_t)inside_solid(x, y), yx = (uint32_t)inside_solid(y, x);
+                r->contained = (xy & 1) | (yx & 1) << 1 | (xy >> 1) << 2 | (yx >> 1) << 3;
+            }
             if (r->contained) r->distance = r->upper_bound = 0.0;
         }
     }

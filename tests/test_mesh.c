@@ -993,6 +993,13 @@ static void test_stl_walk(void) {
          "solid a\nfacet normal 0 0 1\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendsolid a\nsolid b\n"
          "facet normal 0 0 1\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1\nendsolid b\n",
          "line 11: a vertex needs three numbers"},
+        {"caps.stl",
+         "solid a\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 0 0\nVERTEX 0 1 0\nENDLOOP\n"
+         "ENDFACET\nENDSOLID a\n",
+         "line 2: a keyword in capitals"},
+        {"caps_vertex.stl",
+         "solid a\nfacet normal 0 0 1\nvertex 0 0 0\n Vertex 1 0 0\nvertex 0 1 0\nendsolid\n",
+         "line 4: a keyword in capitals"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; ++i)
         expect_load_error(write_file(bad[i].name, bad[i].text, (size_t)-1), bad[i].needle, (int)i);
@@ -1016,8 +1023,8 @@ static void test_stl_walk(void) {
     EXPECT_LOAD_ERROR(write_file("name.stl", name, (size_t)-1), "line 1: a solid name longer than 1023");
     /* Read well: numbers of every form fast_atoreal_move takes, CRLF and tabs,
      * words it skips, no `outer loop`, two solids, the last without
-     * `endsolid`, a 1,023-byte name. */
-    static const char good[] = "  solid first part\r\n\tfacet   normal 0 0 -1\r\n  outer loop\r\n"
+     * `endsolid`, a 1,023-byte name, a keyword in capitals in a name. */
+    static const char good[] = "  solid first Facet part\r\n\tfacet   normal 0 0 -1\r\n  outer loop\r\n"
                                "vertex +0 .0 0.\r\nvertex 1.5e0 0 0\r\n\tvertex 0 1E+0 -0.0e-3\r\n"
                                "endloop\r\nendfacet\r\ncolor 1 2 3\r\nendsolid first\r\n"
                                "solid second\nfacet normal 1 1 1\nvertex 1 0 0\nvertex 0 1 0\n"

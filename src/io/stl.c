@@ -56,6 +56,12 @@ static int starts(const unsigned char *p, const char *s) {
     return 1;
 }
 
+/* 1 if only blanks precede p on its line (t: the text's start). */
+static int first_on_line(const unsigned char *t, const unsigned char *p) {
+    while (p > t && is_space(p[-1])) --p;
+    return p == t || is_line_end(p[-1]);
+}
+
 /* ASCII case-insensitive: 1 if p starts with lowercase s. */
 static int starts_ci(const unsigned char *p, const char *s) {
     for (; *s; ++p, ++s)
@@ -223,6 +229,11 @@ px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
                 do ++p;
                 while (!is_line_end(*p));
                 p = skip_blank(p);
+                break;
+            } else if (first_on_line(t, p) && ((starts_ci(p, "facet") && is_blank(p[5])) ||
+                                               (starts_ci(p, "vertex") && is_blank(p[6])))) {
+                why = "a keyword in capitals (Assimp 5.2 reads 'facet' and 'vertex' in lower case only, and "
+                      "would skip this one)";
                 break;
             } else {
                 do ++p;

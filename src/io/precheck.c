@@ -452,13 +452,14 @@ static const struct {
 
 /* 1 if the file ends like a ZIP archive: minizip's unzOpen (behind Assimp's
  * ZipArchiveIOSystem) looks for the end-of-central-directory signature
- * PK 05 06 in the last 64 KiB + 22 bytes, wherever the archive starts. */
+ * PK 05 06 in the last 64 KiB + 22 bytes, wherever the archive starts.
+ * -1 when out of memory. */
 static int zip_tail(const io_head *h) {
     const u64 span = 65536 + 22;
     u64 n = h->size < span ? h->size : span;
     unsigned char *tail = pxi_alloc(h->alloc, (size_t)n);
     int found = 0;
-    if (!tail) return 1; /* refused as if it were one: nothing unchecked passes */
+    if (!tail) return -1;
     pxi_rd_seek(h->rd, h->size - n);
     if (pxi_rd_read(h->rd, tail, (size_t)n))
         for (size_t i = 0; i + 4 <= n && !found; ++i)
@@ -489,8 +490,10 @@ static px_status check_unchecked(const io_head *h, px_error *err) {
     int plain = 0;
     for (size_t i = 0; i < sizeof plain_exts / sizeof plain_exts[0]; ++i)
         plain |= strcmp(h->ext, plain_exts[i]) == 0;
-    if (!format && !zip)
-        zip = (h->len >= 4 && memcmp(h->data, "PK\x03\x04", 4) == 0) || (!plain && zip_tail(h));
+    if (!format && !zip && h->len >= 4 && memcmp(h->data, "PK\x03\x04", 4) == 0) zip = 1;
+    if (!format && !zip && !plain && (zip = zip_tail(h)) < 0)
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "mesh file '%s': out of memory reading its last 64 KiB",
+                         h->path);
     if (h->rd->error) return pxi_rd_error(h, err);
     if (!format && zip)
         return pxi_error(err, PX_ERR_IO,

@@ -205,9 +205,9 @@ if [ -n "$A" ]; then
   # ("bolt 1" and "bolt 2" are both "bolt" to Assimp 5.2) are refused;
   # objects of one name are one part, as documented.
   printf 'o bolt 1\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no bolt 2\nv 0 0 0.05\nv 1 0 0.05\nv 0 1 0.05\nf 4 5 6\n' >"$T/bolts.obj"
-  expect 2 "line 6: object 'bolt 2' is 'bolt' to the loader, as is 'bolt 1' on line 1" -- "$B" check "$T/bolts.obj"
+  expect 2 "line 6: object 'bolt 2' is 'bolt' to Assimp 5.2, as is 'bolt 1' on line 1" -- "$B" check "$T/bolts.obj"
   printf 'g bolt\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no bolt\t1\nv 0 0 0.05\nv 1 0 0.05\nv 0 1 0.05\nf 4 5 6\n' >"$T/bolts_g.obj"
-  expect 2 "line 6: object 'bolt\\\\t1' is 'bolt' to the loader, as is 'bolt' on line 1" -- "$B" check "$T/bolts_g.obj"
+  expect 2 "line 6: object 'bolt\\\\t1' is 'bolt' to Assimp 5.2, as is 'bolt' on line 1" -- "$B" check "$T/bolts_g.obj"
   # An object continued after another: Assimp 5.2 puts its later faces
   # (refused at the first of them)
   # into the other's part (here the bolt's second triangle into the nut,
@@ -221,7 +221,7 @@ if [ -n "$A" ]; then
   NL="$T/$(printf 'nl\nfake: x')"
   mkdir -p "$NL" && cp "$T/bolts.obj" "$NL/"
   expect 2 "line 6: object 'bolt 2'" -- "$B" check "$NL/bolts.obj"
-  expect 2 'nl\\nfake: x/bolts.obj. line 6' -- "$B" check "$NL/bolts.obj"
+  expect 2 'nl\\nfake: x/bolts.obj.. line 6' -- "$B" check "$NL/bolts.obj"
   printf 'o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$NL/a.obj"
   rm "$NL/bolts.obj"
   expect 0 'assembly: +.*nl\\nfake: x \(folder, 1 part' -- "$B" check "$NL"

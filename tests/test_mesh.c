@@ -1101,6 +1101,46 @@ static void test_bad_files(void) {
         CHECK(mc && px_mesh_triangle_count(mc) == 1, "continued OBJ line");
         px_mesh_destroy(mc);
     }
+    /* OBJ objects Assimp 5.2 would mix up: two names alike up to their
+     * first space (one part "bolt"), and an object named again after
+     * another one (its later faces would go into the other's part) */
+    static const char tri3[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n";
+    char obj[1024];
+    snprintf(obj, sizeof obj, "o bolt 1\n%so bolt 2\n%s", tri3, tri3);
+    EXPECT_LOAD_ERROR(write_file("bolts.obj", obj, (size_t)-1),
+                      "line 6: object 'bolt 2' is 'bolt' to Assimp 5.2, as is 'bolt 1' on line 1");
+    snprintf(obj, sizeof obj, "o bolt\n%so nut\n%so bolt\n%s", tri3, tri3, tri3);
+    EXPECT_LOAD_ERROR(write_file("again.obj", obj, (size_t)-1),
+                      "line 15: object 'bolt' (line 1) continues after object 'nut' (line 6)");
+    snprintf(obj, sizeof obj, "g a\r\n%so b\r\n%sg a\r\n%s", tri3, tri3, tri3);
+    EXPECT_LOAD_ERROR(write_file("again_g.obj", obj, (size_t)-1), "line 15: object 'a' (line 1)");
+    snprintf(obj, sizeof obj, "g a\r%so b\r%sg a\r%s", tri3, tri3, tri3);
+    EXPECT_LOAD_ERROR(write_file("again_cr.obj", obj, (size_t)-1), "line 15: object 'a' (line 1)");
+    {
+        /* Read as written: one name again at once (one part), the active
+         * group named again, an `o` after a `g` of its name, 300 objects
+         * (the name table grows); a `g` naming an earlier group that is not
+         * the active one starts a part of its own. */
+        size_t n = (size_t)snprintf(obj, sizeof obj, "o a\n%so a\n%sg b\n%sg b\n%so b\n%s", tri3, tri3, tri3,
+                                    tri3, tri3);
+        char *big = malloc(300 * 64 + sizeof obj);
+        if (big) {
+            memcpy(big, obj, n);
+            for (int k = 0; k < 300; ++k)
+                n += (size_t)snprintf(big + n, 64, "o part%d\n%s", k, k % 2 ? "" : tri3);
+            big[n] = '\0';
+        }
+        px_mesh *mo = big ? load(write_file("objects.obj", big, (size_t)-1), 0) : NULL;
+        CHECK(mo && px_mesh_part_count(mo) == 152 && px_mesh_triangle_count(mo) == 155,
+              "objects.obj: %u parts, %u triangles", mo ? px_mesh_part_count(mo) : 0,
+              mo ? px_mesh_triangle_count(mo) : 0);
+        px_mesh_destroy(mo);
+        free(big);
+        snprintf(obj, sizeof obj, "g a\n%sg b\n%sg a\n%s", tri3, tri3, tri3);
+        mo = load(write_file("gag.obj", obj, (size_t)-1), 0);
+        CHECK(mo && px_mesh_part_count(mo) == 3, "gag.obj: %u parts", mo ? px_mesh_part_count(mo) : 0);
+        px_mesh_destroy(mo);
+    }
     /* a cyclic node graph (glTF children 0 -> 1 -> 0) */
     EXPECT_LOAD_ERROR(
         write_file("cycle.gltf",

@@ -544,7 +544,8 @@ static px_status check_compressed(const io_head *h, px_error *err) {
  * default case), so an indented `v`, `f` or `o` line is lost without a
  * word (a vertex, a face, an object's start). Such lines are refused, but
  * for continuation lines (the one before ends with a backslash, which
- * Assimp's line reader joins) and blank or comment lines. */
+ * Assimp's line reader joins) and blank or comment lines. Then the
+ * objects (obj.c). */
 static px_status check_obj(const io_head *h, px_error *err) {
     io_reader *rd = h->rd;
     pxi_rd_seek(rd, 0);
@@ -577,7 +578,7 @@ static px_status check_obj(const io_head *h, px_error *err) {
         at_start = 0;
         if (c != ' ' && c != '\t') last = c;
     }
-    return rd->error ? pxi_rd_error(h, err) : PX_OK;
+    return rd->error ? pxi_rd_error(h, err) : pxi_check_obj_objects(h, err);
 }
 
 /* ---------------------------------------------------------------- entry */

@@ -531,6 +531,21 @@ static void test_bad_inputs(void) {
     CHECK(px_scene_set_pose(s, id, &p, &e) == PX_ERR_INVALID_POSE, "bad rotation refused");
     CHECK(px_scene_set_velocity(s, id, (px_vec3){5, 0, 0}, 0, &e) == PX_ERR_INVALID_ARGUMENT,
           "velocity above the bound refused");
+    {
+        /* Speeds whose squares overflow are measured without overflow (a
+         * review found 1e200 refused as infinite under a bound of 1e300). */
+        px_body_desc f = d;
+        f.max_speed = 1e300;
+        uint32_t fast;
+        CHECK(px_scene_add_body(s, &f, &fast, &e) == PX_OK, "fast body");
+        CHECK(px_scene_set_velocity(s, fast, (px_vec3){1e200, -1e200, 0}, 0, &e) == PX_OK,
+              "speed 1.4e200: %s", e.message);
+        CHECK(px_scene_set_velocity(s, fast, (px_vec3){0, 8e299, 6e299}, 0, &e) == PX_OK, "speed 1e300: %s",
+              e.message);
+        CHECK(px_scene_set_velocity(s, fast, (px_vec3){0, 8e299, 6.1e299}, 0, &e) == PX_ERR_INVALID_ARGUMENT,
+              "speed above 1e300 refused");
+        CHECK(px_scene_remove_body(s, fast, &e) == PX_OK, "remove fast body");
+    }
     CHECK(px_scene_exclude_pair(s, id, id, &e) == PX_ERR_INVALID_ARGUMENT, "self exclusion refused");
     CHECK(px_scene_step(s, NAN, &e) == PX_ERR_INVALID_ARGUMENT, "NaN time refused");
     CHECK(px_scene_step(s, 1.0, &e) == PX_OK, "step");

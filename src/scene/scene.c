@@ -571,12 +571,12 @@ static void remove_pair(px_scene *s, uint32_t a, uint32_t b) {
 
 /* ---- motion bounds ----------------------------------------------------- */
 
-/* |v| without underflow: the plain root when its square is far from the
- * subnormal range (coordinates stay below 2^251, so squares never
- * overflow), pxi_len_safe's scaling below (bodies down to 2^-1000). */
+/* |v| without underflow or overflow: the plain root when its square is
+ * far from both ends of the range, pxi_len_safe's scaling otherwise
+ * (bodies down to 2^-1000; a velocity the user gives may be near 1e308). */
 static inline double len_s(px_vec3 v) {
     double l2 = pxi_dot(v, v);
-    return l2 >= 0x1p-900 ? sqrt(l2) : pxi_len_safe(v);
+    return l2 >= 0x1p-900 && l2 <= 0x1p900 ? sqrt(l2) : pxi_len_safe(v);
 }
 
 /* x >= 0 rounded up: at least the exact value of the operation that gave

@@ -638,7 +638,10 @@ static size_t tet_stl_binary(unsigned char *buf, int nan) {
 static const char *write_gltf_ex(int glb, int variant) {
     static const float pos[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
     uint16_t idx[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-    if (variant == 1) idx[11] = 4; /* out of range: Assimp drops that triangle */
+    /* 1: an index out of range (Assimp drops that triangle); 3: the same,
+     * and a node no scene reaches that only a skin names, with a mesh of
+     * two triangles Assimp loads all the same */
+    if (variant == 1 || variant == 3) idx[11] = 4;
     unsigned char bin[72];
     unsigned char *p = bin;
     for (int i = 0; i < 12; ++i) p = put_f32(p, pos[i]);
@@ -652,16 +655,23 @@ static const char *write_gltf_ex(int glb, int variant) {
         "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}],\n"
         "\"nodes\": [{\"name\": \"base\", \"translation\": [10, 0, 0], \"children\": [1, 2], \"mesh\": 0},\n"
         "{\"name\": \"arm\", \"translation\": [0, 5, 0], \"mesh\": 0},\n"
-        "{\"name\": \"mirror\", \"scale\": [-1, 1, 1], \"mesh\": 0}],\n"
+        "{\"name\": \"mirror\", \"scale\": [-1, 1, 1], \"mesh\": 0}%s],\n"
         "\"meshes\": [{\"name\": \"tet\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, "
-        "\"indices\": 1, \"mode\": 4}]}],\n"
+        "\"indices\": 1, \"mode\": 4}]}%s],\n"
         "\"buffers\": [{%s\"byteLength\": 72}],\n"
         "\"bufferViews\": [{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48},\n"
         "{\"buffer\": 0, \"byteOffset\": 48, \"byteLength\": 24}],\n"
         "\"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\",\n"
         "\"min\": [0, 0, 0], \"max\": [1, 1, 1]},\n"
-        "{\"bufferView\": 1, \"componentType\": 5123, \"count\": %d, \"type\": \"SCALAR\"}]}",
-        glb ? "" : "\"uri\": \"tet.bin\", ", variant == 2 ? 11 : 12);
+        "{\"bufferView\": 1, \"componentType\": 5123, \"count\": %d, \"type\": \"SCALAR\"}%s]%s}",
+        variant == 3 ? ",\n{\"name\": \"ghost\", \"mesh\": 1}" : "",
+        variant == 3
+            ? ", {\"name\": \"half\", \"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"indices\": 2}]}"
+            : "",
+        glb ? "" : "\"uri\": \"tet.bin\", ", variant == 2 ? 11 : 12,
+        variant == 3 ? ",\n{\"bufferView\": 1, \"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\"}"
+                     : "",
+        variant == 3 ? ",\n\"skins\": [{\"joints\": [3]}]" : "");
     if (!glb) {
         write_file("tet.bin", bin, sizeof bin);
         return write_file("tet.gltf", json, (size_t)-1);
@@ -1089,6 +1099,8 @@ static void test_bad_files(void) {
                           "1 of its 4 glTF triangles have a vertex index out of range");
         EXPECT_LOAD_ERROR(write_gltf_ex(glb, 2),
                           "glTF mesh primitive 0 is a triangle list whose index count");
+        EXPECT_LOAD_ERROR(write_gltf_ex(glb, 3),
+                          "1 of its 4 glTF triangles have a vertex index out of range");
     }
     /* OBJ: Assimp 5.2 skips a line that starts with blank space (here a
      * vertex and a face would be lost); a continuation line may */

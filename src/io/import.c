@@ -66,6 +66,50 @@ static void ai_message(char *msg, size_t size) {
     snprintf(msg, size, "%s", ai && ai[0] ? ai : "unknown error");
 }
 
+/* The faces of the meshes the node tree reaches from the root, each mesh
+ * once: the meshes px_mesh_load reads. (Assimp also loads the meshes of
+ * nodes only a skin or an animation names, which no scene reaches; the
+ * glTF scan does not count those.) */
+static px_status reached_faces(const struct aiScene *scene, const px_allocator *alloc, const char *path,
+                               unsigned long long *got, px_error *err) {
+    unsigned char *used = pxi_alloc(alloc, scene->mNumMeshes);
+    size_t cap = 64, n = 0;
+    const struct aiNode **stack = pxi_alloc_array(alloc, cap, sizeof *stack);
+    px_status st = PX_OK;
+    if (!used || !stack) st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "mesh file '%s': out of memory", path);
+    if (st == PX_OK) {
+        memset(used, 0, scene->mNumMeshes);
+        stack[n++] = scene->mRootNode;
+    }
+    while (st == PX_OK && n) {
+        const struct aiNode *node = stack[--n];
+        for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+            unsigned m = node->mMeshes[i];
+            if (m < scene->mNumMeshes && !used[m] && scene->mMeshes[m]) {
+                used[m] = 1;
+                *got += scene->mMeshes[m]->mNumFaces;
+            }
+        }
+        if (node->mNumChildren > cap - n) {
+            size_t nc = 2 * (cap + node->mNumChildren);
+            const struct aiNode **w = pxi_alloc_array(alloc, nc, sizeof *w);
+            if (!w) {
+                st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "mesh file '%s': out of memory", path);
+                break;
+            }
+            memcpy(w, stack, n * sizeof *w);
+            pxi_free(alloc, stack, cap * sizeof *stack);
+            stack = w;
+            cap = nc;
+        }
+        for (unsigned i = 0; i < node->mNumChildren; ++i)
+            if (node->mChildren[i]) stack[n++] = node->mChildren[i];
+    }
+    pxi_free(alloc, stack, cap * sizeof *stack);
+    pxi_free(alloc, used, scene->mNumMeshes);
+    return st;
+}
+
 /* The import proper, with the lock held. */
 static px_status import_locked(const char *path, const pxi_file_id *id, const px_allocator *alloc,
                                unsigned post_flags, pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx,
@@ -100,9 +144,8 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
         /* glTF2Importer drops a triangle with an index out of range (a
          * warning only): the counts tell. */
         unsigned long long got = 0;
-        for (unsigned i = 0; i < scene->mNumMeshes; ++i)
-            if (scene->mMeshes[i]) got += scene->mMeshes[i]->mNumFaces;
-        if (got < id->gltf_triangles)
+        st = reached_faces(scene, alloc, path, &got, err);
+        if (st == PX_OK && got < id->gltf_triangles)
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': %llu of its %llu glTF triangles have a vertex index out of range "
                            "(Assimp 5.2 dropped them)",

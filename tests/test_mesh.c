@@ -1128,6 +1128,47 @@ static void test_bad_files(void) {
     EXPECT_LOAD_ERROR(write_file("again_g.obj", obj, (size_t)-1), "line 15: object 'a' (line 1)");
     snprintf(obj, sizeof obj, "g a\r%so b\r%sg a\r%s", tri3, tri3, tri3);
     EXPECT_LOAD_ERROR(write_file("again_cr.obj", obj, (size_t)-1), "line 15: object 'a' (line 1)");
+    /* Lines as Assimp 5.2 splits and joins them (a review's findings): a
+     * comment whose backslash swallows a face, a backslash before blanks
+     * (no join: the indented face is lost), a form feed (a line end), a
+     * backslash before a lone CR (the reader skips to the next LF), a joined
+     * line that starts with a keyword, a backslash at the file's end, a
+     * byte-order mark on a vertex line, and a material started after an
+     * object named again */
+    static const struct {
+        const char *name, *text, *needle;
+    } obj_bad[] = {
+        {"bs_comment.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n# note \\\nf 1 2 3\n",
+         "line 5: a comment that ends in"},
+        {"bs_blank.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n# note \\ \n f 1 2 3\n",
+         "line 5: a line that starts with blank space"},
+        {"formfeed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n# c\f f 1 2 3\n",
+         "line 4: a line that starts with blank"},
+        {"bs_cr.obj", "v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 \\\r3\rf 1 3 2\r",
+         "line 4: a backslash before a line end other than LF or CRLF"},
+        {"bs_keyword.obj", "v 0 0 0\nv 1 0 0 \\\nv 0 1 0\nf 1 2 3\n", "line 3: the backslash at the end"},
+        {"bs_end.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 \\", "line 4: the file ends in a backslash"},
+        {"bom.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n",
+         "line 1: the file starts with a byte-order mark"},
+        {"mtl_again.obj",
+         "o A\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no B\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 4 5 6\n"
+         "o A\nusemtl m2\nf 1 3 2\n",
+         "line 12: object 'A' (line 1) is named again after object 'B' (line 6)"},
+    };
+    for (size_t i = 0; i < sizeof obj_bad / sizeof obj_bad[0]; ++i)
+        expect_load_error(write_file(obj_bad[i].name, obj_bad[i].text, (size_t)-1), obj_bad[i].needle,
+                          (int)i);
+    {
+        /* Read whole: an indented material or smoothing line, a mark before
+         * a comment, a joined line of numbers, CRLF continuation */
+        static const char ok_obj[] =
+            "\xEF\xBB\xBF# made by hand\n  usemtl steel\n\ts off\nv 0 0 0\r\nv 1 0 0\n"
+            "v 0 1 0\nv 0 0 1\nf 1 \\\r\n 3 2\nf 1 2 \\\n4\n";
+        px_mesh *mk = load(write_file("ok_lines.obj", ok_obj, (size_t)-1), 0);
+        CHECK(mk && px_mesh_triangle_count(mk) == 2, "ok_lines.obj: %u triangles",
+              mk ? px_mesh_triangle_count(mk) : 0);
+        px_mesh_destroy(mk);
+    }
     {
         /* Read as written: one name again at once (one part), the active
          * group named again, an `o` after a `g` of its name, 300 objects

@@ -1,9 +1,22 @@
-/* OBJ objects as Assimp 5.2's OBJ reader groups them (ObjFileParser,
- * Debian bookworm's 5.2.5), before it does.
+/* An OBJ file as Assimp 5.2's OBJ reader reads it (ObjFileParser and
+ * IOStreamBuffer::getNextDataLine, Debian bookworm's 5.2.5), before it
+ * does: what it would lose or mix up without a word is refused, with the
+ * line.
  *
- * Every part px_mesh_load returns is one of Assimp's objects. Its reader
- * keeps a list of objects, each with its own meshes, and a current mesh
- * that takes the faces:
+ * Lines. A line ends at '\n', '\r', '\f' or NUL. A backslash right before
+ * the end joins the next line to it: the reader skips to the next '\n'
+ * and reads on. A line that starts with blank space is skipped whole (the
+ * keyword must come first), and so is the first line after a UTF-8
+ * byte-order mark. Refused: a vertex, face, line, point, object or group
+ * line so lost; a backslash before a lone '\r', a '\f' or a NUL, or at the
+ * file's end (the skip to '\n' would swallow text, or run off the end); a
+ * comment whose backslash joins a line with text to it (lost with the
+ * comment); a joined line that starts with a keyword (read as more numbers
+ * of the line before).
+ *
+ * Objects. Every part px_mesh_load returns is one of the reader's
+ * objects. It keeps a list of objects, each with its own meshes, and a
+ * current mesh that takes the faces:
  * - `o NAME` takes the name up to its first blank. A name new to the list
  *   starts an object and makes its mesh current; a name already in it
  *   (from an `o` or a `g`) makes that object current again, but not its
@@ -11,13 +24,15 @@
  * - `g NAME` takes the rest of the line, less its leading blanks. The name
  *   of the active group changes nothing; any other starts a new object
  *   (a name already in the list included) whose mesh becomes current.
+ * - `usemtl` may start a mesh of the current object, depending on the
+ *   materials before.
  * So `o bolt 1` and `o bolt 2` are one part "bolt", whose halves are never
  * measured against each other, and an object named again after another
  * one gets its later faces in the other's part: one part is left open and
  * the other holds two objects, with PX_OK. Such files are refused, naming
- * both lines; the fix is to give each object a distinct name without
- * spaces, or to keep an object's lines together. A new material can start
- * a mesh of the right object in Assimp; those files are refused too. */
+ * both lines: faces, or a `usemtl`, while the object named last is not the
+ * one whose mesh is current. The fix is to give each object a distinct
+ * name without spaces, or to keep an object's lines together. */
 #include <string.h>
 
 #include "core/core.h"
@@ -95,8 +110,29 @@ static int add(obj_names *o, const unsigned char *t, obj_name e) {
 }
 
 static int is_blank(unsigned char c) { return c == ' ' || c == '\t'; }
+static int is_end(unsigned char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; }
 
-px_status pxi_check_obj_objects(const io_head *h, px_error *err) {
+/* A keyword whose line the reader would lose: v, vt, vn, vp, f, l, p, o, g. */
+static int geometry_keyword(const unsigned char *t, size_t b, size_t e) {
+    size_t n = 0;
+    while (b + n < e && !is_blank(t[b + n])) ++n;
+    if (n == 1) return strchr("vflpog", t[b]) != NULL;
+    return n == 2 && t[b] == 'v' && strchr("tnp", t[b + 1]) != NULL;
+}
+
+/* The editor's line count over t[a, b): "\n", "\r\n" and a lone "\r"
+ * each end a line. */
+static u64 lines_in(const unsigned char *t, size_t a, size_t b, size_t size) {
+    u64 n = 0;
+    for (size_t i = a; i < b; ++i) n += t[i] == '\n' || (t[i] == '\r' && !(i + 1 < size && t[i + 1] == '\n'));
+    return n;
+}
+
+static px_status refuse(const io_head *h, u64 line, const char *why, px_error *err) {
+    return pxi_error(err, PX_ERR_IO, "mesh file '%s', line %llu: %s", h->path, (unsigned long long)line, why);
+}
+
+px_status pxi_check_obj(const io_head *h, px_error *err) {
     unsigned char *t;
     px_status st = pxi_read_all(h, &t, err);
     if (st != PX_OK) return st;
@@ -105,27 +141,103 @@ px_status pxi_check_obj_objects(const io_head *h, px_error *err) {
     /* current: the object whose mesh takes the faces; meant: the one the
      * file means them for (they differ after a name given again). */
     size_t current = SIZE_MAX, meant = SIZE_MAX, group = SIZE_MAX, p = 0;
-    u64 line = 0;
+    u64 line = 1; /* the editor's line at p */
+    const int bom = size >= 3 && t[0] == 0xEF && t[1] == 0xBB && t[2] == 0xBF;
     while (st == PX_OK && p < size) {
-        /* A line ends at "\n", "\r\n" or a lone "\r", as Assimp ends them. */
-        size_t b = p, e = p;
-        while (e < size && t[e] != '\n' && t[e] != '\r') ++e;
-        p = e < size && t[e] == '\r' && e + 1 < size && t[e + 1] == '\n' ? e + 2 : e + 1;
-        ++line;
+        const size_t b = p;
+        const u64 at = line;
+        size_t e = b;
+        while (e < size && !is_end(t[e])) ++e;
+        /* The line's end, and the lines a backslash joins to it. */
+        size_t q = e;
+        int comment = t[b] == '#';
+        while (st == PX_OK && q < size && q > b && t[q - 1] == '\\') {
+            if (!(t[q] == '\n' || (t[q] == '\r' && q + 1 < size && t[q + 1] == '\n'))) {
+                st = refuse(h, at + lines_in(t, b, q, size),
+                            "a backslash before a line end other than LF or CRLF (Assimp 5.2 would skip "
+                            "the text up to the next LF)",
+                            err);
+                break;
+            }
+            q += t[q] == '\r' ? 2 : 1;
+            size_t nb = q, ne = q;
+            while (ne < size && !is_end(t[ne])) ++ne;
+            size_t f = nb;
+            while (f < ne && is_blank(t[f])) ++f;
+            if (comment && f < ne)
+                st = refuse(h, at + lines_in(t, b, nb, size),
+                            "a comment that ends in a backslash joins this line to it (Assimp 5.2 would skip "
+                            "both)",
+                            err);
+            else if (f < ne && geometry_keyword(t, f, ne))
+                st = refuse(h, at + lines_in(t, b, nb, size),
+                            "the backslash at the end of the line before joins this line to it (Assimp 5.2 "
+                            "would read its keyword as part of that line)",
+                            err);
+            q = ne;
+        }
+        if (st != PX_OK) break;
+        if (q >= size && q > b && t[q - 1] == '\\') {
+            st = refuse(h, at + lines_in(t, b, q, size),
+                        "the file ends in a backslash (Assimp 5.2 would read past its end)", err);
+            break;
+        }
+        /* Past the line end. */
+        p = q < size ? q + 1 : size;
+        line = at + lines_in(t, b, p, size);
+        if (bom && b == 0) {
+            size_t f = 3;
+            while (f < e && is_blank(t[f])) ++f;
+            if (f < e && t[f] != '#') {
+                st = refuse(h, at,
+                            "the file starts with a byte-order mark, and Assimp 5.2 skips the line it is "
+                            "on: save it without one, or begin with a comment",
+                            err);
+                break;
+            }
+            continue;
+        }
+        if (is_blank(t[b])) {
+            size_t f = b;
+            while (f < e && is_blank(t[f])) ++f;
+            if (f < e && geometry_keyword(t, f, e)) {
+                st = refuse(h, at,
+                            "a line that starts with blank space (Assimp 5.2 skips it whole: an indented "
+                            "vertex, face or object would be lost)",
+                            err);
+                break;
+            }
+            continue;
+        }
         const unsigned char c0 = t[b];
         const int blank = e - b >= 2 && is_blank(t[b + 1]);
-        if ((c0 == 'f' || c0 == 'l' || c0 == 'p') && blank && meant != current) {
-            st = pxi_error(
-                err, PX_ERR_IO,
-                "mesh file '%s', line %llu: object '%.*s' (line %llu) continues after object '%.*s' "
-                "(line %llu), and Assimp 5.2 would put these faces into the part of '%.*s': give "
-                "each object a distinct name, or keep an object's lines together",
-                h->path, (unsigned long long)line, (int)o.v[meant].full_len,
-                (const char *)t + o.v[meant].full, (unsigned long long)o.v[meant].line,
-                (int)o.v[current].full_len, (const char *)t + o.v[current].full,
-                (unsigned long long)o.v[current].line, (int)o.v[current].full_len,
-                (const char *)t + o.v[current].full);
-            break;
+        const int usemtl =
+            e - b >= 6 && memcmp(t + b, "usemtl", 6) == 0 && (e - b == 6 || is_blank(t[b + 6]));
+        if (((c0 == 'f' || c0 == 'l' || c0 == 'p') && blank) || usemtl) {
+            if (meant != current && usemtl)
+                st = pxi_error(
+                    err, PX_ERR_IO,
+                    "mesh file '%s', line %llu: object '%.*s' (line %llu) is named again after "
+                    "object '%.*s' (line %llu), and with a material starting here Assimp 5.2 may put "
+                    "the faces that follow into either part: give each object a distinct name, or "
+                    "keep an object's lines together",
+                    h->path, (unsigned long long)at, (int)o.v[meant].full_len,
+                    (const char *)t + o.v[meant].full, (unsigned long long)o.v[meant].line,
+                    (int)o.v[current].full_len, (const char *)t + o.v[current].full,
+                    (unsigned long long)o.v[current].line);
+            else if (meant != current)
+                st = pxi_error(
+                    err, PX_ERR_IO,
+                    "mesh file '%s', line %llu: object '%.*s' (line %llu) continues after object "
+                    "'%.*s' (line %llu), and Assimp 5.2 would put the faces from here into the part "
+                    "of '%.*s': give each object a distinct name, or keep an object's lines together",
+                    h->path, (unsigned long long)at, (int)o.v[meant].full_len,
+                    (const char *)t + o.v[meant].full, (unsigned long long)o.v[meant].line,
+                    (int)o.v[current].full_len, (const char *)t + o.v[current].full,
+                    (unsigned long long)o.v[current].line, (int)o.v[current].full_len,
+                    (const char *)t + o.v[current].full);
+            if (st != PX_OK) break;
+            continue;
         }
         const int is_o = c0 == 'o';
         if (!(is_o || c0 == 'g') || !blank) continue;
@@ -156,7 +268,7 @@ px_status pxi_check_obj_objects(const io_head *h, px_error *err) {
                     "on line %llu (it reads an object name up to its first space and joins "
                     "objects of one name into one part): give each object a distinct name "
                     "without spaces",
-                    h->path, (unsigned long long)line, (int)(f - s), (const char *)t + s, (int)key_len,
+                    h->path, (unsigned long long)at, (int)(f - s), (const char *)t + s, (int)key_len,
                     (const char *)t + s, (int)o.v[found].full_len, (const char *)t + o.v[found].full,
                     (unsigned long long)o.v[found].line);
                 break;
@@ -164,7 +276,7 @@ px_status pxi_check_obj_objects(const io_head *h, px_error *err) {
             meant = found; /* Assimp's current mesh stays current's */
             continue;
         }
-        obj_name nm = {s, key_len, s, f - s, line};
+        obj_name nm = {s, key_len, s, f - s, at};
         if (!add(&o, t, nm)) {
             st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "mesh file '%s': out of memory", h->path);
             break;

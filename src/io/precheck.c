@@ -537,50 +537,6 @@ static px_status check_compressed(const io_head *h, px_error *err) {
     return PX_OK;
 }
 
-/* ------------------------------------------------------------------ OBJ */
-
-/* Assimp 5.2's OBJ parser reads a keyword only at the start of a line: a
- * line that starts with blanks is skipped whole (ObjFileParser::parseFile,
- * default case), so an indented `v`, `f` or `o` line is lost without a
- * word (a vertex, a face, an object's start). Such lines are refused, but
- * for continuation lines (the one before ends with a backslash, which
- * Assimp's line reader joins) and blank or comment lines. Then the
- * objects (obj.c). */
-static px_status check_obj(const io_head *h, px_error *err) {
-    io_reader *rd = h->rd;
-    pxi_rd_seek(rd, 0);
-    u64 line = 1;
-    int at_start = 1, continued = 0, last = -1, c;
-    while ((c = pxi_rd_get(rd)) >= 0) {
-        if (c == '\n' || c == '\r') {
-            if (c == '\r' && pxi_rd_peek(rd) == '\n') (void)pxi_rd_get(rd);
-            continued = last == '\\';
-            at_start = 1;
-            last = -1;
-            ++line;
-            continue;
-        }
-        if (at_start && (c == ' ' || c == '\t') && !continued) {
-            while ((c = pxi_rd_get(rd)) == ' ' || c == '\t') {
-            }
-            if (c >= 0 && c != '\n' && c != '\r' && c != '#')
-                return pxi_error(err, PX_ERR_IO,
-                                 "mesh file '%s', line %llu: a line that starts with blank space (Assimp 5.2 "
-                                 "skips it whole: an indented vertex, face or object would be lost)",
-                                 h->path, line);
-            if (c < 0) break;
-            if (c == '\n' || c == '\r') {
-                if (c == '\r' && pxi_rd_peek(rd) == '\n') (void)pxi_rd_get(rd);
-                at_start = 1, continued = 0, last = -1, ++line;
-                continue;
-            }
-        }
-        at_start = 0;
-        if (c != ' ' && c != '\t') last = c;
-    }
-    return rd->error ? pxi_rd_error(h, err) : pxi_check_obj_objects(h, err);
-}
-
 /* ---------------------------------------------------------------- entry */
 
 /* Lowercased extension of the file name in `path` (after the last '.' of
@@ -605,7 +561,7 @@ static px_status check_formats(const io_head *h, px_error *err) {
     px_status st = check_unchecked(h, err);
     if (st == PX_OK) st = check_compressed(h, err);
     if (st == PX_OK && (off || starts_with_ci(h, "off"))) st = check_off(h, err);
-    if (st == PX_OK && strcmp(h->ext, "obj") == 0) st = check_obj(h, err);
+    if (st == PX_OK && strcmp(h->ext, "obj") == 0) st = pxi_check_obj(h, err);
     /* PLYImporter::CanRead: "ply" anywhere in the signature bytes. */
     if (st == PX_OK && (ply || signature_has(h, "ply"))) st = pxi_check_ply(h, err);
     if (st == PX_OK && (stl || signature_has(h, "solid") || signature_has(h, "stl")))

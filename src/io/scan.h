@@ -94,9 +94,9 @@ px_status pxi_check_gltf(const io_head *h, px_error *err);
  * size) walked as Assimp 5.2 reads it (stl.c). */
 px_status pxi_check_stl_ascii(const io_head *h, px_error *err);
 
-/* An OBJ file whose objects Assimp 5.2 would mix up (obj.c): names that
- * differ only after their first blank, faces after an object named again. */
-px_status pxi_check_obj_objects(const io_head *h, px_error *err);
+/* An OBJ file read line by line as Assimp 5.2 reads it (obj.c): lines it
+ * would skip or join, and objects it would mix up, are refused. */
+px_status pxi_check_obj(const io_head *h, px_error *err);
 
 /* Nesting depth of AC3D, FBX, OpenGEX and XML files, and BVH files refused (nest.c). */
 px_status pxi_check_nesting(const io_head *h, px_error *err);

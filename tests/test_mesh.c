@@ -1194,6 +1194,20 @@ static void test_bad_files(void) {
         CHECK(mo && px_mesh_part_count(mo) == 3, "gag.obj: %u parts", mo ? px_mesh_part_count(mo) : 0);
         px_mesh_destroy(mo);
     }
+    /* a member given twice, which the scan and Assimp's reader would take
+     * from different places (the review's file was refused with a wrong
+     * reason) */
+    EXPECT_LOAD_ERROR(
+        write_file("dup_scene.gltf",
+                   "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}, "
+                   "{\"nodes\": [0]}], \"scene\": 1, \"nodes\": [{}]}",
+                   (size_t)-1),
+        "\"scene\", \"children\" or node \"mesh\" member appears twice");
+    EXPECT_LOAD_ERROR(write_file("dup_mesh.gltf",
+                                 "{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": [0]}], "
+                                 "\"nodes\": [{\"mesh\": 0, \"mesh\": 1}]}",
+                                 (size_t)-1),
+                      "member appears twice");
     /* a cyclic node graph (glTF children 0 -> 1 -> 0) */
     EXPECT_LOAD_ERROR(
         write_file("cycle.gltf",

@@ -741,7 +741,7 @@ typedef struct json {
     int sparse;      /* an accessor with a "sparse" member */
     g_graph g;
     u32 nodes; /* elements of "nodes" */
-    int have_nodes, have_scenes;
+    int have_nodes, have_scenes, have_scene;
     u32 *roots; /* scene roots, scene by scene: counts in roots_n */
     u32 nroots, rcap;
     u32 *scene_end; /* end index in roots of each scene */
@@ -970,13 +970,14 @@ static int child_element(json *j, u32 index, int depth, void *ctx) {
 
 typedef struct j_node_ctx {
     u32 index;
-    int children_seen;
+    int children_seen, mesh_seen;
     int v1; /* glTF 1.0: nodes is an object */
 } j_node_ctx;
 
 static int node_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     j_node_ctx *c = ctx;
     if (key_is(k, n, "mesh") && !c->v1) {
+        if (c->mesh_seen++) return j->dup = 1, 0;
         u32 m = ~0u;
         if (!j_plain_u32(j, k, n, "mesh", depth, &m)) return 0;
         return m == ~0u || (push_u32(j, &j->node_mesh, &j->nnode_mesh, &j->nm_cap, c->index) &&
@@ -996,14 +997,14 @@ static int node_element(json *j, u32 index, int depth, void *ctx) {
     (void)ctx;
     if (index >= PX_IO_MAX_NODES) return j->g.too_many = 1, 0;
     j->nodes = index + 1;
-    j_node_ctx c = {index, 0, 0};
+    j_node_ctx c = {.index = index};
     return j_object(j, depth, node_member, &c);
 }
 
 /* glTF 1.0: "nodes": {"name": {...}, ...}. */
 static int node_v1_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     (void)k, (void)n, (void)ctx;
-    j_node_ctx c = {0, 0, 1};
+    j_node_ctx c = {.v1 = 1};
     return j_object(j, depth, node_member, &c);
 }
 
@@ -1129,7 +1130,10 @@ static int top_member(json *j, const unsigned char *k, size_t n, int depth, void
         return j_array(j, depth, node_element, NULL);
     }
     if (key_is(k, n, "accessors")) return j_array(j, depth, accessor_element, NULL);
-    if (key_is(k, n, "scene")) return j_plain_u32(j, k, n, "scene", depth, &j->scene);
+    if (key_is(k, n, "scene")) {
+        if (j->have_scene++) return j->dup = 1, 0;
+        return j_plain_u32(j, k, n, "scene", depth, &j->scene);
+    }
     if (key_is(k, n, "meshes")) {
         j_ws(j);
         if (j->p < j->end && *j->p != '[') j->meshes_v1 = 1;
@@ -1208,8 +1212,8 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
                            h->path, JSON_MAX_DEPTH);
         else if (j.dup)
             st = pxi_error(err, PX_ERR_IO,
-                           "mesh file '%s': a glTF \"nodes\", \"scenes\" or \"children\" member "
-                           "appears twice",
+                           "mesh file '%s': a glTF \"nodes\", \"scenes\", \"scene\", \"children\" or "
+                           "node \"mesh\" member appears twice (readers disagree on which one counts)",
                            h->path);
         else if (j.bad_child)
             st = pxi_error(err, PX_ERR_IO,

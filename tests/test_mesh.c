@@ -1124,10 +1124,18 @@ static void test_bad_files(void) {
     snprintf(obj, sizeof obj, "o bolt\n%so nut\n%so bolt\n%s", tri3, tri3, tri3);
     EXPECT_LOAD_ERROR(write_file("again.obj", obj, (size_t)-1),
                       "line 15: object 'bolt' (line 1) continues after object 'nut' (line 6)");
+    /* the active group named again after an object changes nothing: the
+     * faces stay with the object (a review found such files refused) */
     snprintf(obj, sizeof obj, "g a\r\n%so b\r\n%sg a\r\n%s", tri3, tri3, tri3);
-    EXPECT_LOAD_ERROR(write_file("again_g.obj", obj, (size_t)-1), "line 15: object 'a' (line 1)");
-    snprintf(obj, sizeof obj, "g a\r%so b\r%sg a\r%s", tri3, tri3, tri3);
-    EXPECT_LOAD_ERROR(write_file("again_cr.obj", obj, (size_t)-1), "line 15: object 'a' (line 1)");
+    {
+        px_mesh *mg = load(write_file("again_g.obj", obj, (size_t)-1), 0);
+        CHECK(mg && px_mesh_part_count(mg) == 2 && px_mesh_triangle_count(mg) == 3, "again_g.obj: %u parts",
+              mg ? px_mesh_part_count(mg) : 0);
+        px_mesh_destroy(mg);
+    }
+    snprintf(obj, sizeof obj, "g a\r%so b\r%sg a\r%so a\r%s", tri3, tri3, tri3, tri3);
+    EXPECT_LOAD_ERROR(write_file("again_cr.obj", obj, (size_t)-1),
+                      "line 20: object 'a' (line 1) continues after object 'b' (line 6)");
     /* Lines as Assimp 5.2 splits and joins them (a review's findings): a
      * comment whose backslash swallows a face, a backslash before blanks
      * (no join: the indented face is lost), a form feed (a line end), a
@@ -1168,6 +1176,44 @@ static void test_bad_files(void) {
         CHECK(mk && px_mesh_triangle_count(mk) == 2, "ok_lines.obj: %u triangles",
               mk ? px_mesh_triangle_count(mk) : 0);
         px_mesh_destroy(mk);
+        /* a bare `g` (an object named "", as Assimp reads it; it crashed the
+         * check once), then the group before it again: a part of its own;
+         * `o` objects sharing one `g` group name (Rhino's layers) */
+        static const char bare_g[] =
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ng x\nf 1 2 3\no y\nf 1 2 4\ng\ng x\nf 1 3 4\n";
+        mk = load(write_file("bare_g.obj", bare_g, (size_t)-1), 0);
+        CHECK(mk && px_mesh_part_count(mk) == 3, "bare_g.obj: %u parts", mk ? px_mesh_part_count(mk) : 0);
+        px_mesh_destroy(mk);
+        static const char layers[] =
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no A\ng Default\nf 1 2 3\no B\ng Default\n"
+            "f 1 2 4\nusemtl red\nf 1 3 4\n";
+        mk = load(write_file("layers.obj", layers, (size_t)-1), 0);
+        CHECK(mk && px_mesh_part_count(mk) == 2 && px_mesh_triangle_count(mk) == 3, "layers.obj: %u parts",
+              mk ? px_mesh_part_count(mk) : 0);
+        px_mesh_destroy(mk);
+        /* over 16 MiB, the last line without a line end: Assimp drops it */
+        size_t big_n = ((size_t)17 << 20) + 64;
+        char *big = malloc(big_n + 1);
+        if (big) {
+            static const char tet[] =
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4";
+            size_t k = 0;
+            while (k + 80 < big_n - sizeof tet) {
+                memset(big + k, 'x', 79);
+                big[k] = '#';
+                big[k + 79] = '\n';
+                k += 80;
+            }
+            memcpy(big + k, tet, sizeof tet);
+            EXPECT_LOAD_ERROR(write_file("big_tail.obj", big, (size_t)-1), "the last line has no line end");
+            big[k + sizeof tet - 1] = '\n';
+            big[k + sizeof tet] = '\0';
+            mk = load(write_file("big_tail_nl.obj", big, (size_t)-1), 0);
+            CHECK(mk && px_mesh_triangle_count(mk) == 4, "big_tail_nl.obj: %u triangles",
+                  mk ? px_mesh_triangle_count(mk) : 0);
+            px_mesh_destroy(mk);
+            free(big);
+        }
     }
     {
         /* Read as written: one name again at once (one part), the active

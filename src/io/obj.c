@@ -112,12 +112,16 @@ static int add(obj_names *o, const unsigned char *t, obj_name e) {
 static int is_blank(unsigned char c) { return c == ' ' || c == '\t'; }
 static int is_end(unsigned char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; }
 
-/* A keyword whose line the reader would lose: v, vt, vn, vp, f, l, p, o, g. */
+/* IOStreamBuffer's block (its default cache size). */
+#define OBJ_BLOCK ((size_t)4096 * 4096)
+
+/* A keyword whose line the reader would lose: v, vt, vn, vp, f, fo, l, p,
+ * o, g. */
 static int geometry_keyword(const unsigned char *t, size_t b, size_t e) {
     size_t n = 0;
     while (b + n < e && !is_blank(t[b + n])) ++n;
     if (n == 1) return strchr("vflpog", t[b]) != NULL;
-    return n == 2 && t[b] == 'v' && strchr("tnp", t[b + 1]) != NULL;
+    return n == 2 && ((t[b] == 'v' && strchr("tnp", t[b + 1]) != NULL) || (t[b] == 'f' && t[b + 1] == 'o'));
 }
 
 /* The editor's line count over t[a, b): "\n", "\r\n" and a lone "\r"
@@ -126,6 +130,43 @@ static u64 lines_in(const unsigned char *t, size_t a, size_t b, size_t size) {
     u64 n = 0;
     for (size_t i = a; i < b; ++i) n += t[i] == '\n' || (t[i] == '\r' && !(i + 1 < size && t[i + 1] == '\n'));
     return n;
+}
+
+/* What a line holds for the checks of its words. */
+enum { W_OTHER, W_VERTEX, W_FACE };
+
+static int lower_is(const unsigned char *t, size_t i, size_t e, const char *w) {
+    for (; *w; ++w, ++i)
+        if (i >= e || (t[i] | 0x20) != *w) return 0;
+    return 1;
+}
+
+/* The words of t[b, e) (one piece of a line, its keyword and a joining
+ * backslash left out): a vertex line's numbers as Assimp 5.2 counts them
+ * (getNumComponentsInDataDefinition: a word that starts with a digit, '-'
+ * or '+', or with "nan" or "inf"); a face line's indices written with '+'
+ * or leading zeros (getFace steps over the digits of the value it read,
+ * not over the text, and reads them again). */
+static void scan_words(const unsigned char *t, size_t b, size_t e, int kind, size_t *numbers,
+                       int *bad_index) {
+    for (size_t i = b; i < e;) {
+        while (i < e && is_blank(t[i])) ++i;
+        if (i >= e) break;
+        size_t w = i;
+        while (i < e && !is_blank(t[i])) ++i;
+        if (kind == W_VERTEX) {
+            unsigned char c = t[w];
+            *numbers += (c >= '0' && c <= '9') || c == '-' || c == '+' || lower_is(t, w, i, "nan") ||
+                        lower_is(t, w, i, "inf");
+        } else if (kind == W_FACE) {
+            for (size_t k = w; k < i; ++k) {
+                if (k != w && t[k - 1] != '/') continue; /* the start of an index */
+                size_t d = k + (t[k] == '-');
+                if (t[k] == '+' || (d + 1 < i && t[d] == '0' && t[d + 1] >= '0' && t[d + 1] <= '9'))
+                    *bad_index = 1;
+            }
+        }
+    }
 }
 
 static px_status refuse(const io_head *h, u64 line, const char *why, px_error *err) {
@@ -148,10 +189,20 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
         const u64 at = line;
         size_t e = b;
         while (e < size && !is_end(t[e])) ++e;
-        /* The line's end, and the lines a backslash joins to it. */
-        size_t q = e;
-        int comment = t[b] == '#';
+        /* The line's end, and the lines a backslash joins to it; the words
+         * of vertex and face lines on the way. */
+        size_t q = e, numbers = 0;
+        int comment = t[b] == '#', bad_index = 0;
+        const int kind =
+            t[b] == 'v' && e - b >= 2 && is_blank(t[b + 1]) ? W_VERTEX
+            : ((t[b] == 'f' || t[b] == 'l' || t[b] == 'p') && e - b >= 2 && is_blank(t[b + 1])) ||
+                    (t[b] == 'f' && e - b >= 3 && t[b + 1] == 'o' && is_blank(t[b + 2]))
+                ? W_FACE
+                : W_OTHER;
+        size_t seg = kind == W_OTHER ? b : b + (t[b + 1] == 'o' ? 2 : 1);
         while (st == PX_OK && q < size && q > b && t[q - 1] == '\\') {
+            const size_t bs = q - 1; /* the backslash */
+            scan_words(t, seg, bs, kind, &numbers, &bad_index);
             if (!(t[q] == '\n' || (t[q] == '\r' && q + 1 < size && t[q + 1] == '\n'))) {
                 st = refuse(h, at + lines_in(t, b, q, size),
                             "a backslash before a line end other than LF or CRLF (Assimp 5.2 would skip "
@@ -174,8 +225,16 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
                             "the backslash at the end of the line before joins this line to it (Assimp 5.2 "
                             "would read its keyword as part of that line)",
                             err);
+            else if (!comment && nb < ne && !is_blank(t[nb]) && bs > seg && !is_blank(t[bs - 1]))
+                st = refuse(h, at + lines_in(t, b, nb, size),
+                            "the backslash at the end of the line before joins a word of it to the first "
+                            "word of this one (Assimp 5.2 reads them as one): put a space before the "
+                            "backslash",
+                            err);
+            seg = nb;
             q = ne;
         }
+        if (st == PX_OK) scan_words(t, seg, q, kind, &numbers, &bad_index);
         if (st != PX_OK) break;
         if (q >= size && q > b && t[q - 1] == '\\') {
             st = refuse(h, at + lines_in(t, b, q, size),
@@ -209,11 +268,33 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
             }
             continue;
         }
+        if (kind == W_VERTEX && numbers != 3 && numbers != 4 && numbers != 6) {
+            st = refuse(h, at,
+                        "a vertex line of other than 3, 4 or 6 numbers, as Assimp 5.2 counts them (a word "
+                        "that starts with a digit or a sign): it would drop the vertex and shift every later "
+                        "index (write .5 as 0.5)",
+                        err);
+            break;
+        }
+        if (kind == W_FACE && bad_index) {
+            st = refuse(h, at,
+                        "a face index written with '+' or leading zeros (Assimp 5.2 would read its digits "
+                        "twice)",
+                        err);
+            break;
+        }
+        if (e - b >= 6 && memcmp(t + b, "cstype", 6) == 0 && (e - b == 6 || is_blank(t[b + 6]))) {
+            st = refuse(h, at,
+                        "free-form geometry (cstype ... end): Assimp 5.2 skips it, with every vertex and "
+                        "face line inside",
+                        err);
+            break;
+        }
         const unsigned char c0 = t[b];
         const int blank = e - b >= 2 && is_blank(t[b + 1]);
         const int usemtl =
             e - b >= 6 && memcmp(t + b, "usemtl", 6) == 0 && (e - b == 6 || is_blank(t[b + 6]));
-        if (((c0 == 'f' || c0 == 'l' || c0 == 'p') && blank) || usemtl) {
+        if (kind == W_FACE || usemtl) {
             if (meant != current && usemtl)
                 st = pxi_error(
                     err, PX_ERR_IO,
@@ -240,14 +321,15 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
             continue;
         }
         const int is_o = c0 == 'o';
-        if (!(is_o || c0 == 'g') || !blank) continue;
-        size_t s = b + 2;
+        /* A bare `g` names the group "" (Assimp starts an object so named). */
+        if (!(is_o && blank) && !(c0 == 'g' && (blank || e - b == 1))) continue;
+        size_t s = b + 1; /* past the keyword (a bare `g` has nothing after it) */
         while (s < e && is_blank(t[s])) ++s;
         size_t f = e;
         /* An `o` name is its first word; a `g` name keeps trailing blanks. */
         if (is_o)
             while (f > s && is_blank(t[f - 1])) --f;
-        if (f == s) continue;
+        if (f == s && is_o) continue; /* Assimp ignores an `o` without a name */
         size_t key_len = f - s;
         if (is_o)
             for (size_t k = s; k < f; ++k)
@@ -255,10 +337,9 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
                     key_len = k - s;
                     break;
                 }
-        if (!is_o && group != SIZE_MAX && same(t, o.v[group].key, o.v[group].key_len, s, key_len)) {
-            meant = group; /* the active group again: Assimp changes nothing */
-            continue;
-        }
+        /* The active group named again changes nothing (the faces go on
+         * into the current object's mesh, as the file's last `o` means). */
+        if (!is_o && group != SIZE_MAX && same(t, o.v[group].key, o.v[group].key_len, s, key_len)) continue;
         size_t found = is_o ? find(&o, t, s, key_len) : SIZE_MAX;
         if (found != SIZE_MAX) {
             if (!same(t, o.v[found].full, o.v[found].full_len, s, f - s)) {
@@ -283,6 +364,18 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
         }
         current = meant = o.n - 1;
         if (!is_o) group = current;
+    }
+    /* Assimp reads the file in blocks of 16 MiB, and in a file of more
+     * than one it drops a last line that no line end closes. */
+    if (st == PX_OK && size > OBJ_BLOCK - 65536 && !is_end(t[size - 1])) {
+        size_t b = size;
+        while (b > 0 && !is_end(t[b - 1])) --b;
+        while (b < size && is_blank(t[b])) ++b;
+        if (b < size)
+            st = refuse(h, line,
+                        "the last line has no line end, and Assimp 5.2 drops such a line in a file of more "
+                        "than 16 MiB: end the file with a newline",
+                        err);
     }
     pxi_free(h->alloc, o.v, o.cap * sizeof *o.v);
     pxi_free(h->alloc, o.slot, o.slots * sizeof *o.slot);

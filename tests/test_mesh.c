@@ -1158,6 +1158,10 @@ static void test_bad_files(void) {
         {"bs_end.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 \\", "line 4: the file ends in a backslash"},
         {"bom.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n",
          "line 1: the file starts with a byte-order mark"},
+        {"bs_empty.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0 \\\n\nf 1 2 3\n",
+         "line 4: a backslash at the end of a line, then"},
+        {"default_again.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no a\nf 1 3 2\no defaultobject\nf 2 1 3\n",
+         "line 8: object 'defaultobject' (line 4) continues after object 'a' (line 5)"},
         {"mtl_again.obj",
          "o A\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no B\nv 5 0 0\nv 6 0 0\nv 5 1 0\nf 4 5 6\n"
          "o A\nusemtl m2\nf 1 3 2\n",
@@ -1191,6 +1195,18 @@ static void test_bad_files(void) {
         CHECK(mk && px_mesh_part_count(mk) == 2 && px_mesh_triangle_count(mk) == 3, "layers.obj: %u parts",
               mk ? px_mesh_part_count(mk) : 0);
         px_mesh_destroy(mk);
+        /* a word of 4,096 digits on a vertex line (Assimp reads its rest as
+         * another number) */
+        char *word = malloc(4200);
+        if (word) {
+            memcpy(word, "v 0 0 ", 6);
+            memset(word + 6, '0', 4096);
+            static const char rest[] = "\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+            memcpy(word + 6 + 4096, rest, sizeof rest);
+            EXPECT_LOAD_ERROR(write_file("word.obj", word, (size_t)-1),
+                              "line 1: a word of more than 4095 bytes");
+            free(word);
+        }
         /* over 16 MiB, the last line without a line end: Assimp drops it */
         size_t big_n = ((size_t)17 << 20) + 64;
         char *big = malloc(big_n + 1);

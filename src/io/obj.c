@@ -39,8 +39,8 @@
 #include "io/scan.h"
 
 typedef struct obj_name {
-    size_t key, key_len;   /* the name Assimp keeps: offsets into the text */
-    size_t full, full_len; /* the whole name as written */
+    const unsigned char *key, *full; /* the name Assimp keeps, the whole name as written */
+    size_t key_len, full_len;
     u64 line;
 } obj_name;
 
@@ -58,29 +58,29 @@ static uint64_t name_hash(const unsigned char *s, size_t n) {
     return h;
 }
 
-static int same(const unsigned char *t, size_t a, size_t an, size_t b, size_t bn) {
-    return an == bn && memcmp(t + a, t + b, an) == 0;
+static int same(const unsigned char *a, size_t an, const unsigned char *b, size_t bn) {
+    return an == bn && (an == 0 || memcmp(a, b, an) == 0);
 }
 
-/* The first object whose key is t[k .. k + n), or SIZE_MAX. */
-static size_t find(const obj_names *o, const unsigned char *t, size_t k, size_t n) {
+/* The first object whose key is k[0 .. n), or SIZE_MAX. */
+static size_t find(const obj_names *o, const unsigned char *k, size_t n) {
     if (!o->slots) return SIZE_MAX;
-    for (size_t i = name_hash(t + k, n) & (o->slots - 1);; i = (i + 1) & (o->slots - 1)) {
+    for (size_t i = name_hash(k, n) & (o->slots - 1);; i = (i + 1) & (o->slots - 1)) {
         uint32_t s = o->slot[i];
         if (!s) return SIZE_MAX;
-        if (same(t, o->v[s - 1].key, o->v[s - 1].key_len, k, n)) return s - 1;
+        if (same(o->v[s - 1].key, o->v[s - 1].key_len, k, n)) return s - 1;
     }
 }
 
-static void put_slot(obj_names *o, const unsigned char *t, size_t id) {
-    size_t i = name_hash(t + o->v[id].key, o->v[id].key_len) & (o->slots - 1);
+static void put_slot(obj_names *o, size_t id) {
+    size_t i = name_hash(o->v[id].key, o->v[id].key_len) & (o->slots - 1);
     while (o->slot[i]) i = (i + 1) & (o->slots - 1);
     o->slot[i] = (uint32_t)(id + 1);
 }
 
 /* Appends an object; its key enters the hash when new. 0 when out of
  * memory. */
-static int add(obj_names *o, const unsigned char *t, obj_name e) {
+static int add(obj_names *o, obj_name e) {
     if (o->n == o->cap) {
         size_t nc = o->cap ? 2 * o->cap : 64;
         if (nc > UINT32_MAX - 1) return 0;
@@ -101,16 +101,20 @@ static int add(obj_names *o, const unsigned char *t, obj_name e) {
         o->slots = ns;
         /* Again, first objects first, so that a key keeps its first. */
         for (size_t i = 0; i < o->n; ++i)
-            if (find(o, t, o->v[i].key, o->v[i].key_len) == SIZE_MAX) put_slot(o, t, i);
+            if (find(o, o->v[i].key, o->v[i].key_len) == SIZE_MAX) put_slot(o, i);
     }
     o->v[o->n] = e;
-    if (find(o, t, e.key, e.key_len) == SIZE_MAX) put_slot(o, t, o->n);
+    if (find(o, e.key, e.key_len) == SIZE_MAX) put_slot(o, o->n);
     o->n++;
     return 1;
 }
 
 static int is_blank(unsigned char c) { return c == ' ' || c == '\t'; }
 static int is_end(unsigned char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; }
+
+/* The longest word the reader copies whole (its buffer, less the NUL):
+ * the rest of a longer one reads as the next word. */
+#define OBJ_MAX_WORD 4095
 
 /* IOStreamBuffer's block (its default cache size). */
 #define OBJ_BLOCK ((size_t)4096 * 4096)
@@ -154,6 +158,7 @@ static void scan_words(const unsigned char *t, size_t b, size_t e, int kind, siz
         if (i >= e) break;
         size_t w = i;
         while (i < e && !is_blank(t[i])) ++i;
+        if (kind != W_OTHER && i - w > OBJ_MAX_WORD) *bad_index = 2;
         if (kind == W_VERTEX) {
             unsigned char c = t[w];
             *numbers += (c >= '0' && c <= '9') || c == '-' || c == '+' || lower_is(t, w, i, "nan") ||
@@ -213,6 +218,16 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
             q += t[q] == '\r' ? 2 : 1;
             size_t nb = q, ne = q;
             while (ne < size && !is_end(t[ne])) ++ne;
+            /* The reader copies the byte after the LF unread: an empty
+             * line there glues the next one on. */
+            if (nb + 1 < size && (t[nb] == '\n' || t[nb] == '\f' || t[nb] == '\0') && !is_end(t[nb + 1])) {
+                st =
+                    refuse(h, at + lines_in(t, b, nb, size),
+                           "a backslash at the end of a line, then an empty line: Assimp 5.2 would join the "
+                           "line after it to the first, and lose it (remove the backslash or the empty line)",
+                           err);
+                break;
+            }
             size_t f = nb;
             while (f < ne && is_blank(t[f])) ++f;
             if (comment && f < ne)
@@ -276,6 +291,13 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
                         err);
             break;
         }
+        if (bad_index == 2) {
+            st = refuse(h, at,
+                        "a word of more than 4095 bytes on a vertex or face line (Assimp 5.2 would read its "
+                        "rest as the next number)",
+                        err);
+            break;
+        }
         if (kind == W_FACE && bad_index) {
             st = refuse(h, at,
                         "a face index written with '+' or leading zeros (Assimp 5.2 would read its digits "
@@ -294,6 +316,17 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
         const int blank = e - b >= 2 && is_blank(t[b + 1]);
         const int usemtl =
             e - b >= 6 && memcmp(t + b, "usemtl", 6) == 0 && (e - b == 6 || is_blank(t[b + 6]));
+        if (kind == W_FACE && current == SIZE_MAX) {
+            /* Faces before any object: Assimp starts one named
+             * "defaultobject", which a later `o` can name again. */
+            static const unsigned char dflt[] = "defaultobject";
+            obj_name nm = {dflt, dflt, sizeof dflt - 1, sizeof dflt - 1, at};
+            if (!add(&o, nm)) {
+                st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "mesh file '%s': out of memory", h->path);
+                break;
+            }
+            current = meant = o.n - 1;
+        }
         if (kind == W_FACE || usemtl) {
             if (meant != current && usemtl)
                 st = pxi_error(
@@ -302,21 +335,19 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
                     "object '%.*s' (line %llu), and with a material starting here Assimp 5.2 may put "
                     "the faces that follow into either part: give each object a distinct name, or "
                     "keep an object's lines together",
-                    h->path, (unsigned long long)at, (int)o.v[meant].full_len,
-                    (const char *)t + o.v[meant].full, (unsigned long long)o.v[meant].line,
-                    (int)o.v[current].full_len, (const char *)t + o.v[current].full,
-                    (unsigned long long)o.v[current].line);
+                    h->path, (unsigned long long)at, (int)o.v[meant].full_len, (const char *)o.v[meant].full,
+                    (unsigned long long)o.v[meant].line, (int)o.v[current].full_len,
+                    (const char *)o.v[current].full, (unsigned long long)o.v[current].line);
             else if (meant != current)
                 st = pxi_error(
                     err, PX_ERR_IO,
                     "mesh file '%s', line %llu: object '%.*s' (line %llu) continues after object "
                     "'%.*s' (line %llu), and Assimp 5.2 would put the faces from here into the part "
                     "of '%.*s': give each object a distinct name, or keep an object's lines together",
-                    h->path, (unsigned long long)at, (int)o.v[meant].full_len,
-                    (const char *)t + o.v[meant].full, (unsigned long long)o.v[meant].line,
-                    (int)o.v[current].full_len, (const char *)t + o.v[current].full,
-                    (unsigned long long)o.v[current].line, (int)o.v[current].full_len,
-                    (const char *)t + o.v[current].full);
+                    h->path, (unsigned long long)at, (int)o.v[meant].full_len, (const char *)o.v[meant].full,
+                    (unsigned long long)o.v[meant].line, (int)o.v[current].full_len,
+                    (const char *)o.v[current].full, (unsigned long long)o.v[current].line,
+                    (int)o.v[current].full_len, (const char *)o.v[current].full);
             if (st != PX_OK) break;
             continue;
         }
@@ -339,10 +370,12 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
                 }
         /* The active group named again changes nothing (the faces go on
          * into the current object's mesh, as the file's last `o` means). */
-        if (!is_o && group != SIZE_MAX && same(t, o.v[group].key, o.v[group].key_len, s, key_len)) continue;
-        size_t found = is_o ? find(&o, t, s, key_len) : SIZE_MAX;
+        if (!is_o &&
+            (group != SIZE_MAX ? same(o.v[group].key, o.v[group].key_len, t + s, key_len) : key_len == 0))
+            continue; /* (the active group starts as "") */
+        size_t found = is_o ? find(&o, t + s, key_len) : SIZE_MAX;
         if (found != SIZE_MAX) {
-            if (!same(t, o.v[found].full, o.v[found].full_len, s, f - s)) {
+            if (!same(o.v[found].full, o.v[found].full_len, t + s, f - s)) {
                 st = pxi_error(
                     err, PX_ERR_IO,
                     "mesh file '%s', line %llu: object '%.*s' is '%.*s' to Assimp 5.2, as is '%.*s' "
@@ -350,15 +383,15 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
                     "objects of one name into one part): give each object a distinct name "
                     "without spaces",
                     h->path, (unsigned long long)at, (int)(f - s), (const char *)t + s, (int)key_len,
-                    (const char *)t + s, (int)o.v[found].full_len, (const char *)t + o.v[found].full,
+                    (const char *)t + s, (int)o.v[found].full_len, (const char *)o.v[found].full,
                     (unsigned long long)o.v[found].line);
                 break;
             }
             meant = found; /* Assimp's current mesh stays current's */
             continue;
         }
-        obj_name nm = {s, key_len, s, f - s, at};
-        if (!add(&o, t, nm)) {
+        obj_name nm = {t + s, t + s, key_len, f - s, at};
+        if (!add(&o, nm)) {
             st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "mesh file '%s': out of memory", h->path);
             break;
         }
@@ -367,7 +400,7 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
     }
     /* Assimp reads the file in blocks of 16 MiB, and in a file of more
      * than one it drops a last line that no line end closes. */
-    if (st == PX_OK && size > OBJ_BLOCK - 65536 && !is_end(t[size - 1])) {
+    if (st == PX_OK && size >= OBJ_BLOCK && !is_end(t[size - 1])) {
         size_t b = size;
         while (b > 0 && !is_end(t[b - 1])) --b;
         while (b < size && is_blank(t[b])) ++b;

@@ -611,19 +611,23 @@ static void test_bad_inputs(void) {
     px_convex_destroy(c);
 }
 
-/* A closed box mesh of half-size h at the origin, as a triangle model. */
-static px_model *box_triangles(double h) {
-    double xyz[24];
-    for (int c = 0; c < 8; ++c)
-        for (int k = 0; k < 3; ++k) xyz[3 * c + k] = (c >> k) & 1 ? h : -h;
-    const uint32_t tri[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+/* n closed cubes of half-size h (1 or 2), centred at x = 0 and x = gap,
+ * as one triangle model (n connected pieces). */
+static px_model *cubes_triangles(double h, int n, double gap) {
+    double xyz[48];
+    for (int c = 0; c < 16; ++c)
+        for (int k = 0; k < 3; ++k) xyz[3 * c + k] = ((c & 7) >> k) & 1 ? h : -h;
+    for (int c = 8; c < 16; ++c) xyz[3 * c] += gap;
+    const uint32_t one[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
                               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    uint32_t tri[72];
+    for (int i = 0; i < 36; ++i) tri[i] = one[i], tri[36 + i] = one[i] + 8;
     px_mesh_desc md;
     memset(&md, 0, sizeof md);
     md.xyz = xyz;
-    md.vertex_count = 8;
+    md.vertex_count = 8 * (uint32_t)n;
     md.triangles = tri;
-    md.triangle_count = 12;
+    md.triangle_count = 12 * (uint32_t)n;
     px_mesh *mesh = px_mesh_create(&md, NULL, NULL);
     px_model_options mo;
     memset(&mo, 0, sizeof mo);
@@ -632,6 +636,9 @@ static px_model *box_triangles(double h) {
     px_mesh_destroy(mesh);
     return m;
 }
+
+/* A closed box mesh of half-size h at the origin, as a triangle model. */
+static px_model *box_triangles(double h) { return cubes_triangles(h, 1, 0.0); }
 
 /* A closed box mesh (triangle leaves: its inside counts through the solid
  * test, not the distance query) with a small polytope moving through it:
@@ -691,38 +698,13 @@ static void test_containment(void) {
     px_model_destroy(box);
 }
 
-/* Two closed cubes of half-side h, centred at x = 0 and x = gap: one model
- * of two connected pieces. */
-static px_model *two_cubes(double h, double gap) {
-    double xyz[48];
-    for (int c = 0; c < 16; ++c)
-        for (int k = 0; k < 3; ++k) xyz[3 * c + k] = ((c & 7) >> k) & 1 ? h : -h;
-    for (int c = 8; c < 16; ++c) xyz[3 * c] += gap;
-    const uint32_t one[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
-                              2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
-    uint32_t tri[72];
-    for (int i = 0; i < 36; ++i) tri[i] = one[i], tri[36 + i] = one[i] + 8;
-    px_mesh_desc md;
-    memset(&md, 0, sizeof md);
-    md.xyz = xyz;
-    md.vertex_count = 16;
-    md.triangles = tri;
-    md.triangle_count = 24;
-    px_mesh *mesh = px_mesh_create(&md, NULL, NULL);
-    px_model_options mo;
-    memset(&mo, 0, sizeof mo);
-    mo.pieces = PX_PIECES_TRIANGLES;
-    px_model *m = mesh ? px_model_create_from_mesh(mesh, &mo, NULL) : NULL;
-    px_mesh_destroy(mesh);
-    return m;
-}
-
 /* A body of two pieces whose one piece lies inside a closed box and the
  * other outside: contained says a piece is inside (bit 0 or 1) but not
  * all of it (bits 2 and 3 clear); with both pieces inside it says all. */
 static void test_partial_containment(void) {
     px_error e;
-    px_model *box = box_triangles(1.5), *two = two_cubes(0.25, 10.0), *near = two_cubes(0.25, 1.0);
+    px_model *box = box_triangles(1.5), *two = cubes_triangles(0.25, 2, 10.0),
+             *near = cubes_triangles(0.25, 2, 1.0);
     CHECK(box && two && near, "models");
     px_scene_options o;
     memset(&o, 0, sizeof o);

@@ -611,6 +611,25 @@ static void test_bad_inputs(void) {
     px_convex_destroy(c);
 }
 
+/* A triangle model (triangle leaves) of a mesh given by arrays; NULL with
+ * err set when the mesh or the model cannot be built. */
+static px_model *triangle_model(const double *xyz, uint32_t nv, const uint32_t *tri, uint32_t nt,
+                                px_error *err) {
+    px_mesh_desc md;
+    memset(&md, 0, sizeof md);
+    md.xyz = xyz;
+    md.vertex_count = nv;
+    md.triangles = tri;
+    md.triangle_count = nt;
+    px_mesh *mesh = px_mesh_create(&md, NULL, err);
+    px_model_options mo;
+    memset(&mo, 0, sizeof mo);
+    mo.pieces = PX_PIECES_TRIANGLES;
+    px_model *m = mesh ? px_model_create_from_mesh(mesh, &mo, err) : NULL;
+    px_mesh_destroy(mesh);
+    return m;
+}
+
 /* n closed cubes of half-size h (1 or 2), centred at x = 0 and x = gap,
  * as one triangle model (n connected pieces). */
 static px_model *cubes_triangles(double h, int n, double gap) {
@@ -622,19 +641,7 @@ static px_model *cubes_triangles(double h, int n, double gap) {
                               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
     uint32_t tri[72];
     for (int i = 0; i < 36; ++i) tri[i] = one[i], tri[36 + i] = one[i] + 8;
-    px_mesh_desc md;
-    memset(&md, 0, sizeof md);
-    md.xyz = xyz;
-    md.vertex_count = 8 * (uint32_t)n;
-    md.triangles = tri;
-    md.triangle_count = 12 * (uint32_t)n;
-    px_mesh *mesh = px_mesh_create(&md, NULL, NULL);
-    px_model_options mo;
-    memset(&mo, 0, sizeof mo);
-    mo.pieces = PX_PIECES_TRIANGLES;
-    px_model *m = mesh ? px_model_create_from_mesh(mesh, &mo, NULL) : NULL;
-    px_mesh_destroy(mesh);
-    return m;
+    return triangle_model(xyz, 8 * (uint32_t)n, tri, 12 * (uint32_t)n, NULL);
 }
 
 /* A closed box mesh of half-size h at the origin, as a triangle model. */
@@ -784,19 +791,8 @@ static void test_static_caches(void) {
                 nt += 2;
             }
     }
-    px_mesh_desc md;
-    memset(&md, 0, sizeof md);
-    md.xyz = xyz;
-    md.vertex_count = nv;
-    md.triangles = tri;
-    md.triangle_count = nt;
-    px_mesh *mesh = px_mesh_create(&md, NULL, &e);
-    px_model_options mo;
-    memset(&mo, 0, sizeof mo);
-    mo.pieces = PX_PIECES_TRIANGLES;
-    px_model *box = mesh ? px_model_create_from_mesh(mesh, &mo, &e) : NULL;
+    px_model *box = triangle_model(xyz, nv, tri, nt, &e);
     CHECK(box != NULL, "static caches: box model: %s", e.message);
-    px_mesh_destroy(mesh);
     if (!box) return;
     px_scene_options o;
     memset(&o, 0, sizeof o);
@@ -1611,15 +1607,7 @@ static void test_third_review(void) {
             for (int k = 0; k < 3; ++k) v[3 * c + k] = ((c >> k) & 1 ? 0.8 : -0.8);
         uint32_t t[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
                           2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
-        px_mesh_desc md = {0};
-        md.xyz = v;
-        md.vertex_count = 8;
-        md.triangles = t;
-        md.triangle_count = 12;
-        px_mesh *m = px_mesh_create(&md, NULL, &e);
-        px_model_options mo = {0};
-        mo.pieces = PX_PIECES_TRIANGLES;
-        px_model *cube = px_model_create_from_mesh(m, &mo, &e);
+        px_model *cube = triangle_model(v, 8, t, 12, &e);
         px_model_distance_result cold, w0, w1;
         px_model_cache mc;
         memset(&mc, 0, sizeof mc);
@@ -1641,7 +1629,6 @@ static void test_third_review(void) {
               "review 3.5: cold %.17g, warm %.17g, every leaf %.17g", cold.distance, w1.distance, brute);
         px_model_cache_release(&mc);
         px_model_destroy(cube);
-        px_mesh_destroy(m);
         px_convex_destroy(sq);
     }
 }

@@ -152,6 +152,16 @@ static const char *three_numbers(const unsigned char **pp) {
     return "";
 }
 
+/* The three numbers after the keyword of `word` bytes at *pp (the byte
+ * after it skipped, as Assimp does): NULL when read, else why not
+ * (`missing` when a number is not there). */
+static const char *numbers_after(const unsigned char **pp, size_t word, const char *missing) {
+    if ((*pp)[word] == '\0') return "the file ends inside a facet";
+    *pp += word + 1;
+    const char *e = three_numbers(pp);
+    return !e ? missing : *e ? e : NULL;
+}
+
 px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
     unsigned char *buf;
     px_status st = pxi_read_all(h, &buf, err);
@@ -192,15 +202,7 @@ px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
                     why = "a facet without 'normal' (Assimp 5.2 needs one per facet)";
                     break;
                 }
-                if (p[6] == '\0') {
-                    why = "the file ends inside a facet";
-                    break;
-                }
-                p += 7;
-                const char *e = three_numbers(&p);
-                if (!e) why = "a facet normal needs three numbers on its line";
-                if (e && *e) why = e;
-                if (why) break;
+                if ((why = numbers_after(&p, 6, "a facet normal needs three numbers on its line"))) break;
                 normals += 3;
             } else if (starts(p, "vertex") && is_blank(p[6])) {
                 if (corners >= 3) {
@@ -210,15 +212,7 @@ px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
                                 "drops it)";
                     break;
                 }
-                if (p[6] == '\0') {
-                    why = "the file ends inside a facet";
-                    break;
-                }
-                p += 7;
-                const char *e = three_numbers(&p);
-                if (!e) why = "a vertex needs three numbers on its line";
-                if (e && *e) why = e;
-                if (why) break;
+                if ((why = numbers_after(&p, 6, "a vertex needs three numbers on its line"))) break;
                 ++positions;
                 ++corners;
                 if (++vertices > PX_IO_MAX_ELEMENTS / 4 * 3) {

@@ -527,6 +527,17 @@ static void test_bad_inputs(void) {
     px_pose p = px_pose_identity();
     CHECK(px_scene_set_pose(s, fixed, &p, &e) == PX_ERR_INVALID_ARGUMENT, "static body refuses a pose");
     CHECK(px_scene_set_pose(s, 99, &p, &e) == PX_ERR_INVALID_ARGUMENT, "unknown body");
+    /* Every entry of the rotation, made NaN or infinite, is refused, and
+     * without arithmetic on it (the tests run with FP traps). */
+    for (int i = 0; i < 9; ++i) {
+        const double bad[3] = {NAN, INFINITY, -INFINITY};
+        for (int k = 0; k < 3; ++k) {
+            px_pose q = px_pose_identity();
+            q.r[i] = bad[k];
+            px_status st = px_scene_set_pose(s, id, &q, &e);
+            CHECK(st != PX_OK, "rotation entry %d = %g refused", i, bad[k]);
+        }
+    }
     p.r[0] = 2;
     CHECK(px_scene_set_pose(s, id, &p, &e) == PX_ERR_INVALID_POSE, "bad rotation refused");
     CHECK(px_scene_set_velocity(s, id, (px_vec3){5, 0, 0}, 0, &e) == PX_ERR_INVALID_ARGUMENT,

@@ -49,6 +49,17 @@
 /* The fat box's slack, relative to the body's box half-diagonal. */
 #define S_SLACK 0.125
 
+/* Hot helpers that must be inlined (see prefetch_feature, move_ep). */
+#if defined(__GNUC__)
+#define S_PREFETCH(p) __builtin_prefetch(p)
+#define S_INLINE static inline __attribute__((always_inline))
+#define S_NOINLINE static __attribute__((noinline))
+#else
+#define S_PREFETCH(p) ((void)(p))
+#define S_INLINE static inline
+#define S_NOINLINE static
+#endif
+
 enum { K_CONVEX = 0, K_MODEL_MODEL = 1, K_MODEL_CONVEX = 2, K_CONVEX_MODEL = 3 };
 
 /* Fields are in the order a due pair reads them: its re-key touches the
@@ -169,9 +180,9 @@ struct px_scene {
     uint32_t *doomed, n_doomed, cap_doomed; /* see remove_pair */
     sdone *done;                            /* per due pair of the step: what became of it */
     uint32_t cap_done;
-    struct spool *pool; /* helper threads (NULL: the step runs on the caller's) */
-    srep *rep;
-    uint32_t n_rep, cap_rep;
+    struct spool *pool;  /* helper threads (NULL: the step runs on the caller's) */
+    srep *rep, *rep_tmp; /* rep_tmp: the radix sort's second buffer */
+    uint32_t n_rep, cap_rep, cap_rep_tmp;
     px_scene_pair *out;
     uint32_t cap_out;
     px_scene_event *ev, *pending;
@@ -669,13 +680,23 @@ static void settle_doomed(px_scene *s) {
     s->n_doomed = 0;
 }
 
+/* A pass changed the overlap of pair (b, o): added when b's box grew over
+ * o's, removed when it shrank off it (rare; kept out of the loop, whose
+ * registers it would otherwise take). */
+S_NOINLINE int pass_pair(px_scene *s, uint32_t b, uint32_t o, int grow) {
+    if (grow) return add_pair(s, b, o);
+    remove_pair(s, b, o);
+    return 1;
+}
+
 /* Moves endpoint m (0: min, 1: max) of body b on axis k in direction dir
  * (-1 or +1) to its value's place, shifting the endpoints it passes (one
  * write each; b's own is written once at the end). Passing an endpoint of
  * the other kind changes that pair's overlap on this axis: the pair is
  * added when b's box grows over it (min left, max right) and the boxes
- * overlap on the other two axes, removed when it shrinks off it. */
-static int move_ep(px_scene *s, uint32_t b, int k, int m, int dir) {
+ * overlap on the other two axes, removed when it shrinks off it. Inlined
+ * with k, m and dir constant (sift): the loop is most of the sweep's cost. */
+S_INLINE int move_ep(px_scene *s, uint32_t b, const int k, const int m, const int dir) {
     sep *e = s->axis[k];
     uint32_t *ep = s->ep;
     const uint32_t n = s->n_ep;
@@ -684,35 +705,32 @@ static int move_ep(px_scene *s, uint32_t b, int k, int m, int dir) {
      * when each min precedes the other's max. */
     const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
     const uint32_t *eb = &ep[6 * (size_t)b];
-    const uint32_t b1lo = eb[2 * k1], b1hi = eb[2 * k1 + 1], b2lo = eb[2 * k2], b2hi = eb[2 * k2 + 1];
     uint32_t i = eb[2 * k + m];
     const sep me = e[i];
+#define S_STAYS(i) (dir < 0 ? (i) == 0 || !precedes(me, e[(i)-1]) : (i) + 1 >= n || !precedes(e[(i) + 1], me))
+    if (S_STAYS(i)) return 1; /* most of the four moves of a refit */
+    const uint32_t b1lo = eb[2 * k1], b1hi = eb[2 * k1 + 1], b2lo = eb[2 * k2], b2hi = eb[2 * k2 + 1];
     int ok = 1;
-    uint64_t swaps = 0;
+    uint32_t start = i;
     for (;;) {
         uint32_t j = dir < 0 ? i - 1 : i + 1;
-        if (dir < 0 ? i == 0 || !precedes(me, e[j]) : j >= n || !precedes(e[j], me)) break;
         sep o = e[j];
-        uint32_t *eo = &ep[6 * (size_t)(o.id >> 1)];
+        uint32_t *eo = &ep[3 * (size_t)(o.id & ~1u)]; /* 6 * body */
         /* Evaluated without branches (whether o is of the other kind, and
          * overlaps on the other axes, is a coin toss at every pass): only
          * the rare change of a pair branches. */
         int change = ((o.id & 1) != (uint32_t)m) & (b1lo < eo[2 * k1 + 1]) & (eo[2 * k1] < b1hi) &
                      (b2lo < eo[2 * k2 + 1]) & (eo[2 * k2] < b2hi);
-        if (change) {
-            if (grow)
-                ok &= add_pair(s, b, o.id >> 1);
-            else
-                remove_pair(s, b, o.id >> 1);
-        }
+        if (change) ok &= pass_pair(s, b, o.id >> 1, grow);
         e[i] = o;
         eo[2 * k + (o.id & 1)] = i;
-        swaps++;
         i = j;
+        if (S_STAYS(i)) break;
     }
+#undef S_STAYS
     e[i] = me;
     ep[6 * (size_t)b + 2 * k + m] = i;
-    s->stats.swaps += swaps;
+    s->stats.swaps += dir < 0 ? start - i : i - start;
     return ok;
 }
 
@@ -722,12 +740,16 @@ static int move_ep(px_scene *s, uint32_t b, int k, int m, int dir) {
  * can only be present when the boxes overlap on the other two axes: the
  * removals test that before looking the pair up (Bullet's
  * USE_OVERLAP_TEST_ON_REMOVES). */
-static int sift(px_scene *s, uint32_t b, int k) {
+S_INLINE int sift_on(px_scene *s, uint32_t b, const int k) {
     int ok = move_ep(s, b, k, 0, -1);
     ok &= move_ep(s, b, k, 1, +1);
     ok &= move_ep(s, b, k, 0, +1);
     ok &= move_ep(s, b, k, 1, -1);
     return ok;
+}
+
+static int sift(px_scene *s, uint32_t b, int k) {
+    return k == 0 ? sift_on(s, b, 0) : k == 1 ? sift_on(s, b, 1) : sift_on(s, b, 2);
 }
 
 /* The sweep's frame: the world turned 0.7 rad about y, then 0.6 rad about
@@ -780,27 +802,38 @@ static void note_skew(px_scene *s, double sk) {
  * stretch by up to 1 + its skew (|R|_2 <= 1 + |S|, R = Q (I + S)). */
 static double sphere_r(const sbody *b) { return b->sr * (1.0 + b->sk); }
 
+/* The box of the body's bounding sphere in the sweep's frame at its pose
+ * (the sphere does not grow with the rotation). */
+static void sphere_box(const sbody *b, double out[6]) {
+    px_vec3 ws = pxi_rot(SWEEP, pxi_xform(&b->pose, b->sc));
+    double ws3[3] = {ws.x, ws.y, ws.z};
+    for (int i = 0; i < 3; ++i) {
+        /* Rounding of the centre and the frame (its rows are unit within a
+         * few ulps): a few ulps of the coordinates. */
+        double es = sphere_r(b) + 16.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
+        out[i] = ws3[i] - es;
+        out[3 + i] = ws3[i] + es;
+    }
+}
+
 /* The body's box in the sweep's frame at its pose: the body-frame box
- * turned (|R| half) cut down to the box of its bounding sphere, which does
- * not grow with the rotation (a round body's turned box is up to sqrt 3
- * times wider). */
+ * turned (|R| half) cut down to the box of its bounding sphere (a round
+ * body's turned box is up to sqrt 3 times wider). */
 static void world_box(const sbody *b, double out[6]) {
     px_vec3 c = pxi_scale(pxi_add(b->lo, b->hi), 0.5), h = pxi_scale(pxi_sub(b->hi, b->lo), 0.5);
-    px_vec3 wc = pxi_rot(SWEEP, pxi_xform(&b->pose, c)), ws = pxi_rot(SWEEP, pxi_xform(&b->pose, b->sc));
+    px_vec3 wc = pxi_rot(SWEEP, pxi_xform(&b->pose, c));
     double r[9]; /* SWEEP * R */
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
             r[3 * i + j] = SWEEP[3 * i] * b->pose.r[j] + SWEEP[3 * i + 1] * b->pose.r[3 + j] +
                            SWEEP[3 * i + 2] * b->pose.r[6 + j];
-    double wc3[3] = {wc.x, wc.y, wc.z}, ws3[3] = {ws.x, ws.y, ws.z};
+    double wc3[3] = {wc.x, wc.y, wc.z};
+    sphere_box(b, out);
     for (int i = 0; i < 3; ++i) {
         double e = fabs(r[3 * i]) * h.x + fabs(r[3 * i + 1]) * h.y + fabs(r[3 * i + 2]) * h.z;
-        /* Rounding of the centres, extents and the frame (its rows are unit
-         * within a few ulps): a few ulps of the coordinates. */
         e += 16.0 * DBL_EPSILON * (fabs(wc3[i]) + e);
-        double es = sphere_r(b) + 16.0 * DBL_EPSILON * (fabs(ws3[i]) + b->sr);
-        out[i] = pxi_max2(wc3[i] - e, ws3[i] - es);
-        out[3 + i] = pxi_min2(wc3[i] + e, ws3[i] + es);
+        out[i] = pxi_max2(wc3[i] - e, out[i]);
+        out[3 + i] = pxi_min2(wc3[i] + e, out[3 + i]);
     }
 }
 
@@ -832,6 +865,17 @@ static int refit(px_scene *s, sbody *b) {
     if (b->fitted && since(b->travel, b->fit_travel) <= b->fit_room) return 0;
     /* Grown by half the report distance, and by the frame allowance. */
     double w[6], g = 0.5 * s->report * (1.0 + 4.0 * s->skx) + frame_pad(s, b);
+    if (b->fitted) {
+        /* The sphere's box first: a third of the work, and for a round
+         * body most often still inside the fat box. */
+        sphere_box(b, w);
+        double r = room(b->fat, w, g);
+        if (r >= 0.0) {
+            b->fit_travel = b->travel;
+            b->fit_room = r;
+            return 0;
+        }
+    }
     world_box(b, w);
     int moved = 0;
     if (!b->fitted || room(b->fat, w, g) < 0.0) {
@@ -1286,13 +1330,6 @@ static px_status update_pair(const px_scene *s, uint32_t p, double time, sdone *
  * inlined: GCC otherwise finds the function free of side effects and drops
  * the calls. */
 #define S_AHEAD 8u
-#if defined(__GNUC__)
-#define S_PREFETCH(p) __builtin_prefetch(p)
-#define S_INLINE static inline __attribute__((always_inline))
-#else
-#define S_PREFETCH(p) ((void)(p))
-#define S_INLINE static inline
-#endif
 
 S_INLINE void prefetch_feature(const px_convex *c, px_feature f) {
     if (f.type == PX_FEATURE_VERTEX && f.index < c->nv) {
@@ -1600,6 +1637,7 @@ void px_scene_destroy(px_scene *s) {
     pxi_free(&a, s->done, (size_t)s->cap_done * sizeof *s->done);
     pxi_free(&a, s->doomed, (size_t)s->cap_doomed * sizeof *s->doomed);
     pxi_free(&a, s->rep, (size_t)s->cap_rep * sizeof *s->rep);
+    pxi_free(&a, s->rep_tmp, (size_t)s->cap_rep_tmp * sizeof *s->rep_tmp);
     pxi_free(&a, s->out, (size_t)s->cap_out * sizeof *s->out);
     pxi_free(&a, s->ev, (size_t)s->cap_ev * sizeof *s->ev);
     pxi_free(&a, s->pending, (size_t)s->cap_pending * sizeof *s->pending);
@@ -1836,10 +1874,33 @@ px_status px_scene_set_velocity(px_scene *s, uint32_t id, px_vec3 v, double w, p
     return mark_dirty(s, id);
 }
 
-/* Reports by key (unique: one entry per pair). */
-static int cmp_srep(const void *x, const void *y) {
-    const srep *a = x, *b = y;
-    return (a->ab > b->ab) - (a->ab < b->ab);
+/* Sorts the step's reports by (a, b), keys being unique: a radix sort
+ * (least significant digit first, 11 bits a digit) over a key of 2 w bits,
+ * a << w | b for ids below 2^w; a few thousand reports sort in two or three
+ * passes over them, where the heapsort took 20 compares each. */
+static void sort_reports(px_scene *s) {
+    uint32_t n = s->n_rep, w = 1;
+    if (n < 2) return;
+    while (w < 32 && (s->n_body - 1) >> w) ++w;
+    srep *src = s->rep, *dst = s->rep_tmp;
+    for (uint32_t i = 0; i < n; ++i) src[i].ab = (src[i].ab >> 32) << w | (src[i].ab & 0xffffffffu);
+    uint32_t count[2048];
+    for (uint32_t shift = 0; shift < 2 * w; shift += 11) {
+        memset(count, 0, sizeof count);
+        for (uint32_t i = 0; i < n; ++i) count[(src[i].ab >> shift) & 2047u]++;
+        for (uint32_t d = 0, sum = 0; d < 2048; ++d) {
+            uint32_t c = count[d];
+            count[d] = sum;
+            sum += c;
+        }
+        for (uint32_t i = 0; i < n; ++i) dst[count[(src[i].ab >> shift) & 2047u]++] = src[i];
+        srep *t = src;
+        src = dst;
+        dst = t;
+    }
+    /* The keys back, into s->rep. */
+    for (uint32_t i = 0; i < n; ++i)
+        s->rep[i] = (srep){(src[i].ab >> w) << 32 | (src[i].ab & ((1ull << w) - 1)), src[i].pair};
 }
 
 static int cmp_event(const void *x, const void *y) {
@@ -1949,7 +2010,9 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     s->n_rep = 0;
     s->n_later = 0;
     if (!GROW(s, s->later, s->cap_later, s->live_pairs + 1) ||
-        !GROW(s, s->done, s->cap_done, s->live_pairs + 1) || !GROW(s, s->rep, s->cap_rep, s->live_pairs + 1))
+        !GROW(s, s->done, s->cap_done, s->live_pairs + 1) ||
+        !GROW(s, s->rep, s->cap_rep, s->live_pairs + 1) ||
+        !GROW(s, s->rep_tmp, s->cap_rep_tmp, s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     /* The due pairs: the near list's (scanned from its end, so that a
      * removal, which moves the last entry into the hole, skips nothing),
@@ -2004,7 +2067,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
         s->n_rep = 0;
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     }
-    sort(s->rep, s->n_rep, sizeof *s->rep, cmp_srep);
+    sort_reports(s);
     for (uint32_t i = 0; i < s->n_rep; ++i) s->out[i] = s->pair[s->rep[i].pair].res;
     /* Events, in (a, b) order. */
     if (!GROW(s, s->ev, s->cap_ev, s->n_pending)) {

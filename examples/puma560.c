@@ -346,44 +346,41 @@ px_status puma_arm_load_with(puma_arm *arm, const char *models, puma_meshes set,
     return PX_OK;
 }
 
-px_status puma_arm_add(const puma_arm *arm, px_scene *scene, const double q[PUMA_JOINTS],
-                       const double *qd_max, uint32_t group, uint32_t mask, uint32_t ids[PUMA_LINKS],
-                       px_error *err) {
-    px_pose pose[PUMA_LINKS];
-    px_vec3 center[PUMA_LINKS];
-    double speed[PUMA_LINKS], angular[PUMA_LINKS];
-    puma_link_poses(arm->set, q, pose);
-    puma_motion_bounds(arm->set, qd_max, center, speed, angular);
+px_chain *puma_chain_create(const puma_arm *arm, const double *qd_max, uint32_t group, uint32_t mask,
+                            px_error *err) {
+    const chain *c = chain_of(arm->set);
+    if (!qd_max) qd_max = puma_qd_max;
+    px_link_desc link[PUMA_LINKS];
+    memset(link, 0, sizeof link);
     for (int k = 0; k < PUMA_LINKS; ++k) {
-        px_body_desc d;
-        memset(&d, 0, sizeof d);
-        d.model = arm->link[k];
-        d.pose = pose[k];
-        d.center = center[k];
-        d.max_speed = speed[k];
-        d.max_angular_speed = angular[k];
-        d.group = group;
-        d.mask = mask;
-        d.flags = k == 0 ? PX_BODY_STATIC : 0;
-        px_status st = px_scene_add_body(scene, &d, &ids[k], err);
-        if (st != PX_OK) return st;
+        px_link_desc *l = &link[k];
+        l->model = arm->link[k];
+        l->geometry = mesh_in_link(arm->set, k);
+        l->group = group;
+        l->mask = mask;
+        if (k == 0) { /* the pedestal, fixed to the base (the world frame) */
+            l->parent = PX_CHAIN_ROOT;
+            l->joint = PX_JOINT_FIXED;
+            l->origin = px_pose_identity();
+            continue;
+        }
+        int j = k - 1;
+        l->parent = (uint32_t)(k - 1);
+        l->joint = PX_JOINT_REVOLUTE;
+        l->axis = c->axis_y[j] ? (px_vec3){0, 1, 0} : (px_vec3){0, 0, 1};
+        /* The URDF turns by q + offset: the offset's turn joins the origin. */
+        px_pose x = origin6(c->joint[j]), off = puma_axis_rotation(l->axis, puma_urdf_offset[arm->set][j]);
+        l->origin = puma_compose(&x, &off);
+        l->q_min = puma_q_min[j];
+        l->q_max = puma_q_max[j];
+        l->max_speed = qd_max[j];
     }
-    for (int k = 0; k + 1 < PUMA_LINKS; ++k) {
-        px_status st = px_scene_exclude_pair(scene, ids[k], ids[k + 1], err);
-        if (st != PX_OK) return st;
-    }
-    return PX_OK;
-}
-
-px_status puma_arm_set(const puma_arm *arm, px_scene *scene, const uint32_t ids[PUMA_LINKS],
-                       const double q[PUMA_JOINTS], px_error *err) {
-    px_pose pose[PUMA_LINKS];
-    puma_link_poses(arm->set, q, pose);
-    for (int k = 1; k < PUMA_LINKS; ++k) {
-        px_status st = px_scene_set_pose(scene, ids[k], &pose[k], err);
-        if (st != PX_OK) return st;
-    }
-    return PX_OK;
+    px_chain_desc d;
+    memset(&d, 0, sizeof d);
+    d.links = link;
+    d.n_links = PUMA_LINKS;
+    d.base = px_pose_identity();
+    return px_chain_create(&d, err);
 }
 
 /* ---- The trajectory ---- */

@@ -115,18 +115,16 @@ px_status puma_arm_load_with(puma_arm *arm, const char *models, puma_meshes set,
                              px_error *err);
 void puma_arm_destroy(puma_arm *arm);
 
-/* Adds the arm to a scene at joint angles q: link 0 static, links
- * 1..6 moving with puma_motion_bounds(qd_max), every adjacent pair
- * (k, k+1) excluded. group/mask as px_body_desc. ids[k] = body of link k. */
-px_status puma_arm_add(const puma_arm *arm, px_scene *scene, const double q[PUMA_JOINTS],
-                       const double *qd_max, uint32_t group, uint32_t mask, uint32_t ids[PUMA_LINKS],
-                       px_error *err);
-
-/* Sets the moving links' poses at q (before px_scene_step). */
-px_status puma_arm_set(const puma_arm *arm, px_scene *scene, const uint32_t ids[PUMA_LINKS],
-                       const double q[PUMA_JOINTS], px_error *err);
-
-#endif /* PROXIMA_EXAMPLES_PUMA560_H */
+/* The arm as a px_chain (proxima/chain.h) of its seven link models (the
+ * URDF chain of arm->set, with the DH table's joint angles, limits and
+ * puma_urdf_offset): link 0 fixed to the world, links 1..6 turned by the
+ * joints at speeds up to qd_max (NULL: puma_qd_max); group/mask as
+ * px_body_desc. px_chain_add_to_scene puts it in a scene (link 0 static,
+ * every adjacent pair (k, k+1) excluded, motion bounds from the joint
+ * speeds; ids[k] = body of link k) and px_chain_set_joints moves it. The
+ * chain points to arm->link[]: destroy it before the arm. */
+px_chain *puma_chain_create(const puma_arm *arm, const double *qd_max, uint32_t group, uint32_t mask,
+                            px_error *err);
 
 /* ---- The work cell of the demo (examples/puma_cell.c) and its test ---- */
 
@@ -173,3 +171,5 @@ double puma_trajectory_duration(void);
 void puma_trajectory(double t, double q[PUMA_JOINTS]);
 /* The time of the waypoint at which the gripper touches the teapot. */
 double puma_touch_time(void);
+
+#endif /* PROXIMA_EXAMPLES_PUMA560_H */

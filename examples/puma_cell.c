@@ -5,8 +5,10 @@
  * joint-space trajectory past a table, a fixture, a teapot it touches once
  * and a pillar, all bodies of one px_scene: the moving links with motion
  * bounds from the joint speed limits, adjacent links excluded, the cell
- * static and paired with the arm only. Each step it sets the link poses,
- * calls px_scene_step (timed with the px_scene_set_pose calls) and
+ * static and paired with the arm only (the arm is a px_chain,
+ * proxima/chain.h). Each step it sets the joint angles
+ * (px_chain_set_joints: forward kinematics and the link poses), calls
+ * px_scene_step (timed with px_chain_set_joints) and
  * px_scene_min_distance, and reports self-collision (non-adjacent links),
  * contacts with the cell and the minimum clearance with its pair.
  *
@@ -277,10 +279,14 @@ static int run_scene(run *r) {
         puma_cell cell = *r->cell;
         for (int k = 0; k < PUMA_LINKS; ++k) arm.link[k] = (px_model *)r->model[k];
         for (int c = 0; c < PUMA_CELL_BODIES; ++c) cell.body[c].model = (px_model *)r->model[PUMA_LINKS + c];
-        if (!scene || puma_arm_add(&arm, scene, q, NULL, 1, 3, ids, &err) != PX_OK ||
+        /* The arm is a px_chain: forward kinematics, adjacent links
+         * excluded, motion bounds from the joint speed limits. */
+        px_chain *chain = scene ? puma_chain_create(&arm, NULL, 1, 3, &err) : NULL;
+        if (!chain || px_chain_add_to_scene(chain, scene, q, ids, &err) != PX_OK ||
             puma_cell_add(&cell, scene, 2, 1, ids + PUMA_LINKS, &err) != PX_OK) {
             fprintf(stderr, "puma_cell: %s\n", err.message);
             px_scene_destroy(scene);
+            px_chain_destroy(chain);
             ok = 0;
             break;
         }
@@ -291,9 +297,7 @@ static int run_scene(run *r) {
             puma_trajectory(t, q);
             puma_link_poses(r->arm->set, q, pose);
             double a = now();
-            px_status st = PX_OK;
-            for (int l = 1; l < PUMA_LINKS && st == PX_OK; ++l)
-                st = px_scene_set_pose(scene, ids[l], &pose[l], &err);
+            px_status st = px_chain_set_joints(chain, scene, ids, q, &err);
             double b = now();
             if (st == PX_OK) st = px_scene_step(scene, t, &err);
             double c = now();
@@ -415,6 +419,7 @@ static int run_scene(run *r) {
             }
         }
         px_scene_destroy(scene);
+        px_chain_destroy(chain);
     }
     for (int x = 0; x < NBODY; ++x)
         for (int y = 0; y < NBODY; ++y) px_model_cache_release(&caches[x][y]);
@@ -498,7 +503,8 @@ static void summary(const run *r, const char *models_desc) {
     double med, p90, mx, m2, p2, x2;
     timing(r, r->t_step, &med, &p90, &mx);
     timing(r, r->t_scene, &m2, &p2, &x2);
-    printf("  px_scene_step  : with the 6 px_scene_set_pose calls: median %.2f us, p90 %.2f us, max %.2f us "
+    printf("  px_scene_step  : with px_chain_set_joints (6 link poses): median %.2f us, p90 %.2f us, max "
+           "%.2f us "
            "per step\n"
            "                   (median of %d run%s per step); the step alone: median %.2f us, p90 %.2f us\n",
            med, p90, mx, r->reps, r->reps > 1 ? "s" : "", m2, p2);

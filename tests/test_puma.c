@@ -139,8 +139,63 @@ static void test_bounds(void) {
     CHECK(worst_qd <= 0.91, "the trajectory reaches %g of a joint speed limit", worst_qd);
 }
 
+/* The arm as a px_chain (proxima/chain.h) against the hand-written URDF
+ * chains above: link poses within 1e-12 m at random configurations, the
+ * same motion bounds, adjacency (k, k+1) only, the joint limits refused. */
+static void test_chain(void) {
+    double worst_pose = 0, worst_bound = 0;
+    for (int s = 0; s < PUMA_MESH_SETS; ++s) {
+        puma_arm arm; /* no models: frames only (links without geometry) */
+        memset(&arm, 0, sizeof arm);
+        arm.set = (puma_meshes)s;
+        px_error err;
+        px_chain *c = puma_chain_create(&arm, NULL, 0, 0, &err);
+        CHECK(c != NULL, "set %d: px_chain_create: %s", s, err.message);
+        if (!c) continue;
+        CHECK(px_chain_link_count(c) == PUMA_LINKS && px_chain_dof(c) == PUMA_JOINTS,
+              "set %d: %u links, %u dof", s, px_chain_link_count(c), px_chain_dof(c));
+        for (uint32_t i = 0; i < PUMA_JOINTS; ++i)
+            CHECK(px_chain_joint_link(c, i) == i + 1, "joint %u drives link %u", i,
+                  px_chain_joint_link(c, i));
+        for (int n = 0; n < 200; ++n) {
+            double q[PUMA_JOINTS];
+            random_q(q);
+            px_pose want[PUMA_LINKS], got[PUMA_LINKS], frames[PUMA_LINKS];
+            puma_link_poses((puma_meshes)s, q, want);
+            CHECK(px_chain_forward(c, q, frames, got, &err) == PX_OK, "forward: %s", err.message);
+            for (int k = 0; k < PUMA_LINKS; ++k) {
+                worst_pose = fmax(worst_pose, dist3(want[k].t, got[k].t));
+                for (int i = 0; i < 9; ++i) worst_pose = fmax(worst_pose, fabs(want[k].r[i] - got[k].r[i]));
+            }
+        }
+        px_vec3 cw[PUMA_LINKS];
+        double vw[PUMA_LINKS], ww[PUMA_LINKS];
+        puma_motion_bounds((puma_meshes)s, NULL, cw, vw, ww);
+        for (uint32_t k = 0; k < PUMA_LINKS; ++k) {
+            px_vec3 cg;
+            double vg, wg;
+            CHECK(px_chain_motion_bounds(c, k, &cg, &vg, &wg, &err) == PX_OK, "bounds: %s", err.message);
+            worst_bound = fmax(worst_bound, fmax(dist3(cg, cw[k]), fmax(fabs(vg - vw[k]), fabs(wg - ww[k]))));
+        }
+        /* Limits: joint 2 just beyond its maximum, and NaN. */
+        double q[PUMA_JOINTS];
+        random_q(q);
+        q[1] = nextafter(puma_q_max[1], INFINITY);
+        CHECK(px_chain_forward(c, q, NULL, NULL, &err) == PX_ERR_RANGE && strstr(err.message, "limits"),
+              "beyond a limit: %s", err.message);
+        q[1] = NAN;
+        CHECK(px_chain_forward(c, q, NULL, NULL, &err) == PX_ERR_NON_FINITE, "NaN joint: %s", err.message);
+        px_chain_destroy(c);
+    }
+    CHECK(worst_pose <= 1e-12, "px_chain poses differ from the URDF chain's by %g", worst_pose);
+    CHECK(worst_bound <= 1e-12, "px_chain motion bounds differ from puma_motion_bounds by %g", worst_bound);
+    printf("chain: px_chain link poses within %.1e of the URDF chains, motion bounds within %.1e\n",
+           worst_pose, worst_bound);
+}
+
 typedef struct world {
     puma_arm arm;
+    px_chain *chain; /* the arm as a px_chain (make_scene) */
     puma_cell cell;
     const px_model *model[NBODY];
 } world;
@@ -165,7 +220,9 @@ static px_scene *make_scene(world *w) {
     uint32_t ids[NBODY];
     double q[PUMA_JOINTS];
     puma_trajectory(0, q);
-    int ok = scene && puma_arm_add(&w->arm, scene, q, NULL, 1, 3, ids, &err) == PX_OK &&
+    px_chain_destroy(w->chain);
+    w->chain = puma_chain_create(&w->arm, NULL, 1, 3, &err);
+    int ok = scene && w->chain && px_chain_add_to_scene(w->chain, scene, q, ids, &err) == PX_OK &&
              puma_cell_add(&w->cell, scene, 2, 1, ids + PUMA_LINKS, &err) == PX_OK;
     CHECK(ok, "scene setup: %s", err.message);
     if (!ok) {
@@ -232,14 +289,17 @@ static void test_scene(world *w, world *coarse, double dt) {
     for (int i = 0; i * dt <= T; ++i, ++steps) {
         double t = i * dt;
         puma_trajectory(t, q);
-        CHECK(puma_arm_set(&w->arm, scene, ids, q, &err) == PX_OK, "set: %s", err.message);
+        CHECK(px_chain_set_joints(w->chain, scene, ids, q, &err) == PX_OK, "set: %s", err.message);
         px_status st = px_scene_step(scene, t, &err);
         CHECK(st == PX_OK, "step %d: %s", i, err.message);
         px_scene_stats stats;
         px_scene_get_stats(scene, &stats);
         checked += stats.pairs_checked;
+        /* px_chain's motion bounds hold along the trajectory (it keeps to
+         * 0.9 of the joint speed limits). */
+        CHECK(stats.violations == 0, "step %d: %u links broke px_chain's motion bounds", i, stats.violations);
         if (fast) {
-            CHECK(puma_arm_set(&coarse->arm, fast, ids, q, &err) == PX_OK, "set: %s", err.message);
+            CHECK(px_chain_set_joints(coarse->chain, fast, ids, q, &err) == PX_OK, "set: %s", err.message);
             CHECK(px_scene_step(fast, t, &err) == PX_OK, "approximate step %d: %s", i, err.message);
             px_scene_get_stats(fast, &stats);
             fast_checked += stats.pairs_checked;
@@ -337,7 +397,9 @@ int main(void) {
     tu_init("test_puma");
     test_kinematics();
     test_bounds();
+    test_chain();
     world w;
+    memset(&w, 0, sizeof w);
     px_error err;
     if (puma_arm_load(&w.arm, PX_SOURCE_DIR "/models", PUMA_NIMASARLI, PX_PIECES_TRIANGLES, &err) != PX_OK ||
         puma_cell_build(&w.cell, PX_SOURCE_DIR "/models", &w.arm, &err) != PX_OK) {
@@ -366,6 +428,8 @@ int main(void) {
         for (int k = 0; k < PUMA_CELL_BODIES; ++k) c.model[PUMA_LINKS + k] = c.cell.body[k].model;
     }
     test_scene(&w, have_coarse ? &c : NULL, (tu_sanitized() ? 0.04 : 0.02) / tu_scale());
+    px_chain_destroy(c.chain);
+    px_chain_destroy(w.chain);
     puma_cell_destroy(&c.cell);
     puma_arm_destroy(&c.arm);
     puma_cell_destroy(&w.cell);

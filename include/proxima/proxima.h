@@ -8,6 +8,7 @@
 ///   proxima/query.h   distance, intersection and collision translation
 ///   proxima/model.h   non-convex models (hierarchies of convex pieces)
 ///   proxima/scene.h   many moving bodies: broad phase and pair scheduling
+///   proxima/chain.h   articulated chains (robot arms) as scene bodies
 ///   proxima/io.h      meshes and polytopes from files (Assimp; link proxima-io)
 ///
 /// C11, no global state beyond the file-import lock of io.h. Geometry
@@ -17,6 +18,7 @@
 #define PROXIMA_PROXIMA_H
 
 #include "proxima/base.h"
+#include "proxima/chain.h"
 #include "proxima/convex.h"
 #include "proxima/io.h"
 #include "proxima/math.h"

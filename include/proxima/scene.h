@@ -146,7 +146,10 @@ PX_API px_status px_scene_add_body(px_scene *scene, const px_body_desc *desc, ui
 /// Removes a body; its contacts end (reported by the next step as ended
 /// events), its pairs are freed and its exclusions forgotten: a body added
 /// later under the same id is paired with every other (a contact then
-/// begins anew). PX_ERR_INVALID_ARGUMENT for an unknown id.
+/// begins anew). PX_ERR_INVALID_ARGUMENT for an unknown id;
+/// PX_ERR_OUT_OF_MEMORY (nothing changes) when there is no room for the
+/// ended events, never for a body without pairs (one added since the last
+/// step).
 PX_API px_status px_scene_remove_body(px_scene *scene, uint32_t id, px_error *err);
 
 /// The body's user pointer (NULL for an unknown id).

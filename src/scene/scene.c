@@ -42,6 +42,7 @@
 #include "math/vec3.h"
 #include "model/model.h"
 #include "narrow/narrow.h"
+#include "scene/scene_internal.h"
 
 #define S_NONE UINT32_MAX
 #define S_TOMB UINT32_MAX /* a removed body's endpoint (sep.id) */
@@ -1646,6 +1647,10 @@ void px_scene_destroy(px_scene *s) {
 
 static int body_ok(const px_scene *s, uint32_t id) { return s && id < s->n_body && s->body[id].alive; }
 
+int pxi_scene_body_movable(const px_scene *s, uint32_t id) {
+    return body_ok(s, id) && !(s->body[id].flags & PX_BODY_STATIC);
+}
+
 /* The pose's translation must stay where differences of coordinates are
  * exact enough and finite (the queries' range). */
 static px_status check_pose(const px_pose *pose, const char *fn, px_error *err) {
@@ -1783,8 +1788,9 @@ px_status px_scene_remove_body(px_scene *s, uint32_t id, px_error *err) {
     if (!body_ok(s, id))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_remove_body: no body %u in the scene", id);
     sbody *b = &s->body[id];
-    /* Room for its contacts' ended events, before anything changes. */
-    if (!GROW(s, s->pending, s->cap_pending, s->n_pending + s->live_pairs + 1))
+    /* Room for its contacts' ended events, before anything changes (a body
+     * without pairs has none: its removal never fails). */
+    if (b->first_pair != S_NONE && !GROW(s, s->pending, s->cap_pending, s->n_pending + s->live_pairs + 1))
         return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_remove_body: out of memory");
     while (b->first_pair != S_NONE) free_pair(s, b->first_pair, 0);
     if (!b->added)

@@ -14,7 +14,7 @@ ABS_BUILD = $(abspath $(BUILD))
 # benchmarks and second opinions; the extras hold its convex decomposers),
 # gnuplot (benchmark plots).
 DEB_PACKAGES := build-essential cmake pkg-config clang-format libcgal-dev libgmp-dev libmpfr-dev \
-  libboost-dev libassimp-dev libfcl-dev libccd-dev libbullet-dev libbullet-extras-dev gnuplot-nox
+  libboost-dev libassimp-dev libxml2-dev libfcl-dev libccd-dev libbullet-dev libbullet-extras-dev gnuplot-nox
 
 .PHONY: all deps configure build demo test test-release test-asan test-install test-embed format format-check bench clean
 
@@ -98,18 +98,19 @@ test-asan:
 STAGE = $(ABS_BUILD)/stage
 CONSUMER = $(ABS_BUILD)/consumer
 TEAPOT = $(CURDIR)/models/teapot/trimesh_mit/teapot.stl
+PUMA_URDF = $(CURDIR)/models/puma560/nimasarli_puma560_description/urdf/puma560.urdf
 test-install: build
 	rm -rf $(STAGE) $(CONSUMER)
 	cmake --install $(BUILD) --prefix $(STAGE) > /dev/null
 	cmake -S tests/consumer -B $(CONSUMER) -DCMAKE_PREFIX_PATH=$(STAGE) > /dev/null
 	cmake --build $(CONSUMER) > /dev/null
 	$(CONSUMER)/consumer
-	$(CONSUMER)/consumer_io $(TEAPOT)
+	$(CONSUMER)/consumer_io $(TEAPOT) $(PUMA_URDF)
 	cp tests/consumer/main.c $(CONSUMER)/app.c
 	cp tests/consumer/main_io.c $(CONSUMER)/app_io.c
 	cd $(CONSUMER) && export PKG_CONFIG_PATH=$(STAGE)/lib/pkgconfig && \
 	  cc app.c -o app $$(pkg-config --cflags --libs proxima) && ./app && \
-	  cc app_io.c -o app_io $$(pkg-config --cflags --libs proxima-io) && ./app_io $(TEAPOT)
+	  cc app_io.c -o app_io $$(pkg-config --cflags --libs proxima-io) && ./app_io $(TEAPOT) $(PUMA_URDF)
 	@echo "test-install: find_package and the README's pkg-config lines build and run"
 
 # A parent project that embeds proxima with add_subdirectory: it builds, and

@@ -10,6 +10,7 @@
 ///   proxima/scene.h   many moving bodies: broad phase and pair scheduling
 ///   proxima/chain.h   articulated chains (robot arms) as scene bodies
 ///   proxima/io.h      meshes and polytopes from files (Assimp; link proxima-io)
+///   proxima/urdf.h    robots from URDF files as chains (libxml2; link proxima-io)
 ///
 /// C11, no global state beyond the file-import lock of io.h. Geometry
 /// objects are immutable after creation and may be shared between threads;
@@ -26,5 +27,6 @@
 #include "proxima/model.h"
 #include "proxima/query.h"
 #include "proxima/scene.h"
+#include "proxima/urdf.h"
 
 #endif /* PROXIMA_PROXIMA_H */

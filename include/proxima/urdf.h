@@ -1,0 +1,100 @@
+/// proxima/urdf.h: robots from URDF files, as articulated chains (link
+/// proxima-io; docs/chain.md, "From a URDF file").
+///
+/// px_urdf_load reads a URDF file (the ROS robot description: links and
+/// the joints between them) and builds a px_chain (proxima/chain.h) whose
+/// links carry models of their <collision> geometry: meshes (any format
+/// px_mesh_load reads, with the element's scale), boxes, and cylinders and
+/// spheres as convex polyhedra that contain them (a cylinder as a
+/// circumscribed 32-sided prism, a sphere as a circumscribed 80-faced
+/// polyhedron: distances to them are lower bounds of the true shapes', at
+/// most 0.5 % and 2 % of the radius below). A link's collision elements
+/// are the parts of its model, placed by their <origin>. <visual>
+/// elements are not read.
+///
+/// Joints: fixed, revolute (with its <limit lower upper velocity>),
+/// continuous (a revolute joint without position limits), prismatic; the
+/// joint values are those of px_chain_dof, one per movable joint, in the
+/// order of the chain's links, which is the file's tree walked depth
+/// first from the root, children in the order of their joints in the file
+/// (px_urdf_joint_name names each value). A missing velocity limit is
+/// infinite (the link's pairs are then checked at every step). A <mimic>
+/// joint gets a value of its own. Floating and planar joints are refused.
+///
+/// Mesh file names: `package://NAME/rest` is looked up as DIR/NAME/rest
+/// for each folder DIR of options.package_path, then of the folders that
+/// hold the URDF file and each of their parents; `file://` and plain paths
+/// are taken as they are, relative ones against the URDF file's folder.
+#ifndef PROXIMA_URDF_H
+#define PROXIMA_URDF_H
+
+#include "proxima/base.h"
+#include "proxima/chain.h"
+#include "proxima/math.h"
+#include "proxima/model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct px_urdf px_urdf;
+
+/// Options; zero-initialise, zero = default.
+typedef struct px_urdf_options {
+    const px_allocator *allocator; ///< everything the robot owns (NULL: malloc/free)
+    /// Where the root link stands in the world (the chain's base; NULL:
+    /// the identity).
+    const px_pose *base;
+    /// Folders searched first for package://NAME/..., ':'-separated
+    /// (NULL: only those above the URDF file).
+    const char *package_path;
+    /// How each link's model is built (px_model_options.pieces, threads
+    /// and tolerance; 0: PX_PIECES_TRIANGLES, exact).
+    uint32_t pieces, threads;
+    double tolerance;
+    /// Every link body's filters (px_body_desc.group, mask; 0 and 0: all).
+    uint32_t group, mask;
+    uint32_t reserved[4]; ///< must be zero
+} px_urdf_options;
+
+/// Reads the robot. Returns NULL and fills `err` (may be NULL) on:
+/// PX_ERR_INVALID_ARGUMENT (NULL or empty path, bad options);
+/// PX_ERR_IO: the file cannot be read, is not well-formed XML, has no
+/// <robot> root, a link or joint without a name or with a name used twice,
+/// a joint whose parent or child is not a link, a link with two parent
+/// joints, no root link or two, a cycle, an unsupported joint type, a
+/// revolute or prismatic joint without <limit>, a number that does not
+/// parse or is not finite, a geometry with a negative or zero size, a mesh
+/// file that cannot be found or loaded (px_mesh_load's message quoted); the
+/// message names the file and the link or joint;
+/// and the statuses of px_model_create_from_mesh and px_chain_create
+/// (naming the link); PX_ERR_OUT_OF_MEMORY.
+PX_API px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err);
+
+/// Frees the robot: its chain and its models (after the scenes that hold
+/// its bodies). NULL is a no-op.
+PX_API void px_urdf_destroy(px_urdf *robot);
+
+/// The robot's chain (owned by the robot), for px_chain_add_to_scene,
+/// px_chain_set_joints and px_chain_forward.
+PX_API const px_chain *px_urdf_chain(const px_urdf *robot);
+
+/// Link k's name as in the file; NULL for k out of range.
+PX_API const char *px_urdf_link_name(const px_urdf *robot, uint32_t link);
+
+/// The name of the joint of joint value i (0 .. px_chain_dof - 1); NULL
+/// for i out of range.
+PX_API const char *px_urdf_joint_name(const px_urdf *robot, uint32_t i);
+
+/// The link named `name`, or PX_CHAIN_ROOT.
+PX_API uint32_t px_urdf_find_link(const px_urdf *robot, const char *name);
+
+/// Link k's model (its collision geometry in its link frame), or NULL for a
+/// link without collision geometry or k out of range.
+PX_API const px_model *px_urdf_link_model(const px_urdf *robot, uint32_t link);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PROXIMA_URDF_H */

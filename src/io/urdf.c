@@ -1,0 +1,955 @@
+/* px_urdf: robots from URDF files (proxima/urdf.h).
+ *
+ * The XML is read by libxml2 (no network, no entity substitution: a file
+ * cannot make the reader fetch or expand anything). The robot description
+ * follows the URDF specification (wiki.ros.org/urdf/XML): <link name> with
+ * <collision> elements (<origin xyz rpy>, <geometry> of one <mesh filename
+ * scale>, <box size>, <cylinder radius length> or <sphere radius>), and
+ * <joint name type> with <parent link>, <child link>, <origin>, <axis xyz>
+ * (default 1 0 0) and <limit lower upper velocity>. rpy is roll, pitch,
+ * yaw about the fixed axes X, Y, Z: R = Rz(yaw) Ry(pitch) Rx(roll).
+ *
+ * Each link's collision elements become the parts of one mesh in the link
+ * frame, and that mesh a model (px_model_create_from_mesh); the links,
+ * ordered depth first from the root, a px_chain. */
+#include "proxima/urdf.h"
+
+#include <errno.h>
+#include <fenv.h>
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <threads.h>
+
+#include "core/core.h"
+#include "proxima/io.h"
+
+#define U_MAX_ELEMENTS 65536u /* links, joints, collision elements */
+#define U_PATH 4096
+
+struct px_urdf {
+    px_allocator alloc;
+    px_chain *chain;
+    uint32_t n, dof;
+    char **link_name;  /* n, in chain order */
+    char **joint_name; /* dof */
+    px_model **model;  /* n */
+};
+
+/* ---- small helpers ---- */
+
+static int is_el(const xmlNode *n, const char *name) {
+    return n->type == XML_ELEMENT_NODE && strcmp((const char *)n->name, name) == 0;
+}
+
+static const xmlNode *child_el(const xmlNode *n, const char *name) {
+    for (const xmlNode *c = n->children; c; c = c->next)
+        if (is_el(c, name)) return c;
+    return NULL;
+}
+
+/* An attribute's value, copied with the robot's allocator (NULL when
+ * absent). */
+static char *attr(const px_allocator *a, const xmlNode *n, const char *name) {
+    xmlChar *v = xmlGetProp(n, (const xmlChar *)name);
+    if (!v) return NULL;
+    size_t len = strlen((const char *)v);
+    char *s = pxi_alloc(a, len + 1);
+    if (s) memcpy(s, v, len + 1);
+    xmlFree(v);
+    return s;
+}
+
+static void free_str(const px_allocator *a, char *s) {
+    if (s) pxi_free(a, s, strlen(s) + 1);
+}
+
+/* Exactly `count` finite numbers separated by blanks. 1 on success. */
+static int numbers(const char *s, double *out, int count) {
+    const char *p = s;
+    for (int i = 0; i < count; ++i) {
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(v)) return 0;
+        if (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r') return 0;
+        out[i] = v;
+        p = end;
+    }
+    while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
+    return *p == '\0';
+}
+
+/* URDF rpy: R = Rz(yaw) Ry(pitch) Rx(roll). */
+static px_pose rpy_pose(const double xyz[3], const double rpy[3]) {
+    double cr = cos(rpy[0]), sr = sin(rpy[0]), cp = cos(rpy[1]), sp = sin(rpy[1]), cy = cos(rpy[2]),
+           sy = sin(rpy[2]);
+    px_pose p;
+    const double r[9] = {cy * cp,
+                         cy * sp * sr - sy * cr,
+                         cy * sp * cr + sy * sr,
+                         sy * cp,
+                         sy * sp * sr + cy * cr,
+                         sy * sp * cr - cy * sr,
+                         -sp,
+                         cp * sr,
+                         cp * cr};
+    memcpy(p.r, r, sizeof r);
+    p.t = (px_vec3){xyz[0], xyz[1], xyz[2]};
+    return p;
+}
+
+/* The reading of one file: where errors go and what is being read. */
+typedef struct ureader {
+    const px_allocator *alloc;
+    const char *path;
+    px_error *err;
+} ureader;
+
+#define U_FAIL(r, code, ...) pxi_error((r)->err, (code), __VA_ARGS__)
+
+/* An element's <origin> (identity when absent). */
+static px_status read_origin(ureader *r, const xmlNode *n, const char *what, const char *name, px_pose *out) {
+    *out = px_pose_identity();
+    const xmlNode *o = child_el(n, "origin");
+    if (!o) return PX_OK;
+    double xyz[3] = {0, 0, 0}, rpy[3] = {0, 0, 0};
+    const char *keys[2] = {"xyz", "rpy"};
+    double *dst[2] = {xyz, rpy};
+    for (int k = 0; k < 2; ++k) {
+        xmlChar *v = xmlGetProp(o, (const xmlChar *)keys[k]);
+        if (!v) continue;
+        int ok = numbers((const char *)v, dst[k], 3);
+        if (!ok) {
+            px_status st = U_FAIL(
+                r, PX_ERR_IO, "URDF file '%s': %s '%s': <origin %s=\"%.60s\"> is not three finite numbers",
+                r->path, what, name, keys[k], (const char *)v);
+            xmlFree(v);
+            return st;
+        }
+        xmlFree(v);
+    }
+    *out = rpy_pose(xyz, rpy);
+    return PX_OK;
+}
+
+/* ---- geometry: a growing soup of parts in the link frame ---- */
+
+typedef struct soup {
+    const px_allocator *alloc;
+    double *xyz;
+    uint32_t *tri;
+    px_mesh_part_desc *part;
+    size_t nv, nt, np, cv, ct, cp;
+} soup;
+
+static int soup_grow(soup *s, size_t nv, size_t nt) {
+    if (s->np + 1 > s->cp) {
+        size_t c = s->cp ? 2 * s->cp : 8;
+        px_mesh_part_desc *p = pxi_alloc_array(s->alloc, c, sizeof *p);
+        if (!p) return 0;
+        if (s->np) memcpy(p, s->part, s->np * sizeof *p);
+        pxi_free(s->alloc, s->part, s->cp * sizeof *p);
+        s->part = p, s->cp = c;
+    }
+    if (s->nv + nv > s->cv) {
+        size_t c = s->cv ? s->cv : 64;
+        while (c < s->nv + nv) c *= 2;
+        double *x = pxi_alloc_array(s->alloc, c, 3 * sizeof *x);
+        if (!x) return 0;
+        if (s->nv) memcpy(x, s->xyz, s->nv * 3 * sizeof *x);
+        pxi_free(s->alloc, s->xyz, s->cv * 3 * sizeof *x);
+        s->xyz = x, s->cv = c;
+    }
+    if (s->nt + nt > s->ct) {
+        size_t c = s->ct ? s->ct : 64;
+        while (c < s->nt + nt) c *= 2;
+        uint32_t *t = pxi_alloc_array(s->alloc, c, 3 * sizeof *t);
+        if (!t) return 0;
+        if (s->nt) memcpy(t, s->tri, s->nt * 3 * sizeof *t);
+        pxi_free(s->alloc, s->tri, s->ct * 3 * sizeof *t);
+        s->tri = t, s->ct = c;
+    }
+    return 1;
+}
+
+static void soup_free(soup *s) {
+    pxi_free(s->alloc, s->xyz, s->cv * 3 * sizeof *s->xyz);
+    pxi_free(s->alloc, s->tri, s->ct * 3 * sizeof *s->tri);
+    pxi_free(s->alloc, s->part, s->cp * sizeof *s->part);
+    memset(s, 0, sizeof *s);
+}
+
+/* Appends one part: nv points (scaled by `scale`, then placed by `pose`)
+ * and nt triangles indexing them. */
+static int soup_add(soup *s, const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
+                    const double scale[3], const px_pose *pose) {
+    if (s->nv + nv > U_MAX_ELEMENTS * 64ull || s->nt + nt > U_MAX_ELEMENTS * 64ull) return 0;
+    if (!soup_grow(s, nv, nt)) return 0;
+    for (size_t i = 0; i < nv; ++i) {
+        px_vec3 p = {xyz[3 * i] * scale[0], xyz[3 * i + 1] * scale[1], xyz[3 * i + 2] * scale[2]};
+        px_vec3 w = px_pose_apply(pose, p);
+        double *d = s->xyz + 3 * (s->nv + i);
+        d[0] = w.x, d[1] = w.y, d[2] = w.z;
+    }
+    for (size_t i = 0; i < 3 * nt; ++i) s->tri[3 * s->nt + i] = tri[i] + (uint32_t)s->nv;
+    px_mesh_part_desc *p = &s->part[s->np++];
+    memset(p, 0, sizeof *p);
+    p->node = -1;
+    p->first_vertex = (uint32_t)s->nv;
+    p->vertex_count = (uint32_t)nv;
+    p->first_triangle = (uint32_t)s->nt;
+    p->triangle_count = (uint32_t)nt;
+    s->nv += nv;
+    s->nt += nt;
+    return 1;
+}
+
+/* A convex polyhedron as points and outward triangles: the box
+ * [-h, h]^3 scaled per axis, a prism or a sphere's. */
+static const uint32_t box_tri[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                     2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+
+#define U_SIDES 32
+/* The prism of U_SIDES sides circumscribing the cylinder of radius r and
+ * length l about z. */
+static int add_cylinder(soup *s, double r, double l, const px_pose *pose) {
+    double xyz[2 * U_SIDES * 3];
+    uint32_t tri[(4 * U_SIDES - 4) * 3];
+    const double pi = 3.14159265358979323846, R = r / cos(pi / U_SIDES);
+    for (int i = 0; i < U_SIDES; ++i) {
+        double a = 2 * pi * i / U_SIDES;
+        for (int e = 0; e < 2; ++e) {
+            double *p = xyz + 3 * (2 * i + e);
+            p[0] = R * cos(a), p[1] = R * sin(a), p[2] = e ? 0.5 * l : -0.5 * l;
+        }
+    }
+    size_t t = 0;
+    for (int i = 0; i < U_SIDES; ++i) {
+        uint32_t a0 = (uint32_t)(2 * i), a1 = a0 + 1, b0 = (uint32_t)(2 * ((i + 1) % U_SIDES)), b1 = b0 + 1;
+        uint32_t side[6] = {a0, b0, a1, a1, b0, b1};
+        memcpy(tri + 3 * t, side, sizeof side);
+        t += 2;
+    }
+    for (int i = 1; i + 1 < U_SIDES; ++i) { /* fans: bottom (down), top (up) */
+        uint32_t bot[3] = {0, (uint32_t)(2 * (i + 1)), (uint32_t)(2 * i)};
+        uint32_t top[3] = {1, (uint32_t)(2 * i + 1), (uint32_t)(2 * (i + 1) + 1)};
+        memcpy(tri + 3 * t++, bot, sizeof bot);
+        memcpy(tri + 3 * t++, top, sizeof top);
+    }
+    const double one[3] = {1, 1, 1};
+    return soup_add(s, xyz, 2 * U_SIDES, tri, t, one, pose);
+}
+
+/* The icosahedron subdivided twice (162 points, 320 faces), its points on
+ * the unit sphere, then scaled so that every face lies at least r from the
+ * centre: a polyhedron that contains the sphere. */
+static int add_sphere(soup *s, double r, const px_pose *pose) {
+    enum { NV = 162, NT = 320 };
+    double v[NV * 3];
+    uint32_t f[NT * 3], g[NT * 3];
+    const double t = (1.0 + sqrt(5.0)) / 2.0;
+    const double ico[36] = {-1, t,  0,  1, t, 0,  -1, -t, 0,  1, -t, 0, 0,  -1, t,  0,  1, t,
+                            0,  -1, -t, 0, 1, -t, t,  0,  -1, t, 0,  1, -t, 0,  -1, -t, 0, 1};
+    const uint32_t ifc[60] = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                              4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                              6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+    size_t nv = 12, nf = 20;
+    for (size_t i = 0; i < 12; ++i) {
+        double n =
+            sqrt(ico[3 * i] * ico[3 * i] + ico[3 * i + 1] * ico[3 * i + 1] + ico[3 * i + 2] * ico[3 * i + 2]);
+        for (int k = 0; k < 3; ++k) v[3 * i + k] = ico[3 * i + k] / n;
+    }
+    memcpy(f, ifc, sizeof ifc);
+    for (int level = 0; level < 2; ++level) {
+        /* Split each edge once: the midpoint of an edge found by a search
+         * over the points made at this level (small). */
+        size_t first_new = nv, ng = 0;
+        for (size_t k = 0; k < nf; ++k) {
+            uint32_t c[3] = {f[3 * k], f[3 * k + 1], f[3 * k + 2]}, m[3];
+            for (int e = 0; e < 3; ++e) {
+                uint32_t a = c[e], b = c[(e + 1) % 3];
+                double p[3], n = 0;
+                for (int q = 0; q < 3; ++q) p[q] = 0.5 * (v[3 * a + q] + v[3 * b + q]), n += p[q] * p[q];
+                n = sqrt(n);
+                for (int q = 0; q < 3; ++q) p[q] /= n;
+                size_t j = first_new;
+                for (; j < nv; ++j)
+                    if (v[3 * j] == p[0] && v[3 * j + 1] == p[1] && v[3 * j + 2] == p[2]) break;
+                if (j == nv) memcpy(v + 3 * nv++, p, sizeof p);
+                m[e] = (uint32_t)j;
+            }
+            const uint32_t sub[12] = {c[0], m[0], m[2], c[1], m[1], m[0], c[2], m[2], m[1], m[0], m[1], m[2]};
+            memcpy(g + 3 * ng, sub, sizeof sub);
+            ng += 4;
+        }
+        nf = ng;
+        memcpy(f, g, nf * 3 * sizeof *f);
+    }
+    /* The nearest face plane to the centre. */
+    double inr = 1.0;
+    for (size_t k = 0; k < nf; ++k) {
+        const double *a = v + 3 * f[3 * k], *b = v + 3 * f[3 * k + 1], *c = v + 3 * f[3 * k + 2];
+        double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+        double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double d = (n[0] * a[0] + n[1] * a[1] + n[2] * a[2]) / len;
+        if (d < inr) inr = d;
+    }
+    /* Scaled a little beyond r / inr: the rounding of the points. */
+    double k = r / inr * (1.0 + 1e-12);
+    const double scale[3] = {k, k, k};
+    return soup_add(s, v, nv, f, nf, scale, pose);
+}
+
+/* Resolves a mesh file name to a path; 1 when found. */
+static int resolve(const ureader *r, const char *name, const char *package_path, char *out, size_t size) {
+    struct stat sb;
+    char dir[U_PATH];
+    snprintf(dir, sizeof dir, "%s", r->path);
+    char *slash = strrchr(dir, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(dir, sizeof dir, ".");
+    if (strncmp(name, "package://", 10) == 0) {
+        const char *rest = name + 10;
+        /* The folders of package_path, then the URDF file's folder and
+         * each parent: DIR/NAME/rest. */
+        if (package_path) {
+            const char *p = package_path;
+            while (*p) {
+                const char *e = strchr(p, ':');
+                size_t len = e ? (size_t)(e - p) : strlen(p);
+                if (len > 0 && len < U_PATH) {
+                    if ((size_t)snprintf(out, size, "%.*s/%s", (int)len, p, rest) < size &&
+                        stat(out, &sb) == 0 && S_ISREG(sb.st_mode))
+                        return 1;
+                }
+                p += len + (e ? 1 : 0);
+            }
+        }
+        char up[U_PATH];
+        snprintf(up, sizeof up, "%s", dir);
+        for (int depth = 0; depth < 64; ++depth) {
+            if ((size_t)snprintf(out, size, "%s/%s", up, rest) < size && stat(out, &sb) == 0 &&
+                S_ISREG(sb.st_mode))
+                return 1;
+            size_t l = strlen(up);
+            if (l + 4 >= sizeof up) break;
+            strcat(up, "/..");
+        }
+        return 0;
+    }
+    if (strncmp(name, "file://", 7) == 0) name += 7;
+    if (name[0] == '/' || !slash)
+        snprintf(out, size, "%s", name);
+    else if ((size_t)snprintf(out, size, "%s/%s", dir, name) >= size)
+        return 0;
+    return stat(out, &sb) == 0 && S_ISREG(sb.st_mode);
+}
+
+/* One <collision> element into the soup. */
+static px_status read_collision(ureader *r, const xmlNode *col, const char *link, const px_urdf_options *o,
+                                soup *s) {
+    px_pose pose;
+    px_status st = read_origin(r, col, "link", link, &pose);
+    if (st != PX_OK) return st;
+    const xmlNode *geo = child_el(col, "geometry"), *g = NULL;
+    if (geo)
+        for (const xmlNode *c = geo->children; c && !g; c = c->next)
+            if (c->type == XML_ELEMENT_NODE) g = c;
+    if (!g)
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': a <collision> without a <geometry> shape",
+                      r->path, link);
+    const char *kind = (const char *)g->name;
+    const char *keys[3] = {NULL, NULL, NULL};
+    int counts[3] = {0, 0, 0};
+    if (strcmp(kind, "box") == 0)
+        keys[0] = "size", counts[0] = 3;
+    else if (strcmp(kind, "cylinder") == 0)
+        keys[0] = "radius", counts[0] = 1, keys[1] = "length", counts[1] = 1;
+    else if (strcmp(kind, "sphere") == 0)
+        keys[0] = "radius", counts[0] = 1;
+    else if (strcmp(kind, "mesh") == 0)
+        keys[0] = "filename", counts[0] = 0, keys[1] = "scale", counts[1] = -3;
+    else
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': unknown geometry <%.40s>", r->path, link,
+                      kind);
+    double val[2][3] = {{1, 1, 1}, {1, 1, 1}};
+    char *filename = NULL;
+    for (int k = 0; k < 2 && keys[k]; ++k) {
+        xmlChar *v = xmlGetProp(g, (const xmlChar *)keys[k]);
+        if (!v) {
+            if (counts[k] < 0) continue; /* optional (mesh scale) */
+            return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': <%s> without its %s", r->path, link, kind,
+                          keys[k]);
+        }
+        if (counts[k] == 0) {
+            size_t len = strlen((const char *)v);
+            filename = pxi_alloc(r->alloc, len + 1);
+            if (filename) memcpy(filename, v, len + 1);
+            xmlFree(v);
+            if (!filename) return U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", r->path);
+            continue;
+        }
+        int n = counts[k] < 0 ? -counts[k] : counts[k];
+        int ok = numbers((const char *)v, val[k], n);
+        if (ok && counts[k] > 0)
+            for (int i = 0; i < n; ++i) ok &= val[k][i] > 0;
+        if (ok && counts[k] < 0)
+            for (int i = 0; i < n; ++i) ok &= val[k][i] != 0;
+        if (!ok) {
+            st = U_FAIL(r, PX_ERR_IO,
+                        "URDF file '%s': link '%s': <%s %s=\"%.60s\"> is not %d finite %s number%s", r->path,
+                        link, kind, keys[k], (const char *)v, n, counts[k] > 0 ? "positive" : "non-zero",
+                        n > 1 ? "s" : "");
+            xmlFree(v);
+            free_str(r->alloc, filename);
+            return st;
+        }
+        xmlFree(v);
+    }
+    int ok = 1;
+    if (strcmp(kind, "box") == 0) {
+        double xyz[24];
+        for (int i = 0; i < 8; ++i)
+            for (int q = 0; q < 3; ++q) xyz[3 * i + q] = ((i >> q) & 1 ? 0.5 : -0.5) * val[0][q];
+        const double one[3] = {1, 1, 1};
+        ok = soup_add(s, xyz, 8, box_tri, 12, one, &pose);
+    } else if (strcmp(kind, "cylinder") == 0) {
+        ok = add_cylinder(s, val[0][0], val[1][0], &pose);
+    } else if (strcmp(kind, "sphere") == 0) {
+        ok = add_sphere(s, val[0][0], &pose);
+    } else {
+        char file[U_PATH];
+        if (!resolve(r, filename, o->package_path, file, sizeof file)) {
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': mesh file '%.200s' not found", r->path,
+                        link, filename);
+            free_str(r->alloc, filename);
+            return st;
+        }
+        free_str(r->alloc, filename);
+        px_mesh_options mo;
+        memset(&mo, 0, sizeof mo);
+        mo.allocator = r->alloc;
+        px_error e;
+        px_mesh *m = px_mesh_load(file, &mo, &e);
+        if (!m) return U_FAIL(r, e.code, "URDF file '%s': link '%s': %s", r->path, link, e.message);
+        /* Every part of the file, each a part here. */
+        const double *xyz = px_mesh_vertices(m);
+        const uint32_t *tri = px_mesh_triangles(m);
+        uint32_t np = px_mesh_part_count(m);
+        for (uint32_t i = 0; i < np && ok; ++i) {
+            px_mesh_part p;
+            px_mesh_get_part(m, i, &p);
+            /* Indices relative to the part's first vertex. */
+            uint32_t *local = pxi_alloc_array(r->alloc, (size_t)p.triangle_count * 3 + 1, sizeof *local);
+            if (!local) {
+                ok = 0;
+                break;
+            }
+            for (size_t t = 0; t < (size_t)p.triangle_count * 3; ++t)
+                local[t] = tri[3 * (size_t)p.first_triangle + t] - p.first_vertex;
+            ok = soup_add(s, xyz + 3 * (size_t)p.first_vertex, p.vertex_count, local, p.triangle_count,
+                          val[1], &pose);
+            pxi_free(r->alloc, local, ((size_t)p.triangle_count * 3 + 1) * sizeof *local);
+        }
+        px_mesh_destroy(m);
+    }
+    if (!ok)
+        return U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': link '%s': out of memory (or too large)",
+                      r->path, link);
+    return PX_OK;
+}
+
+/* ---- the robot ---- */
+
+typedef struct ujoint {
+    const xmlNode *node;
+    char *name, *parent, *child;
+    uint32_t type; /* px_joint_type */
+    int continuous;
+    uint32_t p, c; /* link indices (file order) */
+} ujoint;
+
+typedef struct ulink {
+    const xmlNode *node;
+    char *name;
+    uint32_t parent_joint;              /* UINT32_MAX: none */
+    uint32_t first_child, next_sibling; /* joints, in file order */
+} ulink;
+
+static int cmp_name(const void *x, const void *y) {
+    const char *const *a = x, *const *b = y;
+    return strcmp(*a, *b);
+}
+
+/* The file-order index of the link named `name` (sorted: (name, index)
+ * pairs), or UINT32_MAX. */
+typedef struct uname {
+    const char *name;
+    uint32_t index;
+} uname;
+
+static uint32_t find_name(const uname *v, uint32_t n, const char *name) {
+    uint32_t lo = 0, hi = n;
+    while (lo < hi) {
+        uint32_t mid = lo + (hi - lo) / 2;
+        int c = strcmp(v[mid].name, name);
+        if (c == 0) return v[mid].index;
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return UINT32_MAX;
+}
+
+void px_urdf_destroy(px_urdf *u) {
+    if (!u) return;
+    px_allocator a = u->alloc;
+    px_chain_destroy(u->chain);
+    for (uint32_t k = 0; u->link_name && k < u->n; ++k) free_str(&a, u->link_name[k]);
+    for (uint32_t k = 0; u->joint_name && k < u->dof; ++k) free_str(&a, u->joint_name[k]);
+    for (uint32_t k = 0; u->model && k < u->n; ++k) px_model_destroy(u->model[k]);
+    pxi_free(&a, u->link_name, (size_t)u->n * sizeof *u->link_name);
+    pxi_free(&a, u->joint_name, (size_t)u->n * sizeof *u->joint_name);
+    pxi_free(&a, u->model, (size_t)u->n * sizeof *u->model);
+    pxi_free(&a, u, sizeof *u);
+}
+
+const px_chain *px_urdf_chain(const px_urdf *u) { return u ? u->chain : NULL; }
+const char *px_urdf_link_name(const px_urdf *u, uint32_t k) { return u && k < u->n ? u->link_name[k] : NULL; }
+const char *px_urdf_joint_name(const px_urdf *u, uint32_t i) {
+    return u && i < u->dof ? u->joint_name[i] : NULL;
+}
+const px_model *px_urdf_link_model(const px_urdf *u, uint32_t k) {
+    return u && k < u->n ? u->model[k] : NULL;
+}
+uint32_t px_urdf_find_link(const px_urdf *u, const char *name) {
+    if (!u || !name) return PX_CHAIN_ROOT;
+    for (uint32_t k = 0; k < u->n; ++k)
+        if (strcmp(u->link_name[k], name) == 0) return k;
+    return PX_CHAIN_ROOT;
+}
+
+/* A joint's type, limits and axis into a link description. */
+static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
+    px_status st = read_origin(r, j->node, "joint", j->name, &d->origin);
+    if (st != PX_OK) return st;
+    d->joint = j->type;
+    if (j->type == PX_JOINT_FIXED) return PX_OK;
+    double axis[3] = {1, 0, 0};
+    const xmlNode *ax = child_el(j->node, "axis");
+    if (ax) {
+        xmlChar *v = xmlGetProp(ax, (const xmlChar *)"xyz");
+        if (v) {
+            int ok = numbers((const char *)v, axis, 3) && (axis[0] != 0 || axis[1] != 0 || axis[2] != 0);
+            if (!ok) {
+                st = U_FAIL(r, PX_ERR_IO,
+                            "URDF file '%s': joint '%s': <axis xyz=\"%.60s\"> is not a non-zero vector",
+                            r->path, j->name, (const char *)v);
+                xmlFree(v);
+                return st;
+            }
+            xmlFree(v);
+        }
+    }
+    d->axis = (px_vec3){axis[0], axis[1], axis[2]};
+    /* URDF: revolute and prismatic joints need <limit>, whose lower and
+     * upper default to 0; a continuous joint has no position limits. */
+    const xmlNode *lim = child_el(j->node, "limit");
+    if (!lim && !j->continuous)
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': a %s joint without <limit>", r->path,
+                      j->name, j->type == PX_JOINT_PRISMATIC ? "prismatic" : "revolute");
+    d->q_min = j->continuous ? -INFINITY : 0.0;
+    d->q_max = j->continuous ? INFINITY : 0.0;
+    d->max_speed = INFINITY;
+    const char *keys[3] = {"lower", "upper", "velocity"};
+    double *dst[3] = {&d->q_min, &d->q_max, &d->max_speed};
+    for (int k = 0; lim && k < 3; ++k) {
+        xmlChar *v = xmlGetProp(lim, (const xmlChar *)keys[k]);
+        if (!v) continue;
+        double x;
+        int ok = numbers((const char *)v, &x, 1) && (k < 2 || x >= 0);
+        if (!ok) {
+            st = U_FAIL(r, PX_ERR_IO,
+                        "URDF file '%s': joint '%s': <limit %s=\"%.60s\"> is not a finite number%s", r->path,
+                        j->name, keys[k], (const char *)v, k == 2 ? " >= 0" : "");
+            xmlFree(v);
+            return st;
+        }
+        xmlFree(v);
+        if (k < 2 && j->continuous) continue;
+        *dst[k] = x;
+    }
+    if (d->q_min > d->q_max)
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': <limit lower=\"%g\" upper=\"%g\"> is empty",
+                      r->path, j->name, d->q_min, d->q_max);
+    return PX_OK;
+}
+
+static once_flag u_xml_once = ONCE_FLAG_INIT;
+/* libxml2's set-up computes NaN and infinities (xmlXPathInit: 0.0 / 0.0):
+ * under a caller's floating-point traps that would kill the process, so
+ * it runs, as the parse does, with the traps held and the caller's
+ * environment restored afterwards. */
+static void u_xml_init(void) {
+    fenv_t env;
+    feholdexcept(&env);
+    xmlInitParser();
+    fesetenv(&env);
+}
+
+/* A link's collision elements as one model (NULL, PX_OK when it has none). */
+static px_status link_model(ureader *r, const ulink *l, const px_urdf_options *o, px_model **out) {
+    *out = NULL;
+    soup s;
+    memset(&s, 0, sizeof s);
+    s.alloc = r->alloc;
+    px_status st = PX_OK;
+    for (const xmlNode *c = l->node->children; c && st == PX_OK; c = c->next)
+        if (is_el(c, "collision")) st = read_collision(r, c, l->name, o, &s);
+    if (st == PX_OK && s.np > 0) {
+        px_mesh_desc md;
+        memset(&md, 0, sizeof md);
+        md.xyz = s.xyz;
+        md.vertex_count = s.nv;
+        md.triangles = s.tri;
+        md.triangle_count = s.nt;
+        md.parts = s.part;
+        md.part_count = (uint32_t)s.np;
+        px_mesh_options mo;
+        memset(&mo, 0, sizeof mo);
+        mo.allocator = r->alloc;
+        px_error e;
+        px_mesh *m = px_mesh_create(&md, &mo, &e);
+        if (!m) {
+            st = U_FAIL(r, e.code, "URDF file '%s': link '%s': %s", r->path, l->name, e.message);
+        } else {
+            px_model_options mopt;
+            memset(&mopt, 0, sizeof mopt);
+            mopt.allocator = r->alloc;
+            mopt.pieces = o->pieces ? o->pieces : PX_PIECES_TRIANGLES;
+            mopt.threads = o->threads;
+            mopt.tolerance = o->tolerance;
+            *out = px_model_create_from_mesh(m, &mopt, &e);
+            if (!*out) st = U_FAIL(r, e.code, "URDF file '%s': link '%s': %s", r->path, l->name, e.message);
+            px_mesh_destroy(m);
+        }
+    }
+    soup_free(&s);
+    return st;
+}
+
+static char *dup_str(const px_allocator *a, const char *s) {
+    size_t len = strlen(s);
+    char *d = pxi_alloc(a, len + 1);
+    if (d) memcpy(d, s, len + 1);
+    return d;
+}
+
+px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err) {
+    pxi_error_clear(err);
+    if (!path || !path[0])
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_urdf_load: the path is NULL or empty"),
+               (px_urdf *)NULL;
+    px_urdf_options o;
+    memset(&o, 0, sizeof o);
+    if (options) o = *options;
+    for (int i = 0; i < 4; ++i)
+        if (o.reserved[i])
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_urdf_load: options.reserved[%d] must be 0", i),
+                   (px_urdf *)NULL;
+    px_allocator alloc;
+    if (pxi_allocator_resolve(o.allocator, &alloc, err) != PX_OK) return NULL;
+    struct stat sb;
+    if (stat(path, &sb) != 0)
+        return pxi_error(err, PX_ERR_IO, "cannot open URDF file '%s': %s", path, strerror(errno)),
+               (px_urdf *)NULL;
+    if (!S_ISREG(sb.st_mode))
+        return pxi_error(err, PX_ERR_IO, "URDF file '%s' is not a regular file", path), (px_urdf *)NULL;
+    if ((unsigned long long)sb.st_size > 64ull << 20)
+        return pxi_error(err, PX_ERR_IO, "URDF file '%s' is larger than 64 MiB", path), (px_urdf *)NULL;
+    call_once(&u_xml_once, u_xml_init);
+    ureader rd = {&alloc, path, err}, *r = &rd;
+    fenv_t env;
+    feholdexcept(&env);
+    xmlDoc *doc = xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    fesetenv(&env);
+    if (!doc) {
+        const xmlError *x = xmlGetLastError();
+        char msg[160] = "not well-formed XML";
+        if (x && x->message) {
+            snprintf(msg, sizeof msg, "%s", x->message);
+            size_t l = strlen(msg);
+            while (l && (msg[l - 1] == '\n' || msg[l - 1] == ' ')) msg[--l] = '\0';
+        }
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': line %d: %s", path, x ? x->line : 0, msg),
+               (px_urdf *)NULL;
+    }
+    px_urdf *u = NULL;
+    ulink *link = NULL;
+    ujoint *joint = NULL;
+    uname *names = NULL, *jnames = NULL;
+    uint32_t *order = NULL, *chain_of = NULL, *stack = NULL;
+    px_link_desc *desc = NULL;
+    uint32_t nl = 0, nj = 0;
+    px_status st = PX_OK;
+    const xmlNode *root = xmlDocGetRootElement(doc);
+    if (!root || !is_el(root, "robot")) {
+        st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': the root element is not <robot>", path);
+        goto done;
+    }
+    for (const xmlNode *c = root->children; c; c = c->next) {
+        nl += is_el(c, "link");
+        nj += is_el(c, "joint");
+    }
+    if (nl == 0 || nl > PX_CHAIN_MAX_LINKS || nj > U_MAX_ELEMENTS) {
+        st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': %u links (1 to %u allowed)", path, nl, PX_CHAIN_MAX_LINKS);
+        goto done;
+    }
+    link = pxi_alloc_array(&alloc, nl, sizeof *link);
+    joint = pxi_alloc_array(&alloc, nj ? nj : 1, sizeof *joint);
+    names = pxi_alloc_array(&alloc, nl, sizeof *names);
+    jnames = pxi_alloc_array(&alloc, nj ? nj : 1, sizeof *jnames);
+    order = pxi_alloc_array(&alloc, nl, sizeof *order);
+    chain_of = pxi_alloc_array(&alloc, nl, sizeof *chain_of);
+    stack = pxi_alloc_array(&alloc, nl + nj + 1, sizeof *stack);
+    desc = pxi_alloc_array(&alloc, nl, sizeof *desc);
+    if (!link || !joint || !names || !jnames || !order || !chain_of || !stack || !desc) {
+        st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+        goto done;
+    }
+    memset(link, 0, nl * sizeof *link);
+    memset(joint, 0, (nj ? nj : 1) * sizeof *joint);
+    /* Names. */
+    {
+        uint32_t il = 0, ij = 0;
+        for (const xmlNode *c = root->children; c && st == PX_OK; c = c->next) {
+            if (!is_el(c, "link") && !is_el(c, "joint")) continue;
+            int is_link = is_el(c, "link");
+            char *name = attr(&alloc, c, "name");
+            if (!name || !name[0]) {
+                st = U_FAIL(r, name ? PX_ERR_IO : PX_ERR_IO, "URDF file '%s': line %d: a <%s> without a name",
+                            path, (int)c->line, is_link ? "link" : "joint");
+                free_str(&alloc, name);
+                break;
+            }
+            if (is_link) {
+                link[il] = (ulink){c, name, UINT32_MAX, UINT32_MAX, UINT32_MAX};
+                names[il] = (uname){name, il};
+                il++;
+            } else {
+                joint[ij].node = c;
+                joint[ij].name = name;
+                jnames[ij] = (uname){name, ij};
+                ij++;
+            }
+        }
+        if (st != PX_OK) goto done;
+        qsort(names, nl, sizeof *names, cmp_name);
+        qsort(jnames, nj, sizeof *jnames, cmp_name);
+        for (uint32_t i = 1; i < nl && st == PX_OK; ++i)
+            if (strcmp(names[i].name, names[i - 1].name) == 0)
+                st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': two links are named '%.80s'", path, names[i].name);
+        for (uint32_t i = 1; i < nj && st == PX_OK; ++i)
+            if (strcmp(jnames[i].name, jnames[i - 1].name) == 0)
+                st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': two joints are named '%.80s'", path,
+                            jnames[i].name);
+        if (st != PX_OK) goto done;
+    }
+    /* Joints: type, parent and child; the tree. */
+    for (uint32_t i = 0; i < nj && st == PX_OK; ++i) {
+        ujoint *j = &joint[i];
+        char *type = attr(&alloc, j->node, "type");
+        const xmlNode *pe = child_el(j->node, "parent"), *ce = child_el(j->node, "child");
+        j->parent = pe ? attr(&alloc, pe, "link") : NULL;
+        j->child = ce ? attr(&alloc, ce, "link") : NULL;
+        if (!type)
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': no type", path, j->name);
+        else if (strcmp(type, "fixed") == 0)
+            j->type = PX_JOINT_FIXED;
+        else if (strcmp(type, "revolute") == 0)
+            j->type = PX_JOINT_REVOLUTE;
+        else if (strcmp(type, "continuous") == 0)
+            j->type = PX_JOINT_REVOLUTE, j->continuous = 1;
+        else if (strcmp(type, "prismatic") == 0)
+            j->type = PX_JOINT_PRISMATIC;
+        else
+            st = U_FAIL(r, PX_ERR_IO,
+                        "URDF file '%s': joint '%s': type '%.40s' is not supported (fixed, revolute, "
+                        "continuous and prismatic are)",
+                        path, j->name, type);
+        free_str(&alloc, type);
+        if (st != PX_OK) break;
+        if (!j->parent || !j->child) {
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': no <%s link=...>", path, j->name,
+                        j->parent ? "child" : "parent");
+            break;
+        }
+        j->p = find_name(names, nl, j->parent);
+        j->c = find_name(names, nl, j->child);
+        if (j->p == UINT32_MAX || j->c == UINT32_MAX) {
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': no link named '%.80s'", path, j->name,
+                        j->p == UINT32_MAX ? j->parent : j->child);
+            break;
+        }
+        if (j->p == j->c) {
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s' joins link '%.80s' to itself", path,
+                        j->name, j->parent);
+            break;
+        }
+        ulink *cl = &link[j->c];
+        if (cl->parent_joint != UINT32_MAX) {
+            st = U_FAIL(r, PX_ERR_IO,
+                        "URDF file '%s': link '%.80s' is the child of two joints, '%.60s' and '%.60s'", path,
+                        cl->name, joint[cl->parent_joint].name, j->name);
+            break;
+        }
+        cl->parent_joint = i;
+    }
+    if (st != PX_OK) goto done;
+    /* Children lists in file order (built backwards). */
+    for (uint32_t i = nj; i-- > 0;) {
+        ulink *pl = &link[joint[i].p];
+        link[joint[i].c].next_sibling = pl->first_child;
+        pl->first_child = i;
+    }
+    {
+        uint32_t root_link = UINT32_MAX;
+        for (uint32_t k = 0; k < nl && st == PX_OK; ++k)
+            if (link[k].parent_joint == UINT32_MAX) {
+                if (root_link != UINT32_MAX)
+                    st = U_FAIL(r, PX_ERR_IO,
+                                "URDF file '%s': two root links (without a parent joint): '%.80s' and "
+                                "'%.80s'",
+                                path, link[root_link].name, link[k].name);
+                root_link = k;
+            }
+        if (st != PX_OK) goto done;
+        if (root_link == UINT32_MAX) {
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': no root link: the joints make a cycle", path);
+            goto done;
+        }
+        /* Depth first from the root, children in file order. */
+        uint32_t top = 0, n = 0;
+        stack[top++] = root_link;
+        while (top) {
+            uint32_t k = stack[--top];
+            chain_of[k] = n;
+            order[n++] = k;
+            uint32_t m = 0;
+            for (uint32_t jj = link[k].first_child; jj != UINT32_MAX; jj = link[joint[jj].c].next_sibling)
+                m++;
+            /* Push in reverse so the first child comes out first. */
+            uint32_t at = top + m;
+            for (uint32_t jj = link[k].first_child; jj != UINT32_MAX; jj = link[joint[jj].c].next_sibling)
+                stack[--at] = joint[jj].c;
+            top += m;
+        }
+        if (n != nl) {
+            for (uint32_t k = 0; k < nl; ++k) chain_of[k] = UINT32_MAX;
+            for (uint32_t i = 0; i < n; ++i) chain_of[order[i]] = i;
+            uint32_t lost = 0;
+            while (chain_of[lost] != UINT32_MAX) lost++;
+            st = U_FAIL(r, PX_ERR_IO,
+                        "URDF file '%s': link '%.80s' is not reachable from the root link '%.80s' (a "
+                        "cycle of joints)",
+                        path, link[lost].name, link[root_link].name);
+            goto done;
+        }
+    }
+    /* The robot. */
+    u = pxi_alloc(&alloc, sizeof *u);
+    if (!u) {
+        st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+        goto done;
+    }
+    memset(u, 0, sizeof *u);
+    u->alloc = alloc;
+    u->n = nl;
+    u->link_name = pxi_alloc_array(&alloc, nl, sizeof *u->link_name);
+    u->joint_name = pxi_alloc_array(&alloc, nl, sizeof *u->joint_name);
+    u->model = pxi_alloc_array(&alloc, nl, sizeof *u->model);
+    if (!u->link_name || !u->joint_name || !u->model) {
+        pxi_free(&alloc, u->link_name, (size_t)nl * sizeof *u->link_name);
+        pxi_free(&alloc, u->joint_name, (size_t)nl * sizeof *u->joint_name);
+        pxi_free(&alloc, u->model, (size_t)nl * sizeof *u->model);
+        u->link_name = u->joint_name = NULL;
+        u->model = NULL;
+        st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+        goto done;
+    }
+    memset(u->link_name, 0, nl * sizeof *u->link_name);
+    memset(u->joint_name, 0, nl * sizeof *u->joint_name);
+    memset(u->model, 0, nl * sizeof *u->model);
+    memset(desc, 0, nl * sizeof *desc);
+    for (uint32_t k = 0; k < nl && st == PX_OK; ++k) {
+        const ulink *l = &link[order[k]];
+        px_link_desc *d = &desc[k];
+        u->link_name[k] = dup_str(&alloc, l->name);
+        if (!u->link_name[k]) {
+            st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+            break;
+        }
+        d->geometry = px_pose_identity();
+        d->group = o.group;
+        d->mask = o.mask;
+        if (l->parent_joint == UINT32_MAX) {
+            d->parent = PX_CHAIN_ROOT;
+            d->joint = PX_JOINT_FIXED;
+            d->origin = px_pose_identity();
+        } else {
+            const ujoint *j = &joint[l->parent_joint];
+            d->parent = chain_of[j->p];
+            st = read_joint(r, j, d);
+            if (st == PX_OK && d->joint != PX_JOINT_FIXED) {
+                u->joint_name[u->dof] = dup_str(&alloc, j->name);
+                if (!u->joint_name[u->dof])
+                    st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+                else
+                    u->dof++;
+            }
+        }
+        if (st == PX_OK) st = link_model(r, l, &o, &u->model[k]);
+        d->model = u->model[k];
+    }
+    if (st == PX_OK) {
+        px_chain_desc cd;
+        memset(&cd, 0, sizeof cd);
+        cd.links = desc;
+        cd.n_links = nl;
+        cd.base = o.base ? *o.base : px_pose_identity();
+        cd.allocator = &alloc;
+        px_error e;
+        u->chain = px_chain_create(&cd, &e);
+        if (!u->chain) st = U_FAIL(r, e.code, "URDF file '%s': %s", path, e.message);
+    }
+done:
+    if (st != PX_OK) {
+        px_urdf_destroy(u);
+        u = NULL;
+    }
+    for (uint32_t k = 0; link && k < nl; ++k) free_str(&alloc, link[k].name);
+    for (uint32_t i = 0; joint && i < nj; ++i) {
+        free_str(&alloc, joint[i].name);
+        free_str(&alloc, joint[i].parent);
+        free_str(&alloc, joint[i].child);
+    }
+    pxi_free(&alloc, link, nl * sizeof *link);
+    pxi_free(&alloc, joint, (nj ? nj : 1) * sizeof *joint);
+    pxi_free(&alloc, names, nl * sizeof *names);
+    pxi_free(&alloc, jnames, (nj ? nj : 1) * sizeof *jnames);
+    pxi_free(&alloc, order, nl * sizeof *order);
+    pxi_free(&alloc, chain_of, nl * sizeof *chain_of);
+    pxi_free(&alloc, stack, (nl + nj + 1) * sizeof *stack);
+    pxi_free(&alloc, desc, nl * sizeof *desc);
+    xmlFreeDoc(doc);
+    return u;
+}

@@ -1,0 +1,417 @@
+/* px_urdf (proxima/urdf.h): robots from URDF files.
+ *
+ * Oracles:
+ * - the shipped Puma 560 URDF against the hand-typed chain of
+ *   examples/puma560.c (link frames at random configurations, and the
+ *   link models' distances in a scene along the demo's trajectory against
+ *   brute force on the example's own models);
+ * - primitives against their analytic shapes: a box's distances exact; a
+ *   cylinder's and a sphere's polyhedra contain the shape (distances from
+ *   outside points are at most the true ones) and lie within 0.5 % and
+ *   2 % of the radius of it;
+ * - bad files: each refused with PX_ERR_IO, a message naming the file and
+ *   the element; mesh paths (package://, file://, relative, the
+ *   package_path option).
+ * The files are written into a scratch folder under the build tree. */
+#define _POSIX_C_SOURCE 200809L /* examples/puma560.c: stat; mkdtemp */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../examples/puma560.c"
+#include "proxima/urdf.h"
+#include "test_util.h"
+
+#define URDF_PUMA PX_SOURCE_DIR "/models/puma560/nimasarli_puma560_description/urdf/puma560.urdf"
+
+static uint64_t rng_state = 99;
+static double urand(void) {
+    rng_state = rng_state * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(rng_state >> 11) * 0x1p-53;
+}
+
+static char scratch[512];
+
+static void write_file(const char *name, const char *text) {
+    char path[700];
+    snprintf(path, sizeof path, "%s/%s", scratch, name);
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        CHECK(0, "cannot write %s", path);
+        return;
+    }
+    fputs(text, f);
+    fclose(f);
+}
+
+static px_urdf *load(const char *name, const px_urdf_options *o, px_error *err) {
+    char path[700];
+    snprintf(path, sizeof path, "%s/%s", scratch, name);
+    return px_urdf_load(path, o, err);
+}
+
+/* The shipped Puma URDF against examples/puma560.c. */
+static void test_puma(void) {
+    px_error err;
+    px_urdf *u = px_urdf_load(URDF_PUMA, NULL, &err);
+    CHECK(u != NULL, "the Puma URDF: %s", err.message);
+    if (!u) return;
+    const px_chain *c = px_urdf_chain(u);
+    CHECK(px_chain_link_count(c) == PUMA_LINKS && px_chain_dof(c) == PUMA_JOINTS, "%u links, %u dof",
+          px_chain_link_count(c), px_chain_dof(c));
+    for (uint32_t k = 0; k < PUMA_LINKS; ++k) {
+        char want[16];
+        snprintf(want, sizeof want, "link%u", k + 1);
+        CHECK(strcmp(px_urdf_link_name(u, k), want) == 0, "link %u is '%s'", k, px_urdf_link_name(u, k));
+        CHECK(px_urdf_find_link(u, want) == k, "find %s", want);
+        CHECK(px_urdf_link_model(u, k) != NULL, "link %u has no model", k);
+    }
+    for (uint32_t i = 0; i < PUMA_JOINTS; ++i) {
+        char want[8];
+        snprintf(want, sizeof want, "j%u", i + 1);
+        CHECK(strcmp(px_urdf_joint_name(u, i), want) == 0, "joint %u is '%s'", i, px_urdf_joint_name(u, i));
+    }
+    CHECK(px_urdf_find_link(u, "link8") == PX_CHAIN_ROOT && px_urdf_link_name(u, 7) == NULL &&
+              px_urdf_joint_name(u, 6) == NULL && px_urdf_link_model(u, 7) == NULL,
+          "out of range");
+    /* Frames: q_urdf = q_dh + offset. */
+    double worst = 0;
+    for (int n = 0; n < 200; ++n) {
+        double q[PUMA_JOINTS], qu[PUMA_JOINTS];
+        for (int j = 0; j < PUMA_JOINTS; ++j) {
+            q[j] = puma_q_min[j] + (puma_q_max[j] - puma_q_min[j]) * urand();
+            qu[j] = q[j] + puma_urdf_offset[PUMA_NIMASARLI][j];
+        }
+        px_pose want[PUMA_LINKS], got[PUMA_LINKS];
+        puma_link_frames(PUMA_NIMASARLI, q, want);
+        CHECK(px_chain_forward(c, qu, got, NULL, &err) == PX_OK, "forward: %s", err.message);
+        for (int k = 0; k < PUMA_LINKS; ++k) {
+            worst = fmax(worst, fabs(want[k].t.x - got[k].t.x) + fabs(want[k].t.y - got[k].t.y) +
+                                    fabs(want[k].t.z - got[k].t.z));
+            for (int i = 0; i < 9; ++i) worst = fmax(worst, fabs(want[k].r[i] - got[k].r[i]));
+        }
+    }
+    CHECK(worst < 1e-12, "URDF frames differ from examples/puma560.c's by %g", worst);
+    /* The models: distances between non-adjacent links along the
+     * trajectory in a scene, against the example's arm (its own models
+     * and poses) by brute force. */
+    puma_arm arm;
+    if (puma_arm_load(&arm, PX_SOURCE_DIR "/models", PUMA_NIMASARLI, PX_PIECES_TRIANGLES, &err) != PX_OK) {
+        CHECK(0, "the example's arm: %s", err.message);
+        px_urdf_destroy(u);
+        return;
+    }
+    px_scene_options so;
+    memset(&so, 0, sizeof so);
+    so.margin = 0.001;
+    so.report_distance = 0.05;
+    px_scene *s = px_scene_create(&so, &err);
+    double q[PUMA_JOINTS], qu[PUMA_JOINTS];
+    puma_trajectory(0, q);
+    for (int j = 0; j < PUMA_JOINTS; ++j) qu[j] = q[j] + puma_urdf_offset[PUMA_NIMASARLI][j];
+    uint32_t ids[PUMA_LINKS];
+    CHECK(s && px_chain_add_to_scene(c, s, qu, ids, &err) == PX_OK, "scene: %s", err.message);
+    double T = puma_trajectory_duration(), worst_d = 0;
+    int steps = 0, reported = 0, bad = 0;
+    for (double t = 0; s && t <= T; t += tu_sanitized() ? 0.2 : 0.05, ++steps) {
+        puma_trajectory(t, q);
+        for (int j = 0; j < PUMA_JOINTS; ++j) qu[j] = q[j] + puma_urdf_offset[PUMA_NIMASARLI][j];
+        CHECK(px_chain_set_joints(c, s, ids, qu, &err) == PX_OK, "set: %s", err.message);
+        CHECK(px_scene_step(s, t, &err) == PX_OK, "step: %s", err.message);
+        px_pose pose[PUMA_LINKS];
+        puma_link_poses(PUMA_NIMASARLI, q, pose);
+        size_t np;
+        const px_scene_pair *pairs = px_scene_pairs(s, &np);
+        size_t want = 0;
+        for (int x = 0; x < PUMA_LINKS; ++x)
+            for (int y = x + 2; y < PUMA_LINKS; ++y) {
+                px_model_distance_result d;
+                px_model_distance(arm.link[x], &pose[x], arm.link[y], &pose[y], NULL, &d);
+                const px_scene_pair *f = NULL;
+                for (size_t m = 0; m < np; ++m)
+                    if (pairs[m].body_a == ids[x] && pairs[m].body_b == ids[y]) f = &pairs[m];
+                if (d.distance <= so.report_distance) want++;
+                if ((d.distance <= so.report_distance) != (f != NULL) ||
+                    (f && !(fabs(f->distance - d.distance) <= 1e-9))) {
+                    if (bad++ < 5)
+                        fprintf(stderr, "t = %g: links %d-%d at %.17g, the URDF scene says %s %.17g\n", t,
+                                x + 1, y + 1, d.distance, f ? "" : "nothing", f ? f->distance : NAN);
+                } else if (f) {
+                    worst_d = fmax(worst_d, fabs(f->distance - d.distance));
+                }
+            }
+        CHECK(np == want, "t = %g: %zu pairs reported, %zu within the report distance", t, np, want);
+        reported += (int)np;
+    }
+    CHECK(bad == 0, "%d pair-steps differ", bad);
+    CHECK(reported > 0, "no pair was ever reported: the test tests nothing");
+    printf(
+        "puma: the URDF's frames within %.1e of examples/puma560.c's; %d steps, %d reported pairs, distances "
+        "within %.1e of the example's models\n",
+        worst, steps, reported, worst_d);
+    px_scene_destroy(s);
+    puma_arm_destroy(&arm);
+    px_urdf_destroy(u);
+}
+
+/* Primitives: a box, a cylinder and a sphere on three links of a chain. */
+static void test_primitives(void) {
+    write_file(
+        "prim.urdf",
+        "<robot name='p'>\n"
+        " <link name='base'><collision><origin xyz='1 2 3'/><geometry><box size='2 4 6'/></geometry>"
+        "</collision></link>\n"
+        " <link name='cyl'><collision><geometry><cylinder radius='0.5' length='2'/></geometry></collision>"
+        "</link>\n"
+        " <link name='ball'><collision><origin xyz='0 0 0' rpy='0.3 0.2 0.1'/><geometry><sphere "
+        "radius='0.25'/></geometry></collision></link>\n"
+        " <link name='frame'/>\n"
+        " <joint name='a' type='continuous'><parent link='base'/><child link='cyl'/>"
+        "<origin xyz='10 0 0'/><axis xyz='0 0 1'/><limit velocity='3'/></joint>\n"
+        " <joint name='b' type='prismatic'><parent link='base'/><child link='frame'/>"
+        "<origin xyz='0 10 0'/><limit lower='-1' upper='1' velocity='0.5'/></joint>\n"
+        " <joint name='c' type='fixed'><parent link='frame'/><child link='ball'/></joint>\n"
+        "</robot>\n");
+    px_error err;
+    px_urdf *u = load("prim.urdf", NULL, &err);
+    CHECK(u != NULL, "prim.urdf: %s", err.message);
+    if (!u) return;
+    const px_chain *c = px_urdf_chain(u);
+    /* Depth first, children in file order: base, cyl, frame, ball. */
+    const char *order[4] = {"base", "cyl", "frame", "ball"};
+    for (uint32_t k = 0; k < 4; ++k)
+        CHECK(strcmp(px_urdf_link_name(u, k), order[k]) == 0, "link %u is %s", k, px_urdf_link_name(u, k));
+    CHECK(px_chain_dof(c) == 2 && strcmp(px_urdf_joint_name(u, 0), "a") == 0 &&
+              strcmp(px_urdf_joint_name(u, 1), "b") == 0,
+          "joints");
+    CHECK(px_urdf_link_model(u, 2) == NULL, "a link without collision has no model");
+    double v, w;
+    px_chain_motion_bounds(c, 1, NULL, &v, &w, &err);
+    CHECK(v == 0 && w == 3, "cylinder link bounds %g %g", v, w);
+    px_chain_motion_bounds(c, 3, NULL, &v, &w, &err);
+    CHECK(v == 0.5 && w == 0, "ball link bounds %g %g", v, w);
+    double q[2] = {1e3, 0.5}; /* continuous: any angle */
+    px_pose g[4];
+    CHECK(px_chain_forward(c, q, NULL, g, &err) == PX_OK, "forward: %s", err.message);
+    q[1] = 1.5;
+    CHECK(px_chain_forward(c, q, NULL, g, &err) == PX_ERR_RANGE, "prismatic limit");
+    /* Distances from points to each model: a tiny tetrahedron as the probe. */
+    double worst_box = 0, worst_cyl_in = 0, worst_cyl_out = 0, worst_sph_in = 0, worst_sph_out = 0;
+    px_pose id = px_pose_identity();
+    const double tet[12] = {0, 0, 0, 1e-9, 0, 0, 0, 1e-9, 0, 0, 0, 1e-9};
+    px_convex *probe = px_convex_create(tet, 4, NULL, &err);
+    for (int n = 0; n < 2000 && probe; ++n) {
+        px_vec3 p = {8 * urand() - 4, 8 * urand() - 4, 8 * urand() - 4};
+        px_pose at = px_pose_identity();
+        px_model_distance_result d;
+        /* box: centre (1 2 3), half sizes 1 2 3 */
+        at.t = (px_vec3){p.x + 1, p.y + 2, p.z + 3};
+        px_model_distance_convex(px_urdf_link_model(u, 0), &id, probe, &at, NULL, &d);
+        double dx = fmax(fabs(p.x) - 1, 0), dy = fmax(fabs(p.y) - 2, 0), dz = fmax(fabs(p.z) - 3, 0);
+        double truth = sqrt(dx * dx + dy * dy + dz * dz);
+        if (truth > 0.01) worst_box = fmax(worst_box, fabs(d.distance - truth)); /* (surfaces: outside) */
+        /* cylinder: radius 0.5, length 2 about z; outside points only */
+        at.t = p;
+        double rr = sqrt(p.x * p.x + p.y * p.y), ez = fmax(fabs(p.z) - 1, 0), er = fmax(rr - 0.5, 0);
+        truth = sqrt(ez * ez + er * er);
+        px_model_distance_convex(px_urdf_link_model(u, 1), &id, probe, &at, NULL, &d);
+        if (truth > 0.01) {
+            worst_cyl_in = fmax(worst_cyl_in, d.distance - truth);   /* > 0: the prism misses the cylinder */
+            worst_cyl_out = fmax(worst_cyl_out, truth - d.distance); /* how far out it reaches */
+        }
+        /* sphere: radius 0.25 at the origin of its link */
+        truth = sqrt(p.x * p.x + p.y * p.y + p.z * p.z) - 0.25;
+        px_model_distance_convex(px_urdf_link_model(u, 3), &id, probe, &at, NULL, &d);
+        if (truth > 0.01) {
+            worst_sph_in = fmax(worst_sph_in, d.distance - truth);
+            worst_sph_out = fmax(worst_sph_out, truth - d.distance);
+        }
+    }
+    CHECK(worst_box < 2e-9, "box distances off by %g", worst_box);
+    CHECK(worst_cyl_in <= 2e-9 && worst_cyl_out <= 0.005 * 0.5 + 2e-9, "cylinder: inside by %g, out by %g",
+          worst_cyl_in, worst_cyl_out);
+    CHECK(worst_sph_in <= 2e-9 && worst_sph_out <= 0.02 * 0.25, "sphere: inside by %g, out by %g",
+          worst_sph_in, worst_sph_out);
+    printf("primitives: box exact (%.1e), cylinder's prism reaches %.2f %% of the radius out, sphere's "
+           "polyhedron %.2f %%; neither misses the shape\n",
+           worst_box, 100 * worst_cyl_out / 0.5, 100 * worst_sph_out / 0.25);
+    px_convex_destroy(probe);
+    px_urdf_destroy(u);
+}
+
+/* Mesh paths: relative, file://, package:// through the option. */
+static void test_paths(void) {
+    char stl[600];
+    snprintf(stl, sizeof stl, "%s/models/teapot/trimesh_mit/teapot.stl", PX_SOURCE_DIR);
+    char text[2000];
+    snprintf(text, sizeof text,
+             "<robot name='t'><link name='a'><collision><geometry><mesh filename='file://%s' scale='0.01 "
+             "0.01 0.01'/></geometry></collision></link></robot>",
+             stl);
+    write_file("file.urdf", text);
+    px_error err;
+    px_urdf *u = load("file.urdf", NULL, &err);
+    CHECK(u != NULL, "file://: %s", err.message);
+    px_model_info info;
+    if (u) {
+        px_model_get_info(px_urdf_link_model(u, 0), &info);
+        CHECK(info.max.x - info.min.x < 1 && info.max.x - info.min.x > 0.5, "scale 0.01: width %g",
+              info.max.x - info.min.x);
+    }
+    px_urdf_destroy(u);
+    snprintf(text, sizeof text,
+             "<robot name='t'><link name='a'><collision><geometry><mesh "
+             "filename='package://trimesh_mit/teapot.stl'/></geometry></collision></link></robot>");
+    write_file("pkg.urdf", text);
+    u = load("pkg.urdf", NULL, &err);
+    CHECK(u == NULL && err.code == PX_ERR_IO && strstr(err.message, "not found"), "package without path: %s",
+          err.message);
+    px_urdf_options o;
+    memset(&o, 0, sizeof o);
+    o.package_path = "/nonexistent:" PX_SOURCE_DIR "/models/teapot";
+    u = load("pkg.urdf", &o, &err);
+    CHECK(u != NULL, "package_path: %s", err.message);
+    px_urdf_destroy(u);
+}
+
+static void test_bad_files(void) {
+    struct {
+        const char *what, *text, *needle;
+    } cases[] = {
+        {"not XML", "<robot><link name='a'></robot>", "line"},
+        {"empty", "", "line"},
+        {"not a robot", "<model><link name='a'/></model>", "<robot>"},
+        {"no links", "<robot name='r'/>", "links"},
+        {"link without name", "<robot><link/></robot>", "without a name"},
+        {"two links one name", "<robot><link name='a'/><link name='a'/></robot>", "'a'"},
+        {"two joints one name",
+         "<robot><link name='a'/><link name='b'/><link name='c'/><joint name='j' type='fixed'><parent "
+         "link='a'/>"
+         "<child link='b'/></joint><joint name='j' type='fixed'><parent link='a'/><child link='c'/></joint>"
+         "</robot>",
+         "'j'"},
+        {"unknown link",
+         "<robot><link name='a'/><joint name='j' type='fixed'><parent link='a'/><child link='zz'/></joint>"
+         "</robot>",
+         "'zz'"},
+        {"two parents",
+         "<robot><link name='a'/><link name='b'/><link name='c'/><joint name='j1' type='fixed'><parent "
+         "link='a'/><child link='c'/></joint><joint name='j2' type='fixed'><parent link='b'/><child "
+         "link='c'/></joint></robot>",
+         "two joints"},
+        {"two roots", "<robot><link name='a'/><link name='b'/></robot>", "two root"},
+        {"cycle",
+         "<robot><link name='r'/><link name='a'/><link name='b'/><joint name='j0' type='fixed'><parent "
+         "link='r'/><child link='a'/></joint><joint name='j1' type='fixed'><parent link='a'/><child "
+         "link='b'/></joint><joint name='j2' type='fixed'><parent link='b'/><child "
+         "link='a'/></joint></robot>",
+         "two joints"},
+        {"pure cycle",
+         "<robot><link name='a'/><link name='b'/><joint name='j1' type='fixed'><parent link='a'/><child "
+         "link='b'/></joint><joint name='j2' type='fixed'><parent link='b'/><child "
+         "link='a'/></joint></robot>",
+         "cycle"},
+        {"floating",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='floating'><parent link='a'/><child "
+         "link='b'/></joint></robot>",
+         "floating"},
+        {"revolute without limit",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='revolute'><parent link='a'/><child "
+         "link='b'/></joint></robot>",
+         "without <limit>"},
+        {"reversed limits",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='revolute'><parent link='a'/><child "
+         "link='b'/><limit lower='1' upper='-1' velocity='1'/></joint></robot>",
+         "empty"},
+        {"NaN origin",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='fixed'><parent link='a'/><child "
+         "link='b'/><origin xyz='0 nan 0'/></joint></robot>",
+         "origin"},
+        {"two numbers",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='fixed'><parent link='a'/><child "
+         "link='b'/><origin xyz='0 1'/></joint></robot>",
+         "three"},
+        {"zero axis",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='continuous'><parent link='a'/><child "
+         "link='b'/><axis xyz='0 0 0'/></joint></robot>",
+         "axis"},
+        {"negative speed",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='continuous'><parent link='a'/><child "
+         "link='b'/><limit velocity='-1'/></joint></robot>",
+         "velocity"},
+        {"negative box",
+         "<robot><link name='a'><collision><geometry><box size='1 -1 "
+         "1'/></geometry></collision></link></robot>",
+         "box"},
+        {"zero radius",
+         "<robot><link name='a'><collision><geometry><sphere "
+         "radius='0'/></geometry></collision></link></robot>",
+         "sphere"},
+        {"cylinder without length",
+         "<robot><link name='a'><collision><geometry><cylinder radius='1'/></geometry></collision></link>"
+         "</robot>",
+         "length"},
+        {"no geometry", "<robot><link name='a'><collision/></link></robot>", "geometry"},
+        {"unknown shape",
+         "<robot><link name='a'><collision><geometry><capsule radius='1' length='1'/></geometry></collision>"
+         "</link></robot>",
+         "capsule"},
+        {"missing mesh",
+         "<robot><link name='a'><collision><geometry><mesh filename='nowhere.stl'/></geometry></collision>"
+         "</link></robot>",
+         "nowhere.stl"},
+        {"zero scale",
+         "<robot><link name='a'><collision><geometry><mesh filename='x.stl' scale='1 0 1'/></geometry>"
+         "</collision></link></robot>",
+         "scale"},
+        {"external entity",
+         "<?xml version='1.0'?><!DOCTYPE robot [<!ENTITY x SYSTEM 'file:///etc/passwd'>]><robot "
+         "name='&x;'><link name='a'/><link name='b'/></robot>",
+         "entity"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
+        write_file("bad.urdf", cases[i].text);
+        px_error err;
+        px_urdf *u = load("bad.urdf", NULL, &err);
+        CHECK(u == NULL, "%s: accepted", cases[i].what);
+        CHECK(err.code == PX_ERR_IO, "%s: %s (%s)", cases[i].what, px_status_string(err.code), err.message);
+        CHECK(strstr(err.message, "bad.urdf") && strstr(err.message, cases[i].needle), "%s: message '%s'",
+              cases[i].what, err.message);
+        px_urdf_destroy(u);
+    }
+    px_error err;
+    CHECK(px_urdf_load(NULL, NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "NULL path");
+    CHECK(px_urdf_load(scratch, NULL, &err) == NULL && err.code == PX_ERR_IO, "a folder: %s", err.message);
+    CHECK(px_urdf_load("/nonexistent.urdf", NULL, &err) == NULL && err.code == PX_ERR_IO &&
+              strstr(err.message, "/nonexistent.urdf"),
+          "missing file: %s", err.message);
+    px_urdf_options o;
+    memset(&o, 0, sizeof o);
+    o.reserved[1] = 1;
+    CHECK(px_urdf_load(URDF_PUMA, &o, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "reserved");
+    /* A mimic joint gets a value of its own. */
+    write_file("mimic.urdf", "<robot><link name='a'/><link name='b'/><link name='c'/>"
+                             "<joint name='j1' type='continuous'><parent link='a'/><child link='b'/></joint>"
+                             "<joint name='j2' type='continuous'><parent link='a'/><child link='c'/>"
+                             "<mimic joint='j1'/></joint></robot>");
+    px_urdf *u = load("mimic.urdf", NULL, &err);
+    CHECK(u && px_chain_dof(px_urdf_chain(u)) == 2, "mimic: %s", err.message);
+    px_urdf_destroy(u);
+    px_urdf_destroy(NULL);
+}
+
+int main(void) {
+    tu_init("test_urdf");
+    snprintf(scratch, sizeof scratch, "%s/urdf_XXXXXX", PX_BINARY_DIR);
+    if (!mkdtemp(scratch)) {
+        CHECK(0, "cannot make a scratch folder under %s", PX_BINARY_DIR);
+        return tu_finish();
+    }
+    test_puma();
+    test_primitives();
+    test_paths();
+    test_bad_files();
+    return tu_finish();
+}

@@ -171,7 +171,9 @@ static void oracle_forward(const rchain *c, const double *q, px_pose *geometry) 
         }
         if (l->joint != PX_JOINT_FIXED) i++;
         frame[k] = qt_mul(qt_mul(parent, c->origin[k]), j);
-        geometry[k] = qt_pose(qt_mul(frame[k], c->geometry[k]));
+        /* A link without geometry: its geometry frame is ignored (its frame). */
+        int shape = l->model || l->convex;
+        geometry[k] = qt_pose(shape ? qt_mul(frame[k], c->geometry[k]) : frame[k]);
     }
 }
 
@@ -181,12 +183,16 @@ static double pose_diff(const px_pose *a, const px_pose *b) {
     return d;
 }
 
+static px_convex *random_polytope(double r);
+
 static void test_forward(void) {
     double worst = 0;
+    px_convex *shape = random_polytope(0.3); /* links with geometry place it; the others ignore theirs */
     int chains = tu_scaled(300);
     for (int it = 0; it < chains; ++it) {
         rchain c;
         random_chain(&c, 1 + (uint32_t)(urand() * MAXL), 0.25, 0.25, it % 2);
+        for (uint32_t k = 0; k < c.n; ++k) c.link[k].convex = urand() < 0.7 ? shape : NULL;
         px_error err;
         px_chain *ch = make_chain(&c, &err);
         CHECK(ch != NULL, "create: %s", err.message);
@@ -217,6 +223,7 @@ static void test_forward(void) {
         }
         px_chain_destroy(ch);
     }
+    px_convex_destroy(shape);
     CHECK(worst <= 1e-12, "forward kinematics differ from the quaternion oracle's by %g", worst);
     printf("forward: %d random chains (up to %d links), poses within %.1e of the quaternion oracle\n", chains,
            MAXL, worst);
@@ -429,19 +436,20 @@ static void test_scene(void) {
         (unsigned long long)checked_total);
 }
 
-/* MoveIt's rule on a hand-made tree. Links (g: geometry, -: none):
+/* Adjacency on a hand-made tree. Links (g: geometry, -: none):
  *   0 A g  root        3 D g  child of 1     6 G g  child of 5
  *   1 B -  child of 0  4 E g  child of 2     7 H g  child of 6 (prismatic)
  *   2 C g  child of 1  5 F -  root
- * Adjacent: C-A, D-A, C-D (through B), E-C (parent), A-G (through F and
- * the base), G-H (parent). Every link is a unit cube at the origin, so
- * every pair overlaps: the scene must report exactly the others. */
+ * Adjacent: each link and its nearest ancestor with geometry: C-A and D-A
+ * (through B), E-C, H-G. Not: C-D (siblings through B), A-G (roots through
+ * F and the base). Every link is a unit cube at the origin, so every pair
+ * overlaps: the scene must report exactly the others. */
 static void test_adjacency(void) {
     static const uint32_t parent[8] = {PX_CHAIN_ROOT, 0, 1, 1, 2, PX_CHAIN_ROOT, 5, 6};
     static const int geo[8] = {1, 0, 1, 1, 1, 0, 1, 1};
     static const int want[8][8] = {
-        {0, 0, 1, 1, 0, 0, 1, 0}, {0}, {1, 0, 0, 1, 1, 0, 0, 0}, {1, 0, 1, 0, 0, 0, 0, 0},
-        {0, 0, 1, 0, 0, 0, 0, 0}, {0}, {1, 0, 0, 0, 0, 0, 0, 1}, {0, 0, 0, 0, 0, 0, 1, 0},
+        {0, 0, 1, 1, 0, 0, 0, 0}, {0}, {1, 0, 0, 0, 1, 0, 0, 0}, {1, 0, 0, 0, 0, 0, 0, 0},
+        {0, 0, 1, 0, 0, 0, 0, 0}, {0}, {0, 0, 0, 0, 0, 0, 0, 1}, {0, 0, 0, 0, 0, 0, 1, 0},
     };
     const double cube[24] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
     px_error err;
@@ -451,7 +459,8 @@ static void test_adjacency(void) {
     for (int k = 0; k < 8; ++k) {
         l[k].parent = parent[k];
         l[k].joint = k == 7 ? PX_JOINT_PRISMATIC : k == 2 || k == 6 ? PX_JOINT_REVOLUTE : PX_JOINT_FIXED;
-        l[k].origin = l[k].geometry = px_pose_identity();
+        l[k].origin = px_pose_identity();
+        if (geo[k]) l[k].geometry = px_pose_identity(); /* (ignored without geometry: left zero) */
         l[k].axis = (px_vec3){0, 0, 1};
         l[k].q_min = -1;
         l[k].q_max = 1;
@@ -729,8 +738,74 @@ static void test_bad_inputs(void) {
     px_convex_destroy(box);
 }
 
+/* The review's cases: frames and geometry in one array (the same answer
+ * as apart), and a mobile base (prismatic root links without geometry)
+ * driven into a table fixed to the base: their contact is reported (the
+ * two are not adjacent). */
+static void test_review_cases(void) {
+    const double cube[24] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+    px_error err;
+    px_convex *box = px_convex_create(cube, 8, NULL, &err);
+    /* 0 table (fixed root), 1 rail x (prismatic root, no geometry), 2 rail
+     * y (prismatic, no geometry), 3 chassis. */
+    px_link_desc l[4];
+    memset(l, 0, sizeof l);
+    for (int k = 0; k < 4; ++k) {
+        l[k].parent = k == 0 || k == 1 ? PX_CHAIN_ROOT : (uint32_t)k - 1;
+        l[k].joint = k == 1 || k == 2 ? PX_JOINT_PRISMATIC : PX_JOINT_FIXED;
+        l[k].origin = px_pose_identity();
+        l[k].axis = k == 1 ? (px_vec3){1, 0, 0} : (px_vec3){0, 1, 0};
+        l[k].q_min = -10, l[k].q_max = 10, l[k].max_speed = 1;
+        if (k == 0 || k == 3) {
+            l[k].convex = box;
+            l[k].geometry = px_pose_identity();
+        }
+    }
+    l[0].origin.t = (px_vec3){5, 0, 0};
+    px_chain_desc d;
+    memset(&d, 0, sizeof d);
+    d.links = l;
+    d.n_links = 4;
+    d.base = px_pose_identity();
+    px_chain *c = px_chain_create(&d, &err);
+    CHECK(c != NULL, "mobile base: %s", err.message);
+    if (!c) {
+        px_convex_destroy(box);
+        return;
+    }
+    CHECK(!px_chain_adjacent(c, 0, 3), "the table and the chassis are adjacent");
+    double q[2] = {0, 0};
+    px_pose f[4], g[4], both[4];
+    CHECK(px_chain_forward(c, q, f, g, &err) == PX_OK, "forward: %s", err.message);
+    /* One array for both: the geometry poses, as apart. */
+    CHECK(px_chain_forward(c, q, both, both, &err) == PX_OK && memcmp(both, g, sizeof g) == 0,
+          "frames and geometry in one array");
+    px_scene_options so;
+    memset(&so, 0, sizeof so);
+    px_scene *s = px_scene_create(&so, &err);
+    uint32_t ids[4];
+    CHECK(px_chain_add_to_scene(c, s, q, ids, &err) == PX_OK, "add: %s", err.message);
+    int contact = 0;
+    for (int step = 0; step <= 60; ++step) {
+        q[0] = 0.1 * step;
+        CHECK(px_chain_set_joints(c, s, ids, q, &err) == PX_OK, "set: %s", err.message);
+        CHECK(px_scene_step(s, step, &err) == PX_OK, "step: %s", err.message);
+        size_t np;
+        const px_scene_pair *p = px_scene_pairs(s, &np);
+        int want = q[0] >= 4.0 - 1e-12;
+        int got = np == 1 && p[0].contact;
+        CHECK(got == want, "step %d (x = %g): contact %d, want %d", step, q[0], got, want);
+        contact |= got;
+    }
+    CHECK(contact, "the chassis never reached the table");
+    px_scene_destroy(s);
+    px_chain_destroy(c);
+    px_convex_destroy(box);
+}
+
 int main(void) {
     tu_init("test_chain");
+    test_review_cases();
     test_forward();
     test_bounds();
     test_adjacency();

@@ -145,13 +145,22 @@ static void test_bounds(void) {
 static void test_chain(void) {
     double worst_pose = 0, worst_bound = 0;
     for (int s = 0; s < PUMA_MESH_SETS; ++s) {
-        puma_arm arm; /* no models: frames only (links without geometry) */
+        /* One small model on every link: the chain places it by the
+         * mesh frames (a link without geometry would ignore them). */
+        static const double tet[12] = {0, 0, 0, 0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01};
+        static const uint32_t end[1] = {4};
+        px_error err;
+        px_model *tiny = px_model_create_from_points(tet, end, 1, NULL, &err);
+        puma_arm arm;
         memset(&arm, 0, sizeof arm);
         arm.set = (puma_meshes)s;
-        px_error err;
+        for (int k = 0; k < PUMA_LINKS; ++k) arm.link[k] = tiny;
         px_chain *c = puma_chain_create(&arm, NULL, 0, 0, &err);
         CHECK(c != NULL, "set %d: px_chain_create: %s", s, err.message);
-        if (!c) continue;
+        if (!c) {
+            px_model_destroy(tiny);
+            continue;
+        }
         CHECK(px_chain_link_count(c) == PUMA_LINKS && px_chain_dof(c) == PUMA_JOINTS,
               "set %d: %u links, %u dof", s, px_chain_link_count(c), px_chain_dof(c));
         for (uint32_t i = 0; i < PUMA_JOINTS; ++i)
@@ -185,7 +194,12 @@ static void test_chain(void) {
               "beyond a limit: %s", err.message);
         q[1] = NAN;
         CHECK(px_chain_forward(c, q, NULL, NULL, &err) == PX_ERR_NON_FINITE, "NaN joint: %s", err.message);
+        for (uint32_t a = 0; a < PUMA_LINKS; ++a)
+            for (uint32_t b = 0; b < PUMA_LINKS; ++b)
+                CHECK(px_chain_adjacent(c, a, b) == (a + 1 == b || b + 1 == a), "links %u, %u adjacent %d", a,
+                      b, px_chain_adjacent(c, a, b));
         px_chain_destroy(c);
+        px_model_destroy(tiny);
     }
     CHECK(worst_pose <= 1e-12, "px_chain poses differ from the URDF chain's by %g", worst_pose);
     CHECK(worst_bound <= 1e-12, "px_chain motion bounds differ from puma_motion_bounds by %g", worst_bound);

@@ -17,11 +17,11 @@
 ///
 /// In a scene (px_chain_add_to_scene) each link with geometry becomes one
 /// body. The chain:
-/// - excludes the pairs of adjacent links, which touch by design: parent
-///   and child, and, through links without geometry, every two links that
-///   such links join (MoveIt's rule: a link without geometry makes its
-///   neighbours adjacent to one another; the base counts as such a link,
-///   so root links are adjacent to one another);
+/// - excludes the pairs of adjacent links, which touch by design: each link
+///   with geometry and its nearest ancestor with geometry (its parent, or
+///   the first link with geometry above the links without geometry between
+///   them). Siblings and root links are never adjacent (docs/chain.md says
+///   why this departs from MoveIt's rule);
 /// - gives each body motion bounds from the joint speed limits, valid in
 ///   every configuration within the limits (docs/chain.md): link k's
 ///   frame origin moves at most sum_j |qd_j| * reach_jk (revolute joints j
@@ -40,8 +40,11 @@
 ///
 /// A chain is immutable once created and may be shared: one chain can be
 /// added to several scenes, or several times to one scene (the caller keeps
-/// each copy's body ids). The models and polytopes it points to are not
-/// copied and must outlive it and the bodies made from it.
+/// each copy's body ids), and used from several threads at once (one scene
+/// per thread); a chain of more than 32 links then needs a thread-safe
+/// allocator (px_chain_forward and px_chain_set_joints take two scratch
+/// arrays from it). The models and polytopes it points to are not copied
+/// and must outlive it and the bodies made from it.
 #ifndef PROXIMA_CHAIN_H
 #define PROXIMA_CHAIN_H
 
@@ -91,7 +94,8 @@ typedef struct px_link_desc {
     /// geometry: a frame only, no body).
     const px_model *model;
     const px_convex *convex;
-    /// The geometry's frame in the link frame (URDF <collision><origin>).
+    /// The geometry's frame in the link frame (URDF <collision><origin>);
+    /// ignored (may be left zero) for a link without geometry.
     px_pose geometry;
     uint32_t group, mask; ///< the body's filters (px_body_desc); 0 and 0: all
     void *user;           ///< the body's user pointer (px_scene_body_user)
@@ -109,12 +113,15 @@ typedef struct px_chain_desc {
 } px_chain_desc;
 
 /// A new chain, or NULL with the reason in `err` (may be NULL):
-/// PX_ERR_INVALID_ARGUMENT for a NULL or empty description, a parent that is
-/// not an earlier link, an unknown joint type, an axis that is zero, limits
-/// that are NaN or reversed, a negative or NaN speed limit, both a model
-/// and a polytope, non-zero reserved fields; the poses as px_pose_check
-/// (PX_ERR_NON_FINITE, PX_ERR_INVALID_POSE); PX_ERR_OUT_OF_MEMORY. The
-/// message names the link.
+/// PX_ERR_INVALID_ARGUMENT for a NULL or empty description, more than
+/// PX_CHAIN_MAX_LINKS links, a parent that is not an earlier link, an
+/// unknown joint type, an axis that is zero, limits that are NaN, empty or
+/// both infinite on one side, a negative or NaN speed limit, both a model
+/// and a polytope, non-zero reserved fields; PX_ERR_NON_FINITE for an axis
+/// with a NaN or infinity; the poses as px_pose_check (PX_ERR_NON_FINITE,
+/// PX_ERR_INVALID_POSE); PX_ERR_RANGE for an origin or base translated
+/// beyond 2^250 or a geometry frame beyond 2^249; PX_ERR_OUT_OF_MEMORY.
+/// The message names the link.
 PX_API px_chain *px_chain_create(const px_chain_desc *desc, px_error *err);
 
 /// Frees the chain (not its models or polytopes); NULL is a no-op.
@@ -130,9 +137,14 @@ PX_API uint32_t px_chain_joint_link(const px_chain *chain, uint32_t i);
 
 /// Forward kinematics at joint values q (px_chain_dof of them; may be
 /// NULL when there are none): the world frames of the links in
-/// `frames[k]` and the world poses of their geometry in `geometry[k]`
-/// (either may be NULL). PX_ERR_RANGE for a value outside its limits, or a
-/// frame that overflows; PX_ERR_NON_FINITE for NaN or infinite values.
+/// `frames[k]` and the world poses of their geometry in `geometry[k]` (a
+/// link without geometry: its frame). Either may be NULL, and both may be
+/// the same array (it then holds the geometry). PX_ERR_RANGE for a value
+/// outside its limits, or a frame beyond 2^250; PX_ERR_NON_FINITE for NaN
+/// or infinite values; PX_ERR_INVALID_ARGUMENT for a NULL chain, or a NULL
+/// q with joints; PX_ERR_OUT_OF_MEMORY (chains of more than 32 links take
+/// scratch arrays from the chain's allocator when frames is NULL or
+/// overlaps geometry).
 PX_API px_status px_chain_forward(const px_chain *chain, const double *q, px_pose *frames, px_pose *geometry,
                                   px_error *err);
 
@@ -157,8 +169,10 @@ PX_API px_status px_chain_add_to_scene(const px_chain *chain, px_scene *scene, c
 
 /// Sets the poses of the chain's moving bodies (those of
 /// px_chain_add_to_scene, `ids` as it filled them) at joint values q, for
-/// the next px_scene_step. Errors as px_chain_forward and
-/// px_scene_set_pose; on error no pose is changed.
+/// the next px_scene_step. Errors as px_chain_forward (chains of more than
+/// 32 links take scratch arrays from the chain's allocator: PX_ERR_OUT_OF_MEMORY)
+/// and px_scene_set_pose, PX_ERR_INVALID_ARGUMENT for an id that is not a
+/// moving body of the scene; on error no pose is changed.
 PX_API px_status px_chain_set_joints(const px_chain *chain, px_scene *scene, const uint32_t *ids,
                                      const double *q, px_error *err);
 

@@ -8,12 +8,15 @@
  * long chain's products stay rotations to rounding and px_scene_set_pose
  * (which allows 1e-6) never refuses them.
  *
- * Adjacency (MoveIt setup assistant, compute_default_collisions.cpp: links
- * without geometry are bypassed by making all their neighbours mutually
- * adjacent, repeated to a fixed point): the fixed point is reached at once
- * by taking the connected groups of links without geometry (the base
- * among them): every two links with geometry next to one group are
- * adjacent, as are a parent and a child that both have geometry.
+ * Adjacency (after MoveIt's setup assistant, compute_default_collisions.cpp,
+ * whose "adjacent" links are one joint apart, links without geometry
+ * bypassed): each link with geometry is adjacent to its nearest ancestor
+ * with geometry, the links without geometry between them bypassed. Unlike
+ * MoveIt, two links are never adjacent through a common ancestor without
+ * geometry (siblings, or root links through the base): such a group joins
+ * subtrees that may move far apart (a table and a mobile base on
+ * prismatic joints, two fingers on a frame), and excluding their pairs
+ * would hide real collisions.
  *
  * Motion bounds (hpp-core's solid-solid-collision.cc computeCoefficients,
  * per link instead of per pair): a revolute joint j moves a point p at
@@ -121,10 +124,18 @@ static px_status check_link(const px_link_desc *d, uint32_t k, px_error *err) {
     px_error e;
     px_status st = px_pose_check(&d->origin, &e);
     if (st != PX_OK) return pxi_error(err, st, "px_chain_create: link %u: origin: %s", k, e.message);
-    st = px_pose_check(&d->geometry, &e);
-    if (st != PX_OK) return pxi_error(err, st, "px_chain_create: link %u: geometry: %s", k, e.message);
-    if (!(pxi_max_abs(d->origin.t) <= C_RANGE) || !(pxi_max_abs(d->geometry.t) <= C_RANGE))
-        return pxi_error(err, PX_ERR_RANGE, "px_chain_create: link %u: a translation is beyond 2^250", k);
+    if (!(pxi_max_abs(d->origin.t) <= C_RANGE))
+        return pxi_error(err, PX_ERR_RANGE,
+                         "px_chain_create: link %u: the origin's translation is beyond 2^250", k);
+    if (d->model || d->convex) { /* the geometry frame of a link without geometry is ignored */
+        st = px_pose_check(&d->geometry, &e);
+        if (st != PX_OK) return pxi_error(err, st, "px_chain_create: link %u: geometry: %s", k, e.message);
+        /* Half the range: the centre (the link origin in the geometry
+         * frame, -R^T t) stays within the scene's. */
+        if (!(pxi_max_abs(d->geometry.t) <= 0.5 * C_RANGE))
+            return pxi_error(err, PX_ERR_RANGE,
+                             "px_chain_create: link %u: the geometry's translation is beyond 2^249", k);
+    }
     if (d->joint == PX_JOINT_FIXED) return PX_OK;
     if (!pxi_is_finite3(d->axis))
         return pxi_error(err, PX_ERR_NON_FINITE, "px_chain_create: link %u: the axis is not finite", k);
@@ -171,97 +182,31 @@ static void derive_bounds(px_chain *c) {
     }
 }
 
-static int cmp_u64(const void *x, const void *y) {
-    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
-    return a < b ? -1 : a > b;
-}
-
 static uint64_t adj_key(uint32_t a, uint32_t b) {
     return a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
 }
 
-/* The adjacent pairs (see the file comment). Node n is the base. */
+/* The adjacent pairs: each link with geometry and its nearest ancestor
+ * with geometry (see the file comment), in increasing key order. */
 static px_status find_adjacent(px_chain *c, px_error *err) {
-    uint32_t n = c->n;
-    /* Union-find over the links without geometry and the base. */
-    uint32_t *up = pxi_alloc_array(&c->alloc, (size_t)n + 1, sizeof *up);
-    uint32_t *near = pxi_alloc_array(&c->alloc, 2 * (size_t)n, sizeof *near); /* (group, link) */
-    if (!up || !near) {
-        pxi_free(&c->alloc, up, ((size_t)n + 1) * sizeof *up);
-        pxi_free(&c->alloc, near, 2 * (size_t)n * sizeof *near);
-        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_chain_create: out of memory");
-    }
-    for (uint32_t i = 0; i <= n; ++i) up[i] = i;
-#define C_FIND(x)                                                                                            \
-    do {                                                                                                     \
-        while (up[x] != x) x = up[x] = up[up[x]];                                                            \
-    } while (0)
-    for (uint32_t k = 0; k < n; ++k) {
-        uint32_t p = c->link[k].parent == PX_CHAIN_ROOT ? n : c->link[k].parent;
-        if (has_geometry(&c->link[k]) || (p < n && has_geometry(&c->link[p]))) continue;
-        uint32_t a = k, b = p;
-        C_FIND(a);
-        C_FIND(b);
-        if (a != b) up[a < b ? a : b] = a < b ? b : a;
-    }
-    /* Each link with geometry next to a group: (root of the group, link). */
-    size_t m = 0, pairs = 0;
-    for (uint32_t k = 0; k < n; ++k) {
-        uint32_t p = c->link[k].parent == PX_CHAIN_ROOT ? n : c->link[k].parent;
-        int gk = has_geometry(&c->link[k]), gp = p < n && has_geometry(&c->link[p]);
-        if (gk && gp) {
-            pairs++;
-        } else if (gk != gp) {
-            uint32_t g = gk ? p : k, r = g;
-            C_FIND(r);
-            near[2 * m] = r;
-            near[2 * m + 1] = gk ? k : p;
-            m++;
-        }
-    }
-#undef C_FIND
-    /* Sort (group, link) and count the pairs within each group. */
-    uint64_t *gl = pxi_alloc_array(&c->alloc, m ? m : 1, sizeof *gl);
-    if (!gl) {
-        pxi_free(&c->alloc, up, ((size_t)n + 1) * sizeof *up);
-        pxi_free(&c->alloc, near, 2 * (size_t)n * sizeof *near);
-        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_chain_create: out of memory");
-    }
-    for (size_t i = 0; i < m; ++i) gl[i] = (uint64_t)near[2 * i] << 32 | near[2 * i + 1];
-    qsort(gl, m, sizeof *gl, cmp_u64);
-    for (size_t i = 0, j; i < m; i = j) {
-        for (j = i; j < m && gl[j] >> 32 == gl[i] >> 32; ++j) {
-        }
-        pairs += (j - i) * (j - i - 1) / 2;
-    }
-    c->adj = pxi_alloc_array(&c->alloc, pairs ? pairs : 1, sizeof *c->adj);
-    if (c->adj) {
-        size_t q = 0;
-        for (uint32_t k = 0; k < n; ++k) {
-            uint32_t p = c->link[k].parent;
-            if (p != PX_CHAIN_ROOT && has_geometry(&c->link[k]) && has_geometry(&c->link[p]))
-                c->adj[q++] = adj_key(k, p);
-        }
-        for (size_t i = 0, j; i < m; i = j) {
-            for (j = i; j < m && gl[j] >> 32 == gl[i] >> 32; ++j) {
-            }
-            for (size_t x = i; x < j; ++x)
-                for (size_t y = x + 1; y < j; ++y) c->adj[q++] = adj_key((uint32_t)gl[x], (uint32_t)gl[y]);
-        }
-        /* A link can be next to a group twice (its parent and a child
-         * without geometry in one group): keep each pair once. */
-        qsort(c->adj, q, sizeof *c->adj, cmp_u64);
-        size_t u = 0;
-        for (size_t i = 0; i < q; ++i)
-            if ((uint32_t)(c->adj[i] >> 32) != (uint32_t)c->adj[i] && (u == 0 || c->adj[u - 1] != c->adj[i]))
-                c->adj[u++] = c->adj[i];
-        c->n_adj = u;
-        c->n_adj_cap = pairs ? pairs : 1;
-    }
-    pxi_free(&c->alloc, gl, (m ? m : 1) * sizeof *gl);
-    pxi_free(&c->alloc, up, ((size_t)n + 1) * sizeof *up);
-    pxi_free(&c->alloc, near, 2 * (size_t)n * sizeof *near);
+    c->adj = pxi_alloc_array(&c->alloc, c->n, sizeof *c->adj);
     if (!c->adj) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_chain_create: out of memory");
+    c->n_adj_cap = c->n;
+    size_t q = 0;
+    for (uint32_t k = 0; k < c->n; ++k) {
+        if (!has_geometry(&c->link[k])) continue;
+        uint32_t p = c->link[k].parent;
+        while (p != PX_CHAIN_ROOT && !has_geometry(&c->link[p])) p = c->link[p].parent;
+        if (p != PX_CHAIN_ROOT) c->adj[q++] = adj_key(k, p);
+    }
+    /* Insertion sort: keys (p << 32 | k) with p < k; nearly sorted already. */
+    for (size_t i = 1; i < q; ++i) {
+        uint64_t v = c->adj[i];
+        size_t j = i;
+        for (; j > 0 && c->adj[j - 1] > v; --j) c->adj[j] = c->adj[j - 1];
+        c->adj[j] = v;
+    }
+    c->n_adj = q;
     return PX_OK;
 }
 
@@ -308,7 +253,7 @@ px_chain *px_chain_create(const px_chain_desc *d, px_error *err) {
         l->parent = s->parent;
         l->joint = s->joint;
         l->origin = s->origin;
-        l->geometry = s->geometry;
+        l->geometry = s->model || s->convex ? s->geometry : px_pose_identity();
         orthonormalise(l->origin.r);
         orthonormalise(l->geometry.r);
         l->model = s->model;
@@ -416,10 +361,16 @@ px_status px_chain_forward(const px_chain *c, const double *q, px_pose *frames, 
                            px_error *err) {
     pxi_error_clear(err);
     if (!c) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_chain_forward: the chain is NULL");
-    if (frames) return forward(c, q, frames, geometry, "px_chain_forward", err);
+    /* Straight into the caller's arrays unless they overlap (the children
+     * read their parents' frames). */
+    size_t bytes = (size_t)c->n * sizeof(px_pose);
+    int apart = !geometry || (const char *)frames + bytes <= (const char *)geometry ||
+                (const char *)geometry + bytes <= (const char *)frames;
+    if (frames && apart) return forward(c, q, frames, geometry, "px_chain_forward", err);
     px_pose stack[2 * C_STACK], *f, *g;
     px_status st = forward_alloc(c, q, stack, &f, &g, "px_chain_forward", err);
-    if (st == PX_OK && geometry) memcpy(geometry, g, (size_t)c->n * sizeof *g);
+    if (st == PX_OK && frames) memcpy(frames, f, bytes);
+    if (st == PX_OK && geometry) memcpy(geometry, g, bytes);
     forward_free(c, f, g);
     return st;
 }
@@ -427,7 +378,8 @@ px_status px_chain_forward(const px_chain *c, const double *q, px_pose *frames, 
 px_status px_chain_motion_bounds(const px_chain *c, uint32_t link, px_vec3 *center, double *speed, double *w,
                                  px_error *err) {
     pxi_error_clear(err);
-    if (!c || link >= c->n)
+    if (!c) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_chain_motion_bounds: the chain is NULL");
+    if (link >= c->n)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_chain_motion_bounds: no link %u in the chain",
                          link);
     const clink *l = &c->link[link];

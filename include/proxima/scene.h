@@ -254,7 +254,9 @@ PX_API px_status px_scene_get_stats(const px_scene *scene, px_scene_stats *out);
 /// UINT32_MAX and distance INFINITY when no two bodies can be paired.
 /// Exact: when no pair is within the report distance, the bodies' boxes
 /// order the search and each pair is measured only if its boxes are closer
-/// than the best distance found.
+/// than the best distance found. Errors: PX_ERR_INVALID_ARGUMENT for NULL
+/// arguments; a query's error, with the pair in `err` (PX_ERR_RANGE for
+/// bodies placed more than 2^250 apart, as px_scene_step).
 PX_API px_status px_scene_min_distance(px_scene *scene, px_scene_pair *out, px_error *err);
 
 #ifdef __cplusplus

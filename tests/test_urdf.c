@@ -19,6 +19,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "../examples/puma560.c"
 #include "proxima/urdf.h"
@@ -369,7 +370,25 @@ static void test_bad_files(void) {
         {"external entity",
          "<?xml version='1.0'?><!DOCTYPE robot [<!ENTITY x SYSTEM 'file:///etc/passwd'>]><robot "
          "name='&x;'><link name='a'/><link name='b'/></robot>",
-         "entity"},
+         "document type"},
+        {"internal entity in a name",
+         "<!DOCTYPE robot [<!ENTITY L 'b'>]><robot><link name='a'/><link name='&L;'/><joint name='j' "
+         "type='fixed'><parent link='a'/><child link='b'/></joint></robot>",
+         "document type"},
+        {"entity as an element",
+         "<!DOCTYPE robot [<!ENTITY L \"<link name='b'/>\">]><robot><link name='a'/>&L;</robot>",
+         "document type"},
+        {"undeclared entity", "<robot><link name='a'/>&L;</robot>", "line"},
+        {"undeclared prefix", "<robot><link name='a'/><urdf:link name='b'/></robot>", "urdf"},
+        {"hexadecimal",
+         "<robot><link name='a'/><link name='b'/><joint name='j' type='fixed'><parent link='a'/><child "
+         "link='b'/><origin xyz='0x1p0 0 0'/></joint></robot>",
+         "origin"},
+        {"package without a package",
+         "<robot><link name='a'><collision><geometry><mesh filename='package://teapot.stl'/></geometry>"
+         "</collision></link></robot>",
+         "not found"},
+
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
         write_file("bad.urdf", cases[i].text);
@@ -382,6 +401,11 @@ static void test_bad_files(void) {
         px_urdf_destroy(u);
     }
     px_error err;
+    /* px_chain_create's errors name the link, not its index. */
+    write_file("far.urdf", "<robot><link name='a'/><link name='b'/><joint name='j' type='fixed'><parent "
+                           "link='a'/><child link='b'/><origin xyz='1e300 0 0'/></joint></robot>");
+    CHECK(load("far.urdf", NULL, &err) == NULL && err.code == PX_ERR_RANGE && strstr(err.message, "link 'b'"),
+          "origin beyond the chain's range: %s", err.message);
     CHECK(px_urdf_load(NULL, NULL, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "NULL path");
     CHECK(px_urdf_load(scratch, NULL, &err) == NULL && err.code == PX_ERR_IO, "a folder: %s", err.message);
     CHECK(px_urdf_load("/nonexistent.urdf", NULL, &err) == NULL && err.code == PX_ERR_IO &&
@@ -402,6 +426,140 @@ static void test_bad_files(void) {
     px_urdf_destroy(NULL);
 }
 
+/* Allocation failures, the limits, and what a file cannot make the reader
+ * do (a review's findings). */
+static int g_fail_after = -1; /* allocations left before failing; -1: never */
+static long g_live;
+static void *failing_alloc(void *user, size_t size) {
+    (void)user;
+    if (g_fail_after == 0) return NULL;
+    if (g_fail_after > 0) --g_fail_after;
+    void *p = malloc(size);
+    g_live += p != NULL;
+    return p;
+}
+static void failing_free(void *user, void *ptr, size_t size) {
+    (void)user, (void)size;
+    g_live -= ptr != NULL;
+    free(ptr);
+}
+
+static void test_hardening(void) {
+    char stl[600], text[8000];
+    snprintf(stl, sizeof stl, "%s/models/teapot/trimesh_mit/teapot.stl", PX_SOURCE_DIR);
+    snprintf(text, sizeof text,
+             "<robot name='t'><link name='a'><collision><geometry><box size='1 2 3'/></geometry></collision>"
+             "</link><link name='b'><collision><geometry><sphere radius='0.5'/></geometry></collision>"
+             "<collision><geometry><cylinder radius='0.5' length='2'/></geometry></collision></link>"
+             "<link name='c'><collision><geometry><mesh filename='%s' scale='0.01 0.01 0.01'/></geometry>"
+             "</collision></link><joint name='j1' type='revolute'><parent link='a'/><child link='b'/>"
+             "<limit lower='-1' upper='1' velocity='2'/></joint><joint name='j2' type='prismatic'>"
+             "<parent link='b'/><child link='c'/><origin xyz='1e-310 0 1'/><limit lower='0' upper='1'/>"
+             "</joint></robot>",
+             stl);
+    write_file("oom.urdf", text);
+    px_allocator al = {failing_alloc, failing_free, NULL};
+    px_urdf_options o;
+    memset(&o, 0, sizeof o);
+    o.allocator = &al;
+    px_error err;
+    int k = 0, failed = 0;
+    for (;; ++k) {
+        g_fail_after = k;
+        g_live = 0;
+        px_urdf *u = load("oom.urdf", &o, &err);
+        g_fail_after = -1;
+        if (u) {
+            CHECK(px_chain_dof(px_urdf_chain(u)) == 2, "the robot after %d allocations", k);
+            px_urdf_destroy(u);
+            CHECK(g_live == 0, "%ld blocks left", g_live);
+            break;
+        }
+        failed += err.code != PX_ERR_OUT_OF_MEMORY;
+        CHECK(err.code == PX_ERR_OUT_OF_MEMORY, "failing allocation %d: %s (%s)", k,
+              px_status_string(err.code), err.message);
+        CHECK(g_live == 0, "failing allocation %d: %ld blocks leaked", k, g_live);
+        if (k > 100000 || failed > 3) break;
+    }
+    printf("hardening: %d allocations failed one at a time, each PX_ERR_OUT_OF_MEMORY and no leak\n", k);
+    /* A gzip-compressed URDF is not read as the URDF inside it (libxml2
+     * would decompress a file it opens itself: a 64 MiB check on the file
+     * would not bound the text). */
+    static const unsigned char gz[] = {
+        0x1f, 0x8b, 0x08, 0x00, 0xfb, 0x85, 0x0b, 0x6b, 0x02, 0xff, 0xb3, 0x29, 0xca, 0x4f, 0xca, 0x2f, 0x51,
+        0xc8, 0x4b, 0xcc, 0x4d, 0xb5, 0x55, 0xaf, 0x52, 0xb7, 0xb3, 0xc9, 0xc9, 0xcc, 0xcb, 0x86, 0x72, 0x13,
+        0xd5, 0xf5, 0xed, 0x6c, 0xf4, 0xc1, 0x0a, 0xec, 0x00, 0xbf, 0xee, 0x02, 0x01, 0x28, 0x00, 0x00, 0x00};
+    char path[700];
+    snprintf(path, sizeof path, "%s/gz.urdf", scratch);
+    FILE *f = fopen(path, "wb");
+    if (f) {
+        fwrite(gz, 1, sizeof gz, f);
+        fclose(f);
+    }
+    px_urdf *u = px_urdf_load(path, NULL, &err);
+    CHECK(u == NULL && err.code == PX_ERR_IO && strstr(err.message, "gz.urdf"), "gzip: %s", err.message);
+    px_urdf_destroy(u);
+    /* "-" is a file name, not the standard input. */
+    CHECK(px_urdf_load("-", NULL, &err) == NULL && err.code == PX_ERR_IO && strstr(err.message, "'-'"),
+          "'-': %s", err.message);
+    /* A FIFO is refused, not waited on. */
+    snprintf(path, sizeof path, "%s/fifo.urdf", scratch);
+    if (mkfifo(path, 0600) == 0) {
+        CHECK(px_urdf_load(path, NULL, &err) == NULL && err.code == PX_ERR_IO &&
+                  strstr(err.message, "not a regular file"),
+              "FIFO: %s", err.message);
+        remove(path);
+    }
+    /* A mesh name longer than a path can be names no file (it once named
+     * its first 4,095 bytes). */
+    char name[4200];
+    memset(name, 'x', sizeof name);
+    memcpy(name, stl, strlen(stl));
+    name[strlen(stl)] = '/';
+    name[sizeof name - 1] = '\0';
+    snprintf(text, sizeof text,
+             "<robot><link name='a'><collision><geometry><mesh filename='file://%s'/></geometry></collision>"
+             "</link></robot>",
+             name);
+    write_file("long.urdf", text);
+    u = load("long.urdf", NULL, &err);
+    CHECK(u == NULL && err.code == PX_ERR_IO && strstr(err.message, "not found"), "long name: %s",
+          err.message);
+    px_urdf_destroy(u);
+    /* The whole robot's triangles are bounded: 6,251 spheres (320 each)
+     * are refused before any model is built. */
+    size_t cap = 6251 * 64 + 200;
+    char *big = malloc(cap);
+    if (big) {
+        size_t at = (size_t)snprintf(big, cap, "<robot><link name='a'>");
+        for (int i = 0; i < 6251; ++i)
+            at += (size_t)snprintf(big + at, cap - at,
+                                   "<collision><geometry><sphere radius='1'/></geometry></collision>");
+        snprintf(big + at, cap - at, "</link></robot>");
+        write_file("spheres.urdf", big);
+        free(big);
+        double t0 = tu_now();
+        u = load("spheres.urdf", NULL, &err);
+        CHECK(u == NULL && err.code == PX_ERR_IO && strstr(err.message, "triangles"), "6,251 spheres: %s",
+              err.message);
+        CHECK(tu_now() - t0 < 30, "6,251 spheres refused after %.1f s", tu_now() - t0);
+        px_urdf_destroy(u);
+    }
+    /* 65,537 joints are refused by their count. */
+    big = malloc(65537 * 24 + 100);
+    if (big) {
+        size_t at = (size_t)sprintf(big, "<robot><link name='a'/>");
+        for (int i = 0; i < 65537; ++i) at += (size_t)sprintf(big + at, "<joint name='j%d'/>", i);
+        sprintf(big + at, "</robot>");
+        write_file("joints.urdf", big);
+        free(big);
+        u = load("joints.urdf", NULL, &err);
+        CHECK(u == NULL && err.code == PX_ERR_IO && strstr(err.message, "65537 joints"), "65,537 joints: %s",
+              err.message);
+        px_urdf_destroy(u);
+    }
+}
+
 int main(void) {
     tu_init("test_urdf");
     snprintf(scratch, sizeof scratch, "%s/urdf_XXXXXX", PX_BINARY_DIR);
@@ -413,5 +571,6 @@ int main(void) {
     test_primitives();
     test_paths();
     test_bad_files();
+    test_hardening();
     return tu_finish();
 }

@@ -6,9 +6,10 @@
 /// links carry models of their <collision> geometry: meshes (any format
 /// px_mesh_load reads, with the element's scale), boxes, and cylinders and
 /// spheres as convex polyhedra that contain them (a cylinder as a
-/// circumscribed 32-sided prism, a sphere as a circumscribed 80-faced
-/// polyhedron: distances to them are lower bounds of the true shapes', at
-/// most 0.5 % and 2 % of the radius below). A link's collision elements
+/// circumscribed 32-sided prism of 124 triangles, a sphere as a
+/// circumscribed polyhedron of 320 triangles: distances to them are lower
+/// bounds of the true shapes', at most 0.49 % and 1.81 % of the radius
+/// below). A link's collision elements
 /// are the parts of its model, placed by their <origin>. <visual>
 /// elements are not read.
 ///
@@ -25,6 +26,17 @@
 /// for each folder DIR of options.package_path, then of the folders that
 /// hold the URDF file and each of their parents; `file://` and plain paths
 /// are taken as they are, relative ones against the URDF file's folder.
+///
+/// What a file cannot do: the file is read whole by the library (a
+/// regular file of at most 64 MiB; never decompressed, never a FIFO or
+/// the standard input) and parsed without network access; a document
+/// type declaration (<!DOCTYPE>) is refused, so no entity can be declared
+/// or expanded; a namespace error is refused, and elements in a prefixed
+/// namespace (<xacro:...>) are skipped as ROS's parser skips them (xacro
+/// files must be expanded first). A robot has at most 1,024 links and
+/// 2,000,000 collision triangles in all. Numbers are decimal (no
+/// hexadecimal) and read in the C locale whatever the caller's. libxml2
+/// prints nothing.
 #ifndef PROXIMA_URDF_H
 #define PROXIMA_URDF_H
 
@@ -65,8 +77,9 @@ typedef struct px_urdf_options {
 /// joints, no root link or two, a cycle, an unsupported joint type, a
 /// revolute or prismatic joint without <limit>, a number that does not
 /// parse or is not finite, a geometry with a negative or zero size, a mesh
-/// file that cannot be found or loaded (px_mesh_load's message quoted); the
-/// message names the file and the link or joint;
+/// file that cannot be found or loaded (px_mesh_load's message quoted),
+/// a limit above exceeded, a document type declaration; the message names
+/// the file and the link or joint, or the line for XML errors;
 /// and the statuses of px_model_create_from_mesh and px_chain_create
 /// (naming the link); PX_ERR_OUT_OF_MEMORY.
 PX_API px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err);

@@ -1,7 +1,11 @@
 /* px_urdf: robots from URDF files (proxima/urdf.h).
  *
- * The XML is read by libxml2 (no network, no entity substitution: a file
- * cannot make the reader fetch or expand anything). The robot description
+ * The XML is read by libxml2 from the bytes we read (at most 64 MiB, never
+ * decompressed), with no network, and a file with a document type
+ * declaration is refused as it is met: no entity can be declared, so a
+ * file cannot make the reader fetch or expand anything. Namespace errors
+ * are refused too; elements in a prefixed namespace (xacro:...) are not
+ * URDF's and are skipped, as ROS's parser does. The robot description
  * follows the URDF specification (wiki.ros.org/urdf/XML): <link name> with
  * <collision> elements (<origin xyz rpy>, <geometry> of one <mesh filename
  * scale>, <box size>, <cylinder radius length> or <sphere radius>), and
@@ -12,10 +16,16 @@
  * Each link's collision elements become the parts of one mesh in the link
  * frame, and that mesh a model (px_model_create_from_mesh); the links,
  * ordered depth first from the root, a px_chain. */
+#define _POSIX_C_SOURCE 200809L /* uselocale, open without blocking */
+
 #include "proxima/urdf.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <fenv.h>
+#include <limits.h>
+#include <float.h>
+#include <locale.h>
 #include <libxml/parser.h>
 #include <libxml/tree.h>
 #include <math.h>
@@ -24,12 +34,19 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <threads.h>
+#include <unistd.h>
 
 #include "core/core.h"
 #include "proxima/io.h"
 
-#define U_MAX_ELEMENTS 65536u /* links, joints, collision elements */
+#define U_MAX_ELEMENTS 65536u /* joints */
+#define U_MAX_FILE (64ull << 20)
 #define U_PATH 4096
+/* The triangles of all the links together: a robot's collision
+ * meshes are far smaller, and a file of a few kB could otherwise ask for
+ * gigabytes of building (about 500 bytes a triangle are built: 2,000
+ * spheres, 640,000 triangles, take 4 s and 300 MB). */
+#define U_MAX_TRIANGLES 2000000ull
 
 struct px_urdf {
     px_allocator alloc;
@@ -42,8 +59,11 @@ struct px_urdf {
 
 /* ---- small helpers ---- */
 
+/* An element of URDF's: in no namespace, or the default one (a prefixed
+ * element such as <xacro:link> is another vocabulary's). */
 static int is_el(const xmlNode *n, const char *name) {
-    return n->type == XML_ELEMENT_NODE && strcmp((const char *)n->name, name) == 0;
+    return n->type == XML_ELEMENT_NODE && (!n->ns || !n->ns->prefix) &&
+           strcmp((const char *)n->name, name) == 0;
 }
 
 static const xmlNode *child_el(const xmlNode *n, const char *name) {
@@ -52,30 +72,24 @@ static const xmlNode *child_el(const xmlNode *n, const char *name) {
     return NULL;
 }
 
-/* An attribute's value, copied with the robot's allocator (NULL when
- * absent). */
-static char *attr(const px_allocator *a, const xmlNode *n, const char *name) {
-    xmlChar *v = xmlGetProp(n, (const xmlChar *)name);
-    if (!v) return NULL;
-    size_t len = strlen((const char *)v);
-    char *s = pxi_alloc(a, len + 1);
-    if (s) memcpy(s, v, len + 1);
-    xmlFree(v);
-    return s;
-}
-
 static void free_str(const px_allocator *a, char *s) {
     if (s) pxi_free(a, s, strlen(s) + 1);
 }
 
-/* Exactly `count` finite numbers separated by blanks. 1 on success. */
+/* Exactly `count` finite decimal numbers separated by blanks (strtod in
+ * the C locale, which px_urdf_load sets for its thread; no hexadecimal, as
+ * ROS's parser reads none; a subnormal is read, an overflow is not). 1 on
+ * success. */
 static int numbers(const char *s, double *out, int count) {
     const char *p = s;
     for (int i = 0; i < count; ++i) {
+        while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\r') ++p;
+        const char *digits = p + (*p == '+' || *p == '-');
+        if (digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X')) return 0;
         char *end;
         errno = 0;
         double v = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(v)) return 0;
+        if (end == p || !isfinite(v) || (errno == ERANGE && fabs(v) > DBL_MIN)) return 0;
         if (*end && *end != ' ' && *end != '\t' && *end != '\n' && *end != '\r') return 0;
         out[i] = v;
         p = end;
@@ -108,9 +122,35 @@ typedef struct ureader {
     const px_allocator *alloc;
     const char *path;
     px_error *err;
+    int oom;      /* an allocation failed in attr() */
+    int xml_line; /* libxml2's first error, or the DTD refused */
+    char xml_message[160];
+    size_t triangles; /* the robot may still have */
 } ureader;
 
 #define U_FAIL(r, code, ...) pxi_error((r)->err, (code), __VA_ARGS__)
+
+static px_status u_oom(ureader *r) {
+    return U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", r->path);
+}
+
+static char *dup_str(const px_allocator *a, const char *s) {
+    size_t len = strlen(s);
+    char *d = pxi_alloc(a, len + 1);
+    if (d) memcpy(d, s, len + 1);
+    return d;
+}
+
+/* An attribute's value, copied with the robot's allocator: NULL when
+ * absent, or with r->oom set when the copy could not be made. */
+static char *attr(ureader *r, const xmlNode *n, const char *name) {
+    xmlChar *v = xmlGetProp(n, (const xmlChar *)name);
+    if (!v) return NULL;
+    char *s = dup_str(r->alloc, (const char *)v);
+    xmlFree(v);
+    if (!s) r->oom = 1;
+    return s;
+}
 
 /* An element's <origin> (identity when absent). */
 static px_status read_origin(ureader *r, const xmlNode *n, const char *what, const char *name, px_pose *out) {
@@ -141,6 +181,7 @@ static px_status read_origin(ureader *r, const xmlNode *n, const char *what, con
 
 typedef struct soup {
     const px_allocator *alloc;
+    size_t *budget; /* triangles the robot may still have */
     double *xyz;
     uint32_t *tri;
     px_mesh_part_desc *part;
@@ -188,8 +229,9 @@ static void soup_free(soup *s) {
  * and nt triangles indexing them. */
 static int soup_add(soup *s, const double *xyz, size_t nv, const uint32_t *tri, size_t nt,
                     const double scale[3], const px_pose *pose) {
-    if (s->nv + nv > U_MAX_ELEMENTS * 64ull || s->nt + nt > U_MAX_ELEMENTS * 64ull) return 0;
+    if (nt > *s->budget || nv > 3 * *s->budget + 8) return -1;
     if (!soup_grow(s, nv, nt)) return 0;
+    *s->budget -= nt;
     for (size_t i = 0; i < nv; ++i) {
         px_vec3 p = {xyz[3 * i] * scale[0], xyz[3 * i + 1] * scale[1], xyz[3 * i + 2] * scale[2]};
         px_vec3 w = px_pose_apply(pose, p);
@@ -310,7 +352,7 @@ static int add_sphere(soup *s, double r, const px_pose *pose) {
 static int resolve(const ureader *r, const char *name, const char *package_path, char *out, size_t size) {
     struct stat sb;
     char dir[U_PATH];
-    snprintf(dir, sizeof dir, "%s", r->path);
+    if ((size_t)snprintf(dir, sizeof dir, "%s", r->path) >= sizeof dir) return 0;
     char *slash = strrchr(dir, '/');
     if (slash)
         *slash = '\0';
@@ -318,6 +360,9 @@ static int resolve(const ureader *r, const char *name, const char *package_path,
         snprintf(dir, sizeof dir, ".");
     if (strncmp(name, "package://", 10) == 0) {
         const char *rest = name + 10;
+        /* package://PACKAGE/PATH: without a package it names nothing. */
+        const char *sep = strchr(rest, '/');
+        if (!sep || sep == rest || !sep[1]) return 0;
         /* The folders of package_path, then the URDF file's folder and
          * each parent: DIR/NAME/rest. */
         if (package_path) {
@@ -346,10 +391,9 @@ static int resolve(const ureader *r, const char *name, const char *package_path,
         return 0;
     }
     if (strncmp(name, "file://", 7) == 0) name += 7;
-    if (name[0] == '/' || !slash)
-        snprintf(out, size, "%s", name);
-    else if ((size_t)snprintf(out, size, "%s/%s", dir, name) >= size)
-        return 0;
+    int n =
+        name[0] == '/' || !slash ? snprintf(out, size, "%s", name) : snprintf(out, size, "%s/%s", dir, name);
+    if (n < 0 || (size_t)n >= size) return 0; /* too long: not some other, shorter path */
     return stat(out, &sb) == 0 && S_ISREG(sb.st_mode);
 }
 
@@ -364,7 +408,7 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
         for (const xmlNode *c = geo->children; c && !g; c = c->next)
             if (c->type == XML_ELEMENT_NODE) g = c;
     if (!g)
-        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': a <collision> without a <geometry> shape",
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': a <collision> without a <geometry> shape",
                       r->path, link);
     const char *kind = (const char *)g->name;
     const char *keys[3] = {NULL, NULL, NULL};
@@ -378,7 +422,7 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     else if (strcmp(kind, "mesh") == 0)
         keys[0] = "filename", counts[0] = 0, keys[1] = "scale", counts[1] = -3;
     else
-        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': unknown geometry <%.40s>", r->path, link,
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': unknown geometry <%.40s>", r->path, link,
                       kind);
     double val[2][3] = {{1, 1, 1}, {1, 1, 1}};
     char *filename = NULL;
@@ -386,8 +430,8 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
         xmlChar *v = xmlGetProp(g, (const xmlChar *)keys[k]);
         if (!v) {
             if (counts[k] < 0) continue; /* optional (mesh scale) */
-            return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': <%s> without its %s", r->path, link, kind,
-                          keys[k]);
+            return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': <%s> without its %s", r->path, link,
+                          kind, keys[k]);
         }
         if (counts[k] == 0) {
             size_t len = strlen((const char *)v);
@@ -405,9 +449,9 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
             for (int i = 0; i < n; ++i) ok &= val[k][i] != 0;
         if (!ok) {
             st = U_FAIL(r, PX_ERR_IO,
-                        "URDF file '%s': link '%s': <%s %s=\"%.60s\"> is not %d finite %s number%s", r->path,
-                        link, kind, keys[k], (const char *)v, n, counts[k] > 0 ? "positive" : "non-zero",
-                        n > 1 ? "s" : "");
+                        "URDF file '%s': link '%.80s': <%s %s=\"%.60s\"> is not %d finite %s number%s",
+                        r->path, link, kind, keys[k], (const char *)v, n,
+                        counts[k] > 0 ? "positive" : "non-zero", n > 1 ? "s" : "");
             xmlFree(v);
             free_str(r->alloc, filename);
             return st;
@@ -428,7 +472,7 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     } else {
         char file[U_PATH];
         if (!resolve(r, filename, o->package_path, file, sizeof file)) {
-            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%s': mesh file '%.200s' not found", r->path,
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': mesh file not found: '%.200s'", r->path,
                         link, filename);
             free_str(r->alloc, filename);
             return st;
@@ -439,12 +483,12 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
         mo.allocator = r->alloc;
         px_error e;
         px_mesh *m = px_mesh_load(file, &mo, &e);
-        if (!m) return U_FAIL(r, e.code, "URDF file '%s': link '%s': %s", r->path, link, e.message);
+        if (!m) return U_FAIL(r, e.code, "URDF file '%s': link '%.80s': %s", r->path, link, e.message);
         /* Every part of the file, each a part here. */
         const double *xyz = px_mesh_vertices(m);
         const uint32_t *tri = px_mesh_triangles(m);
         uint32_t np = px_mesh_part_count(m);
-        for (uint32_t i = 0; i < np && ok; ++i) {
+        for (uint32_t i = 0; i < np && ok == 1; ++i) {
             px_mesh_part p;
             px_mesh_get_part(m, i, &p);
             /* Indices relative to the part's first vertex. */
@@ -461,9 +505,14 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
         }
         px_mesh_destroy(m);
     }
+    if (ok < 0)
+        return U_FAIL(
+            r, PX_ERR_IO,
+            "URDF file '%s': link '%.80s': the robot's collision geometry is more than %llu triangles "
+            "(spheres are 320 and cylinders 124 each)",
+            r->path, link, U_MAX_TRIANGLES);
     if (!ok)
-        return U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': link '%s': out of memory (or too large)",
-                      r->path, link);
+        return U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': link '%.80s': out of memory", r->path, link);
     return PX_OK;
 }
 
@@ -552,7 +601,7 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
             int ok = numbers((const char *)v, axis, 3) && (axis[0] != 0 || axis[1] != 0 || axis[2] != 0);
             if (!ok) {
                 st = U_FAIL(r, PX_ERR_IO,
-                            "URDF file '%s': joint '%s': <axis xyz=\"%.60s\"> is not a non-zero vector",
+                            "URDF file '%s': joint '%.80s': <axis xyz=\"%.60s\"> is not a non-zero vector",
                             r->path, j->name, (const char *)v);
                 xmlFree(v);
                 return st;
@@ -565,7 +614,7 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
      * upper default to 0; a continuous joint has no position limits. */
     const xmlNode *lim = child_el(j->node, "limit");
     if (!lim && !j->continuous)
-        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': a %s joint without <limit>", r->path,
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s': a %s joint without <limit>", r->path,
                       j->name, j->type == PX_JOINT_PRISMATIC ? "prismatic" : "revolute");
     d->q_min = j->continuous ? -INFINITY : 0.0;
     d->q_max = j->continuous ? INFINITY : 0.0;
@@ -579,8 +628,8 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
         int ok = numbers((const char *)v, &x, 1) && (k < 2 || x >= 0);
         if (!ok) {
             st = U_FAIL(r, PX_ERR_IO,
-                        "URDF file '%s': joint '%s': <limit %s=\"%.60s\"> is not a finite number%s", r->path,
-                        j->name, keys[k], (const char *)v, k == 2 ? " >= 0" : "");
+                        "URDF file '%s': joint '%.80s': <limit %s=\"%.60s\"> is not a finite number%s",
+                        r->path, j->name, keys[k], (const char *)v, k == 2 ? " >= 0" : "");
             xmlFree(v);
             return st;
         }
@@ -589,8 +638,9 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
         *dst[k] = x;
     }
     if (d->q_min > d->q_max)
-        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': <limit lower=\"%g\" upper=\"%g\"> is empty",
-                      r->path, j->name, d->q_min, d->q_max);
+        return U_FAIL(r, PX_ERR_IO,
+                      "URDF file '%s': joint '%.80s': <limit lower=\"%g\" upper=\"%g\"> is empty", r->path,
+                      j->name, d->q_min, d->q_max);
     return PX_OK;
 }
 
@@ -612,6 +662,7 @@ static px_status link_model(ureader *r, const ulink *l, const px_urdf_options *o
     soup s;
     memset(&s, 0, sizeof s);
     s.alloc = r->alloc;
+    s.budget = &r->triangles;
     px_status st = PX_OK;
     for (const xmlNode *c = l->node->children; c && st == PX_OK; c = c->next)
         if (is_el(c, "collision")) st = read_collision(r, c, l->name, o, &s);
@@ -630,7 +681,7 @@ static px_status link_model(ureader *r, const ulink *l, const px_urdf_options *o
         px_error e;
         px_mesh *m = px_mesh_create(&md, &mo, &e);
         if (!m) {
-            st = U_FAIL(r, e.code, "URDF file '%s': link '%s': %s", r->path, l->name, e.message);
+            st = U_FAIL(r, e.code, "URDF file '%s': link '%.80s': %s", r->path, l->name, e.message);
         } else {
             px_model_options mopt;
             memset(&mopt, 0, sizeof mopt);
@@ -639,7 +690,8 @@ static px_status link_model(ureader *r, const ulink *l, const px_urdf_options *o
             mopt.threads = o->threads;
             mopt.tolerance = o->tolerance;
             *out = px_model_create_from_mesh(m, &mopt, &e);
-            if (!*out) st = U_FAIL(r, e.code, "URDF file '%s': link '%s': %s", r->path, l->name, e.message);
+            if (!*out)
+                st = U_FAIL(r, e.code, "URDF file '%s': link '%.80s': %s", r->path, l->name, e.message);
             px_mesh_destroy(m);
         }
     }
@@ -647,11 +699,95 @@ static px_status link_model(ureader *r, const ulink *l, const px_urdf_options *o
     return st;
 }
 
-static char *dup_str(const px_allocator *a, const char *s) {
-    size_t len = strlen(s);
-    char *d = pxi_alloc(a, len + 1);
-    if (d) memcpy(d, s, len + 1);
-    return d;
+/* The whole file into `*bytes` (NUL-terminated, size + 1 bytes from the
+ * robot's allocator): a regular file of at most 64 MiB, opened without
+ * blocking (a FIFO is refused, not waited on). */
+static px_status read_file(ureader *r, unsigned char **bytes, size_t *size) {
+    *bytes = NULL;
+    int fd = open(r->path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) return U_FAIL(r, PX_ERR_IO, "cannot open URDF file '%s': %s", r->path, strerror(errno));
+    struct stat sb;
+    px_status st = PX_OK;
+    if (fstat(fd, &sb) != 0 || !S_ISREG(sb.st_mode))
+        st = U_FAIL(r, PX_ERR_IO, "URDF file '%s' is not a regular file", r->path);
+    else if ((unsigned long long)sb.st_size > U_MAX_FILE)
+        st = U_FAIL(r, PX_ERR_IO, "URDF file '%s' is larger than 64 MiB", r->path);
+    size_t n = st == PX_OK ? (size_t)sb.st_size : 0, got = 0;
+    unsigned char *b = st == PX_OK ? pxi_alloc(r->alloc, n + 1) : NULL;
+    if (st == PX_OK && !b) st = u_oom(r);
+    while (st == PX_OK && got < n) {
+        ssize_t k = read(fd, b + got, n - got);
+        if (k < 0 && errno == EINTR) continue;
+        if (k < 0)
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': read error: %s", r->path, strerror(errno));
+        else if (k == 0)
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s' became shorter while it was read", r->path);
+        else
+            got += (size_t)k;
+    }
+    close(fd);
+    if (st != PX_OK) {
+        if (b) pxi_free(r->alloc, b, n + 1);
+        return st;
+    }
+    b[n] = '\0';
+    *bytes = b;
+    *size = n;
+    return PX_OK;
+}
+
+/* libxml2's errors: the first one kept for the message, none printed. */
+static void xml_error(void *data, xmlErrorPtr e) {
+    ureader *r = ((xmlParserCtxtPtr)data)->_private;
+    if (r->xml_message[0] || !e) return;
+    r->xml_line = e->line;
+    snprintf(r->xml_message, sizeof r->xml_message, "%s", e->message ? e->message : "not well-formed XML");
+    size_t l = strlen(r->xml_message);
+    while (l && (r->xml_message[l - 1] == '\n' || r->xml_message[l - 1] == ' ')) r->xml_message[--l] = '\0';
+}
+
+/* A document type declaration stops the parse before any of it is used. */
+static void xml_doctype(void *data, const xmlChar *name, const xmlChar *external_id,
+                        const xmlChar *system_id) {
+    (void)name, (void)external_id, (void)system_id;
+    xmlParserCtxtPtr ctxt = data;
+    ureader *r = ctxt->_private;
+    if (!r->xml_message[0]) {
+        r->xml_line = xmlSAX2GetLineNumber(ctxt);
+        snprintf(r->xml_message, sizeof r->xml_message,
+                 "a document type declaration (<!DOCTYPE>) is not accepted: URDF has none, and it could "
+                 "declare entities");
+    }
+    xmlStopParser(ctxt);
+}
+
+/* The document, or NULL with the error set. */
+static xmlDoc *parse_xml(ureader *r, const unsigned char *bytes, size_t size) {
+    if (size > INT_MAX) return U_FAIL(r, PX_ERR_IO, "URDF file '%s' is too large", r->path), (xmlDoc *)NULL;
+    xmlParserCtxtPtr ctxt = xmlNewParserCtxt();
+    if (!ctxt || !ctxt->sax) {
+        xmlFreeParserCtxt(ctxt);
+        return u_oom(r), (xmlDoc *)NULL;
+    }
+    ctxt->_private = r;
+    ctxt->sax->serror = xml_error;
+    ctxt->sax->internalSubset = xml_doctype;
+    ctxt->sax->externalSubset = xml_doctype;
+    /* libxml2 computes NaN and infinities in places: under a caller's
+     * floating-point traps that would kill the process. */
+    fenv_t env;
+    feholdexcept(&env);
+    xmlDoc *doc = xmlCtxtReadMemory(ctxt, (const char *)bytes, (int)size, r->path, NULL,
+                                    XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    fesetenv(&env);
+    int ok = doc && ctxt->wellFormed && ctxt->nsWellFormed && !doc->intSubset && !doc->extSubset &&
+             !r->xml_message[0];
+    xmlFreeParserCtxt(ctxt);
+    if (ok) return doc;
+    xmlFreeDoc(doc);
+    if (!r->xml_message[0]) snprintf(r->xml_message, sizeof r->xml_message, "not well-formed XML");
+    return U_FAIL(r, PX_ERR_IO, "URDF file '%s': line %d: %s", r->path, r->xml_line, r->xml_message),
+           (xmlDoc *)NULL;
 }
 
 px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err) {
@@ -668,30 +804,25 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
                    (px_urdf *)NULL;
     px_allocator alloc;
     if (pxi_allocator_resolve(o.allocator, &alloc, err) != PX_OK) return NULL;
-    struct stat sb;
-    if (stat(path, &sb) != 0)
-        return pxi_error(err, PX_ERR_IO, "cannot open URDF file '%s': %s", path, strerror(errno)),
-               (px_urdf *)NULL;
-    if (!S_ISREG(sb.st_mode))
-        return pxi_error(err, PX_ERR_IO, "URDF file '%s' is not a regular file", path), (px_urdf *)NULL;
-    if ((unsigned long long)sb.st_size > 64ull << 20)
-        return pxi_error(err, PX_ERR_IO, "URDF file '%s' is larger than 64 MiB", path), (px_urdf *)NULL;
     call_once(&u_xml_once, u_xml_init);
-    ureader rd = {&alloc, path, err}, *r = &rd;
-    fenv_t env;
-    feholdexcept(&env);
-    xmlDoc *doc = xmlReadFile(path, NULL, XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
-    fesetenv(&env);
+    ureader rd = {&alloc, path, err, 0, 0, "", U_MAX_TRIANGLES}, *r = &rd;
+    unsigned char *bytes = NULL;
+    size_t size = 0;
+    if (read_file(r, &bytes, &size) != PX_OK) return NULL;
+    /* Numbers are read and printed in the C locale whatever the caller's
+     * (uselocale: this thread only, restored before returning). */
+    locale_t c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    if (c_locale == (locale_t)0) {
+        pxi_free(&alloc, bytes, size + 1);
+        return u_oom(r), (px_urdf *)NULL;
+    }
+    locale_t caller_locale = uselocale(c_locale);
+    xmlDoc *doc = parse_xml(r, bytes, size);
+    pxi_free(&alloc, bytes, size + 1);
     if (!doc) {
-        const xmlError *x = xmlGetLastError();
-        char msg[160] = "not well-formed XML";
-        if (x && x->message) {
-            snprintf(msg, sizeof msg, "%s", x->message);
-            size_t l = strlen(msg);
-            while (l && (msg[l - 1] == '\n' || msg[l - 1] == ' ')) msg[--l] = '\0';
-        }
-        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': line %d: %s", path, x ? x->line : 0, msg),
-               (px_urdf *)NULL;
+        uselocale(caller_locale);
+        freelocale(c_locale);
+        return NULL;
     }
     px_urdf *u = NULL;
     ulink *link = NULL;
@@ -710,12 +841,21 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
         nl += is_el(c, "link");
         nj += is_el(c, "joint");
     }
-    if (nl == 0 || nl > PX_CHAIN_MAX_LINKS || nj > U_MAX_ELEMENTS) {
+    if (nl == 0 || nl > PX_CHAIN_MAX_LINKS) {
         st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': %u links (1 to %u allowed)", path, nl, PX_CHAIN_MAX_LINKS);
         goto done;
     }
+    if (nj > U_MAX_ELEMENTS) { /* a tree of nl links has nl - 1 joints: the tree's checks name them */
+        st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': %u joints for %u links (a tree of links has one fewer)",
+                    path, nj, nl);
+        goto done;
+    }
+    /* link and joint zeroed at once: the names they will hold are freed
+     * at the end whatever fails. */
     link = pxi_alloc_array(&alloc, nl, sizeof *link);
+    if (link) memset(link, 0, nl * sizeof *link);
     joint = pxi_alloc_array(&alloc, nj ? nj : 1, sizeof *joint);
+    if (joint) memset(joint, 0, (nj ? nj : 1) * sizeof *joint);
     names = pxi_alloc_array(&alloc, nl, sizeof *names);
     jnames = pxi_alloc_array(&alloc, nj ? nj : 1, sizeof *jnames);
     order = pxi_alloc_array(&alloc, nl, sizeof *order);
@@ -723,21 +863,23 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
     stack = pxi_alloc_array(&alloc, nl + nj + 1, sizeof *stack);
     desc = pxi_alloc_array(&alloc, nl, sizeof *desc);
     if (!link || !joint || !names || !jnames || !order || !chain_of || !stack || !desc) {
-        st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+        st = u_oom(r);
         goto done;
     }
-    memset(link, 0, nl * sizeof *link);
-    memset(joint, 0, (nj ? nj : 1) * sizeof *joint);
     /* Names. */
     {
         uint32_t il = 0, ij = 0;
         for (const xmlNode *c = root->children; c && st == PX_OK; c = c->next) {
             if (!is_el(c, "link") && !is_el(c, "joint")) continue;
             int is_link = is_el(c, "link");
-            char *name = attr(&alloc, c, "name");
+            char *name = attr(r, c, "name");
+            if (r->oom) {
+                st = u_oom(r);
+                break;
+            }
             if (!name || !name[0]) {
-                st = U_FAIL(r, name ? PX_ERR_IO : PX_ERR_IO, "URDF file '%s': line %d: a <%s> without a name",
-                            path, (int)c->line, is_link ? "link" : "joint");
+                st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': line %d: a <%s> without a name", path,
+                            (int)c->line, is_link ? "link" : "joint");
                 free_str(&alloc, name);
                 break;
             }
@@ -767,12 +909,14 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
     /* Joints: type, parent and child; the tree. */
     for (uint32_t i = 0; i < nj && st == PX_OK; ++i) {
         ujoint *j = &joint[i];
-        char *type = attr(&alloc, j->node, "type");
+        char *type = attr(r, j->node, "type");
         const xmlNode *pe = child_el(j->node, "parent"), *ce = child_el(j->node, "child");
-        j->parent = pe ? attr(&alloc, pe, "link") : NULL;
-        j->child = ce ? attr(&alloc, ce, "link") : NULL;
-        if (!type)
-            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': no type", path, j->name);
+        j->parent = pe ? attr(r, pe, "link") : NULL;
+        j->child = ce ? attr(r, ce, "link") : NULL;
+        if (r->oom)
+            st = u_oom(r);
+        else if (!type)
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s': no type", path, j->name);
         else if (strcmp(type, "fixed") == 0)
             j->type = PX_JOINT_FIXED;
         else if (strcmp(type, "revolute") == 0)
@@ -783,25 +927,25 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
             j->type = PX_JOINT_PRISMATIC;
         else
             st = U_FAIL(r, PX_ERR_IO,
-                        "URDF file '%s': joint '%s': type '%.40s' is not supported (fixed, revolute, "
+                        "URDF file '%s': joint '%.80s': type '%.40s' is not supported (fixed, revolute, "
                         "continuous and prismatic are)",
                         path, j->name, type);
         free_str(&alloc, type);
         if (st != PX_OK) break;
         if (!j->parent || !j->child) {
-            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': no <%s link=...>", path, j->name,
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s': no <%s link=...>", path, j->name,
                         j->parent ? "child" : "parent");
             break;
         }
         j->p = find_name(names, nl, j->parent);
         j->c = find_name(names, nl, j->child);
         if (j->p == UINT32_MAX || j->c == UINT32_MAX) {
-            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s': no link named '%.80s'", path, j->name,
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s': no link named '%.80s'", path, j->name,
                         j->p == UINT32_MAX ? j->parent : j->child);
             break;
         }
         if (j->p == j->c) {
-            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%s' joins link '%.80s' to itself", path,
+            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s' joins link '%.80s' to itself", path,
                         j->name, j->parent);
             break;
         }
@@ -868,7 +1012,7 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
     /* The robot. */
     u = pxi_alloc(&alloc, sizeof *u);
     if (!u) {
-        st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+        st = u_oom(r);
         goto done;
     }
     memset(u, 0, sizeof *u);
@@ -883,7 +1027,7 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
         pxi_free(&alloc, u->model, (size_t)nl * sizeof *u->model);
         u->link_name = u->joint_name = NULL;
         u->model = NULL;
-        st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+        st = u_oom(r);
         goto done;
     }
     memset(u->link_name, 0, nl * sizeof *u->link_name);
@@ -895,7 +1039,7 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
         px_link_desc *d = &desc[k];
         u->link_name[k] = dup_str(&alloc, l->name);
         if (!u->link_name[k]) {
-            st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+            st = u_oom(r);
             break;
         }
         d->geometry = px_pose_identity();
@@ -912,7 +1056,7 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
             if (st == PX_OK && d->joint != PX_JOINT_FIXED) {
                 u->joint_name[u->dof] = dup_str(&alloc, j->name);
                 if (!u->joint_name[u->dof])
-                    st = U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", path);
+                    st = u_oom(r);
                 else
                     u->dof++;
             }
@@ -929,7 +1073,16 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
         cd.allocator = &alloc;
         px_error e;
         u->chain = px_chain_create(&cd, &e);
-        if (!u->chain) st = U_FAIL(r, e.code, "URDF file '%s': %s", path, e.message);
+        if (!u->chain) {
+            /* px_chain_create names the link by its index: name it. */
+            unsigned k = 0;
+            int at = 0;
+            if (sscanf(e.message, "px_chain_create: link %u: %n", &k, &at) == 1 && at > 0 && k < nl)
+                st = U_FAIL(r, e.code, "URDF file '%s': link '%.80s': %s", path, u->link_name[k],
+                            e.message + at);
+            else
+                st = U_FAIL(r, e.code, "URDF file '%s': %s", path, e.message);
+        }
     }
 done:
     if (st != PX_OK) {
@@ -951,5 +1104,7 @@ done:
     pxi_free(&alloc, stack, (nl + nj + 1) * sizeof *stack);
     pxi_free(&alloc, desc, nl * sizeof *desc);
     xmlFreeDoc(doc);
+    uselocale(caller_locale);
+    freelocale(c_locale);
     return u;
 }

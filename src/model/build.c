@@ -246,6 +246,9 @@ px_status pxi_model_build_tree(px_model *m, px_convex **convex, int hulls, px_er
     uint32_t n = m->n_leaves;
     m->n_nodes = 2 * n - 1;
     m->nodes = pxi_alloc_array(&m->alloc, m->n_nodes, sizeof *m->nodes);
+    /* Zeroed at once: px_model_destroy frees each node's hull, also when
+     * an allocation below fails. */
+    if (m->nodes) memset(m->nodes, 0, (size_t)m->n_nodes * sizeof *m->nodes);
     m->boxes = n > 1 ? pxi_alloc_array(&m->alloc, n - 1, sizeof *m->boxes) : NULL;
     b.centroid = pxi_alloc_array(&m->alloc, n, sizeof *b.centroid);
     b.order = pxi_alloc_array(&m->alloc, n, sizeof *b.order);
@@ -253,7 +256,6 @@ px_status pxi_model_build_tree(px_model *m, px_convex **convex, int hulls, px_er
     if (!m->nodes || (n > 1 && !m->boxes) || !b.centroid || !b.order || !b.keys) {
         b.status = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_model: out of memory");
     } else {
-        memset(m->nodes, 0, (size_t)m->n_nodes * sizeof *m->nodes);
         for (uint32_t i = 0; i < n; ++i) {
             b.order[i] = i;
             size_t k = 0;

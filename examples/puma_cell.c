@@ -872,7 +872,7 @@ int main(int argc, char **argv) {
     if (plot) {
         int w = write_plot(out, &e, approx ? &f : NULL, tolerance, &arm, &cell);
         printf("  plot           : %s/puma_cell.png %s\n", out,
-               w ? "written" : "NOT written (gnuplot failed?)");
+               w ? "written" : "NOT written (the folder could not be written to, or gnuplot failed)");
     }
     run_free(&e);
     if (approx) run_free(&f);

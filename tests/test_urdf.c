@@ -401,6 +401,27 @@ static void test_bad_files(void) {
         px_urdf_destroy(u);
     }
     px_error err;
+    /* Prefixed elements and attributes are another vocabulary's (review):
+     * the sphere, not the xacro box; the plain xyz, not x:xyz. */
+    write_file("prefixed.urdf",
+               "<robot xmlns:xacro='http://www.ros.org/wiki/xacro' xmlns:x='urn:x'><link name='a'><collision>"
+               "<geometry><xacro:box size='100 100 100'/><sphere radius='0.1'/></geometry></collision></link>"
+               "<link name='b'/><joint name='j' type='fixed'><parent link='a'/><child link='b'/>"
+               "<origin x:xyz='5 5 5' xyz='0 0 1'/></joint></robot>");
+    {
+        px_urdf *p = load("prefixed.urdf", NULL, &err);
+        CHECK(p != NULL, "prefixed: %s", err.message);
+        if (p) {
+            px_model_info mi;
+            px_model_get_info(px_urdf_link_model(p, 0), &mi);
+            CHECK(mi.max.x < 0.2, "prefixed: the xacro box was read (width %g)", mi.max.x - mi.min.x);
+            px_pose f[2];
+            CHECK(px_chain_forward(px_urdf_chain(p), NULL, f, NULL, &err) == PX_OK && f[1].t.x == 0 &&
+                      f[1].t.z == 1,
+                  "prefixed: link b at %g %g %g", f[1].t.x, f[1].t.y, f[1].t.z);
+        }
+        px_urdf_destroy(p);
+    }
     /* px_chain_create's errors name the link, not its index. */
     write_file("far.urdf", "<robot><link name='a'/><link name='b'/><joint name='j' type='fixed'><parent "
                            "link='a'/><child link='b'/><origin xyz='1e300 0 0'/></joint></robot>");

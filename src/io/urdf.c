@@ -144,7 +144,7 @@ static char *dup_str(const px_allocator *a, const char *s) {
 /* An attribute's value, copied with the robot's allocator: NULL when
  * absent, or with r->oom set when the copy could not be made. */
 static char *attr(ureader *r, const xmlNode *n, const char *name) {
-    xmlChar *v = xmlGetProp(n, (const xmlChar *)name);
+    xmlChar *v = xmlGetNoNsProp(n, (const xmlChar *)name);
     if (!v) return NULL;
     char *s = dup_str(r->alloc, (const char *)v);
     xmlFree(v);
@@ -161,7 +161,7 @@ static px_status read_origin(ureader *r, const xmlNode *n, const char *what, con
     const char *keys[2] = {"xyz", "rpy"};
     double *dst[2] = {xyz, rpy};
     for (int k = 0; k < 2; ++k) {
-        xmlChar *v = xmlGetProp(o, (const xmlChar *)keys[k]);
+        xmlChar *v = xmlGetNoNsProp(o, (const xmlChar *)keys[k]);
         if (!v) continue;
         int ok = numbers((const char *)v, dst[k], 3);
         if (!ok) {
@@ -406,7 +406,8 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     const xmlNode *geo = child_el(col, "geometry"), *g = NULL;
     if (geo)
         for (const xmlNode *c = geo->children; c && !g; c = c->next)
-            if (c->type == XML_ELEMENT_NODE) g = c;
+            if (c->type == XML_ELEMENT_NODE && (!c->ns || !c->ns->prefix))
+                g = c; /* <xacro:box> is not URDF's */
     if (!g)
         return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': a <collision> without a <geometry> shape",
                       r->path, link);
@@ -427,7 +428,7 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     double val[2][3] = {{1, 1, 1}, {1, 1, 1}};
     char *filename = NULL;
     for (int k = 0; k < 2 && keys[k]; ++k) {
-        xmlChar *v = xmlGetProp(g, (const xmlChar *)keys[k]);
+        xmlChar *v = xmlGetNoNsProp(g, (const xmlChar *)keys[k]);
         if (!v) {
             if (counts[k] < 0) continue; /* optional (mesh scale) */
             return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': <%s> without its %s", r->path, link,
@@ -596,7 +597,7 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
     double axis[3] = {1, 0, 0};
     const xmlNode *ax = child_el(j->node, "axis");
     if (ax) {
-        xmlChar *v = xmlGetProp(ax, (const xmlChar *)"xyz");
+        xmlChar *v = xmlGetNoNsProp(ax, (const xmlChar *)"xyz");
         if (v) {
             int ok = numbers((const char *)v, axis, 3) && (axis[0] != 0 || axis[1] != 0 || axis[2] != 0);
             if (!ok) {
@@ -622,7 +623,7 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
     const char *keys[3] = {"lower", "upper", "velocity"};
     double *dst[3] = {&d->q_min, &d->q_max, &d->max_speed};
     for (int k = 0; lim && k < 3; ++k) {
-        xmlChar *v = xmlGetProp(lim, (const xmlChar *)keys[k]);
+        xmlChar *v = xmlGetNoNsProp(lim, (const xmlChar *)keys[k]);
         if (!v) continue;
         double x;
         int ok = numbers((const char *)v, &x, 1) && (k < 2 || x >= 0);

@@ -61,9 +61,12 @@ struct px_urdf {
 
 /* An element of URDF's: in no namespace, or the default one (a prefixed
  * element such as <xacro:link> is another vocabulary's). */
+static int urdf_element(const xmlNode *n) {
+    return n->type == XML_ELEMENT_NODE && (!n->ns || !n->ns->prefix);
+}
+
 static int is_el(const xmlNode *n, const char *name) {
-    return n->type == XML_ELEMENT_NODE && (!n->ns || !n->ns->prefix) &&
-           strcmp((const char *)n->name, name) == 0;
+    return urdf_element(n) && strcmp((const char *)n->name, name) == 0;
 }
 
 static const xmlNode *child_el(const xmlNode *n, const char *name) {
@@ -406,8 +409,7 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     const xmlNode *geo = child_el(col, "geometry"), *g = NULL;
     if (geo)
         for (const xmlNode *c = geo->children; c && !g; c = c->next)
-            if (c->type == XML_ELEMENT_NODE && (!c->ns || !c->ns->prefix))
-                g = c; /* <xacro:box> is not URDF's */
+            if (urdf_element(c)) g = c;
     if (!g)
         return U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': a <collision> without a <geometry> shape",
                       r->path, link);
@@ -435,11 +437,9 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
                           kind, keys[k]);
         }
         if (counts[k] == 0) {
-            size_t len = strlen((const char *)v);
-            filename = pxi_alloc(r->alloc, len + 1);
-            if (filename) memcpy(filename, v, len + 1);
+            filename = dup_str(r->alloc, (const char *)v);
             xmlFree(v);
-            if (!filename) return U_FAIL(r, PX_ERR_OUT_OF_MEMORY, "URDF file '%s': out of memory", r->path);
+            if (!filename) return u_oom(r);
             continue;
         }
         int n = counts[k] < 0 ? -counts[k] : counts[k];

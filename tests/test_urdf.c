@@ -11,9 +11,17 @@
  *   2 % of the radius of it;
  * - bad files: each refused with PX_ERR_IO, a message naming the file and
  *   the element; mesh paths (package://, file://, relative, the
- *   package_path option).
+ *   package_path option);
+ * - what a file cannot make the load do (review s27): trap under the
+ *   caller's floating-point traps, take long on an element of many
+ *   attributes or build a tree of gigabytes (refused at once, timed);
+ *   files with markup in comments and values, XML 1.1 and a relative
+ *   namespace URI load; options are refused before any file is read.
  * The files are written into a scratch folder under the build tree. */
-#define _POSIX_C_SOURCE 200809L /* examples/puma560.c: stat; mkdtemp */
+/* examples/puma560.c: stat; mkdtemp. feenableexcept: _GNU_SOURCE, which
+ * tests/CMakeLists.txt defines. */
+#define _POSIX_C_SOURCE 200809L
+#include <fenv.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -231,8 +239,9 @@ static void test_primitives(void) {
         }
     }
     CHECK(worst_box < 2e-9, "box distances off by %g", worst_box);
-    CHECK(worst_cyl_in <= 2e-9 && worst_cyl_out <= 0.005 * 0.5 + 2e-9, "cylinder: inside by %g, out by %g",
-          worst_cyl_in, worst_cyl_out);
+    /* The prism's corners: 1 / cos(pi / 32) of the radius. */
+    CHECK(worst_cyl_in <= 2e-9 && worst_cyl_out <= (1 / cos(3.14159265358979323846 / 32) - 1) * 0.5 + 2e-9,
+          "cylinder: inside by %g, out by %g", worst_cyl_in, worst_cyl_out);
     CHECK(worst_sph_in <= 2e-9 && worst_sph_out <= 0.02 * 0.25, "sphere: inside by %g, out by %g",
           worst_sph_in, worst_sph_out);
     printf("primitives: box exact (%.1e), cylinder's prism reaches %.2f %% of the radius out, sphere's "
@@ -581,6 +590,198 @@ static void test_hardening(void) {
     }
 }
 
+/* A review's findings (s27): the caller's floating-point traps, the
+ * parse's time and memory, the options, libxml2's warnings, the documented
+ * cylinder bound. */
+static char *repeat(const char *head, const char *unit, size_t count, const char *tail) {
+    size_t hl = strlen(head), ul = strlen(unit), tl = strlen(tail);
+    char *t = malloc(hl + ul * count + tl + 1);
+    if (!t) return NULL;
+    memcpy(t, head, hl);
+    for (size_t i = 0; i < count; ++i) memcpy(t + hl + ul * i, unit, ul);
+    memcpy(t + hl + ul * count, tail, tl + 1);
+    return t;
+}
+
+static void test_review_s27(void) {
+    px_error err;
+    px_urdf *u;
+#if defined(__GLIBC__)
+    /* Numbers and sizes that overflow, under the caller's traps: each
+     * refused (it was SIGFPE in strtod, in add_sphere, add_cylinder and
+     * soup_add), a too large size named as such (it was "vertex 0 has a
+     * NaN"), and the traps still enabled afterwards. */
+    {
+        char text[1000];
+        snprintf(text, sizeof text,
+                 "<robot><link name='a'><collision><geometry><mesh filename='%s/models/teapot/trimesh_mit/"
+                 "teapot.stl' scale='1e308 1 1'/></geometry></collision></link></robot>",
+                 PX_SOURCE_DIR);
+        write_file("trap_mesh.urdf", text);
+        write_file("trap_number.urdf", "<robot><link name='a'/><link name='b'/><joint name='j' type='fixed'>"
+                                       "<parent link='a'/><child link='b'/><origin xyz='1e999 0 0'/></joint>"
+                                       "</robot>");
+        write_file("trap_sphere.urdf",
+                   "<robot><link name='a'><collision><geometry><sphere radius='1.79e308'/>"
+                   "</geometry></collision></link></robot>");
+        write_file("trap_cylinder.urdf",
+                   "<robot><link name='a'><collision><geometry><cylinder "
+                   "radius='1.79e308' length='1'/></geometry></collision></link></robot>");
+        struct {
+            const char *file;
+            px_status code;
+            const char *needle;
+        } cases[] = {{"trap_number.urdf", PX_ERR_IO, "finite"},
+                     {"trap_sphere.urdf", PX_ERR_RANGE, "link 'a': sphere radius 1.79e+308 is too large"},
+                     {"trap_cylinder.urdf", PX_ERR_RANGE, "link 'a': cylinder radius 1.79e+308 is too large"},
+                     {"trap_mesh.urdf", PX_ERR_RANGE, "link 'a': the mesh scaled by 1e+308"}};
+        const int traps = FE_INVALID | FE_DIVBYZERO | FE_OVERFLOW;
+        for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
+            feclearexcept(FE_ALL_EXCEPT);
+            feenableexcept(traps);
+            u = load(cases[i].file, NULL, &err);
+            int kept = fegetexcept();
+            fedisableexcept(FE_ALL_EXCEPT);
+            CHECK(u == NULL && err.code == cases[i].code && strstr(err.message, cases[i].needle) &&
+                      !strstr(err.message, "NaN"),
+                  "%s under traps: %s (%s)", cases[i].file, px_status_string(err.code), err.message);
+            CHECK(kept == traps, "%s: the caller's traps were not restored (%#x)", cases[i].file, kept);
+            px_urdf_destroy(u);
+        }
+        feenableexcept(traps);
+        u = px_urdf_load(URDF_PUMA, NULL, &err);
+        int kept = fegetexcept();
+        fedisableexcept(FE_ALL_EXCEPT);
+        CHECK(u != NULL && kept == traps, "the Puma under traps: %s, traps %#x", err.message, kept);
+        px_urdf_destroy(u);
+    }
+#endif
+    /* One element of 100,000 attributes (libxml2 2.9 checks them pair by
+     * pair: 13 s) is refused at once, with its line. */
+    char *text = malloc(100000 * 16 + 100);
+    if (text) {
+        size_t at = (size_t)sprintf(text, "<robot>\n<link name='a' ");
+        for (int i = 0; i < 100000; ++i) at += (size_t)sprintf(text + at, "b%d='' ", i);
+        sprintf(text + at, "/></robot>");
+        write_file("attributes.urdf", text);
+        free(text);
+        double t0 = tu_now();
+        u = load("attributes.urdf", NULL, &err);
+        double t = tu_now() - t0;
+        CHECK(u == NULL && err.code == PX_ERR_IO &&
+                  strstr(err.message, "line 2: an element with more than 64"),
+              "100,000 attributes: %s", err.message);
+        CHECK(t < 0.5, "100,000 attributes refused after %.2f s", t);
+        px_urdf_destroy(u);
+    }
+    /* 1,000,001 elements (libxml2 would build 254 bytes of tree each) are
+     * refused before libxml2 reads them. */
+    text = repeat("<robot>", "<a/>", 1000000, "</robot>");
+    if (text) {
+        write_file("elements.urdf", text);
+        free(text);
+        double t0 = tu_now();
+        u = load("elements.urdf", NULL, &err);
+        double t = tu_now() - t0;
+        CHECK(u == NULL && err.code == PX_ERR_IO && strstr(err.message, "more than 1000000 elements"),
+              "1,000,001 elements: %s", err.message);
+        CHECK(t < 0.5, "1,000,001 elements refused after %.2f s", t);
+        px_urdf_destroy(u);
+    }
+    /* What the pass skips: a comment, a CDATA section and processing
+     * instructions holding tags of many attributes, '<' and '=' in them,
+     * '>' and '=' in values; a declared ISO-8859-1 file. */
+    text =
+        repeat("<?xml version='1.0' encoding='ISO-8859-1'?>\n<?pi <a x='1'?>\n<robot name='a=b>c'>\n<!-- <a ",
+               "x='' ", 100, "/> - > < = -->");
+    if (text) {
+        size_t n = strlen(text), cap = n + 1000;
+        char *full = malloc(cap);
+        if (full) {
+            snprintf(full, cap,
+                     "%s<![CDATA[ <b c='1' d='<'> ]]><link name='caf\xe9'/><link name=\"'q'\"/>"
+                     "<joint name='j' type='fixed'><parent link='caf\xe9'/><child link=\"'q'\"/></joint>"
+                     "<?pi a=\"<\" b='c'?></robot>",
+                     text);
+            write_file("skipped.urdf", full);
+            u = load("skipped.urdf", NULL, &err);
+            CHECK(u && px_urdf_find_link(u, "'q'") == 1, "comments, CDATA, values: %s", err.message);
+            px_urdf_destroy(u);
+            free(full);
+        }
+        free(text);
+    }
+    /* Bytes that would not be read as ASCII. */
+    write_file("utf7.urdf", "<?xml version='1.0' encoding='UTF-7'?><robot>+ADw-link name='a'/></robot>");
+    CHECK(load("utf7.urdf", NULL, &err) == NULL && err.code == PX_ERR_IO && strstr(err.message, "UTF-7"),
+          "UTF-7: %s", err.message);
+    /* libxml2's warnings refuse nothing: a relative namespace URI, XML 1.1. */
+    write_file("relative_ns.urdf", "<robot xmlns='robot' name='r'><link name='a'/></robot>");
+    write_file("xml11.urdf", "<?xml version='1.1'?><robot name='r'><link name='a'/></robot>");
+    u = load("relative_ns.urdf", NULL, &err);
+    CHECK(u != NULL, "xmlns='robot': %s", err.message);
+    px_urdf_destroy(u);
+    u = load("xml11.urdf", NULL, &err);
+    CHECK(u != NULL, "version 1.1: %s", err.message);
+    px_urdf_destroy(u);
+    /* Options are checked before any file is read (the path names no
+     * file), each named. */
+    {
+        px_pose nan_base = px_pose_identity();
+        nan_base.t.x = NAN;
+        struct {
+            uint32_t pieces, threads;
+            double tolerance;
+            const px_pose *base;
+            const char *needle;
+        } cases[] = {
+            {99, 0, 0, NULL, "options.pieces 99"},
+            {PX_PIECES_POINTS, 0, 0, NULL, "options.pieces 2"},
+            {0, 0, NAN, NULL, "options.tolerance"},
+            {PX_PIECES_TRIANGLES, 8, 0, NULL, "options.threads"},
+            {PX_PIECES_APPROXIMATE, 0, 5, NULL, "options.tolerance 5"},
+            {PX_PIECES_APPROXIMATE, 0, NAN, NULL, "options.tolerance nan"},
+            {PX_PIECES_APPROXIMATE, 0, -0.1, NULL, "options.tolerance -0.1"},
+            {0, 0, 0, &nan_base, "options.base"},
+        };
+        for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i) {
+            px_urdf_options o;
+            memset(&o, 0, sizeof o);
+            o.pieces = cases[i].pieces;
+            o.threads = cases[i].threads;
+            o.tolerance = cases[i].tolerance;
+            o.base = cases[i].base;
+            u = px_urdf_load("/nonexistent.urdf", &o, &err);
+            CHECK(u == NULL && err.code == PX_ERR_INVALID_ARGUMENT && strstr(err.message, cases[i].needle) &&
+                      !strstr(err.message, "link") && !strstr(err.message, "progress"),
+                  "options %zu: %s (%s)", i, px_status_string(err.code), err.message);
+            px_urdf_destroy(u);
+        }
+        px_urdf_options o;
+        memset(&o, 0, sizeof o);
+        o.pieces = PX_PIECES_APPROXIMATE;
+        o.tolerance = 0.05;
+        o.threads = 2;
+        u = load("xml11.urdf", &o, &err);
+        CHECK(u != NULL, "approximate pieces: %s", err.message);
+        px_urdf_destroy(u);
+    }
+    /* The documented cylinder bound is an upper bound: 1 / cos(pi / 32) - 1
+     * is 0.4839 % (docs/chain.md said 0.48 %). */
+    const char *docs[2] = {PX_SOURCE_DIR "/include/proxima/urdf.h", PX_SOURCE_DIR "/docs/chain.md"};
+    for (int i = 0; i < 2; ++i) {
+        FILE *f = fopen(docs[i], "r");
+        char buf[20000];
+        size_t n = f ? fread(buf, 1, sizeof buf - 1, f) : 0;
+        if (f) fclose(f);
+        buf[n] = '\0';
+        const char *at = strstr(buf, "at most 0.");
+        double said = at ? strtod(at + 8, NULL) : 0;
+        CHECK(said >= 100 * (1 / cos(3.14159265358979323846 / 32) - 1), "%s: the cylinder's bound %g %%",
+              docs[i], said);
+    }
+}
+
 int main(void) {
     tu_init("test_urdf");
     snprintf(scratch, sizeof scratch, "%s/urdf_XXXXXX", PX_BINARY_DIR);
@@ -593,5 +794,6 @@ int main(void) {
     test_paths();
     test_bad_files();
     test_hardening();
+    test_review_s27();
     return tu_finish();
 }

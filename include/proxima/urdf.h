@@ -33,10 +33,21 @@
 /// type declaration (<!DOCTYPE>) is refused, so no entity can be declared
 /// or expanded; a namespace error is refused, and elements in a prefixed
 /// namespace (<xacro:...>) are skipped as ROS's parser skips them (xacro
-/// files must be expanded first). A robot has at most 1,024 links and
-/// 2,000,000 collision triangles in all. Numbers are decimal (no
-/// hexadecimal) and read in the C locale whatever the caller's. libxml2
-/// prints nothing.
+/// files must be expanded first). Before libxml2 reads the bytes, a pass
+/// over them refuses an element with more than 64 attributes (libxml2
+/// 2.9 compares an element's attributes pair by pair) and more than
+/// 1,000,000 elements, attributes, comments and processing instructions
+/// in all (real robots have a few thousand): at that limit a load peaks
+/// at about 500 MiB (a 64 MiB file; 64 MiB of "<a/> " took 3.4 GB
+/// before). The bytes must be UTF-8, ASCII or ISO-8859-n as declared (a
+/// NUL byte, as in UTF-16, EBCDIC and other encodings are refused).
+/// libxml2 stops at its first error; its warnings (XML 1.1, a
+/// namespace URI that is not absolute) refuse nothing, as ROS reads those
+/// files. A robot has at most 1,024 links and 2,000,000 collision
+/// triangles in all. Numbers are decimal (no hexadecimal) and read in the
+/// C locale whatever the caller's. libxml2 prints nothing. The caller's
+/// floating-point environment is held for the load (traps included: an
+/// overflowing number or size is refused, never trapped) and restored.
 #ifndef PROXIMA_URDF_H
 #define PROXIMA_URDF_H
 
@@ -60,8 +71,11 @@ typedef struct px_urdf_options {
     /// Folders searched first for package://NAME/..., ':'-separated
     /// (NULL: only those above the URDF file).
     const char *package_path;
-    /// How each link's model is built (px_model_options.pieces, threads
-    /// and tolerance; 0: PX_PIECES_TRIANGLES, exact).
+    /// How each link's model is built: PX_PIECES_TRIANGLES (exact; 0 is
+    /// the same, the default) or PX_PIECES_APPROXIMATE, with `threads`
+    /// and `tolerance` as px_model_options has them (both 0 with
+    /// TRIANGLES). PX_PIECES_PARTS is not offered (its value, 0, means
+    /// the default here); other values are PX_ERR_INVALID_ARGUMENT.
     uint32_t pieces, threads;
     double tolerance;
     /// Every link body's filters (px_body_desc.group, mask; 0 and 0: all).
@@ -70,7 +84,10 @@ typedef struct px_urdf_options {
 } px_urdf_options;
 
 /// Reads the robot. Returns NULL and fills `err` (may be NULL) on:
-/// PX_ERR_INVALID_ARGUMENT (NULL or empty path, bad options);
+/// PX_ERR_INVALID_ARGUMENT (NULL or empty path; bad options, checked
+/// before the file is read and named in the message: reserved not zero,
+/// pieces, threads or tolerance as above, a base that fails
+/// px_pose_check or is translated beyond 2^250);
 /// PX_ERR_IO: the file cannot be read, is not well-formed XML, has no
 /// <robot> root, a link or joint without a name or with a name used twice,
 /// a joint whose parent or child is not a link, a link with two parent
@@ -80,6 +97,9 @@ typedef struct px_urdf_options {
 /// file that cannot be found or loaded (px_mesh_load's message quoted),
 /// a limit above exceeded, a document type declaration; the message names
 /// the file and the link or joint, or the line for XML errors;
+/// PX_ERR_RANGE for a box size, radius or length above 2^249, a
+/// <collision> origin or a scaled mesh beyond 2^250 (the models' range),
+/// naming the link and the quantity;
 /// and the statuses of px_model_create_from_mesh and px_chain_create
 /// (naming the link); PX_ERR_OUT_OF_MEMORY.
 PX_API px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err);

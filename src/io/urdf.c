@@ -3,15 +3,19 @@
  * The XML is read by libxml2 from the bytes we read (at most 64 MiB, never
  * decompressed), with no network, and a file with a document type
  * declaration is refused as it is met: no entity can be declared, so a
- * file cannot make the reader fetch or expand anything. Namespace errors
- * are refused too; elements in a prefixed namespace (xacro:...) are not
- * URDF's and are skipped, as ROS's parser does. The robot description
- * follows the URDF specification (wiki.ros.org/urdf/XML): <link name> with
- * <collision> elements (<origin xyz rpy>, <geometry> of one <mesh filename
- * scale>, <box size>, <cylinder radius length> or <sphere radius>), and
- * <joint name type> with <parent link>, <child link>, <origin>, <axis xyz>
- * (default 1 0 0) and <limit lower upper velocity>. rpy is roll, pitch,
- * yaw about the fixed axes X, Y, Z: R = Rz(yaw) Ry(pitch) Rx(roll).
+ * file cannot make the reader fetch or expand anything. A pass over the
+ * bytes first bounds what libxml2 is given (prescan: attributes per
+ * element, markup in all, encodings), and libxml2 stops at its first
+ * error. Namespace errors are refused too; elements in a prefixed
+ * namespace (xacro:...) are not URDF's and are skipped, as ROS's parser
+ * does. The whole load runs with the caller's floating-point traps held.
+ * The robot description follows the URDF specification
+ * (wiki.ros.org/urdf/XML): <link name> with <collision> elements (<origin
+ * xyz rpy>, <geometry> of one <mesh filename scale>, <box size>, <cylinder
+ * radius length> or <sphere radius>), and <joint name type> with <parent
+ * link>, <child link>, <origin>, <axis xyz> (default 1 0 0) and <limit
+ * lower upper velocity>. rpy is roll, pitch, yaw about the fixed axes X,
+ * Y, Z: R = Rz(yaw) Ry(pitch) Rx(roll).
  *
  * Each link's collision elements become the parts of one mesh in the link
  * frame, and that mesh a model (px_model_create_from_mesh); the links,
@@ -32,6 +36,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <threads.h>
 #include <unistd.h>
@@ -47,6 +52,12 @@
  * gigabytes of building (about 500 bytes a triangle are built: 2,000
  * spheres, 640,000 triangles, take 4 s and 300 MB). */
 #define U_MAX_TRIANGLES 2000000ull
+/* The models' coordinate range (proxima/model.h): a size is at most half
+ * of it, so that a primitive's polyhedron (a sphere's reaches 1.9 % beyond
+ * its radius) stays inside it, and then placed by an origin within it,
+ * every coordinate is finite. */
+#define U_MAX_COORD 0x1p250
+#define U_MAX_SIZE 0x1p249
 
 struct px_urdf {
     px_allocator alloc;
@@ -406,6 +417,11 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     px_pose pose;
     px_status st = read_origin(r, col, "link", link, &pose);
     if (st != PX_OK) return st;
+    if (!(fmax(fabs(pose.t.x), fmax(fabs(pose.t.y), fabs(pose.t.z))) <= U_MAX_COORD))
+        return U_FAIL(r, PX_ERR_RANGE,
+                      "URDF file '%s': link '%.80s': a <collision> origin (%g %g %g) is beyond the models' "
+                      "range 2^250",
+                      r->path, link, pose.t.x, pose.t.y, pose.t.z);
     const xmlNode *geo = child_el(col, "geometry"), *g = NULL;
     if (geo)
         for (const xmlNode *c = geo->children; c && !g; c = c->next)
@@ -458,6 +474,14 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
             return st;
         }
         xmlFree(v);
+        /* Finite sizes may still be too large: a radius of 1.79e308 would
+         * make infinite points. */
+        for (int i = 0; i < n && counts[k] > 0; ++i)
+            if (!(val[k][i] <= U_MAX_SIZE))
+                return U_FAIL(r, PX_ERR_RANGE,
+                              "URDF file '%s': link '%.80s': %s %s %g is too large (above 2^249: a model's "
+                              "coordinates stay within 2^250)",
+                              r->path, link, kind, keys[k], val[k][i]);
     }
     int ok = 1;
     if (strcmp(kind, "box") == 0) {
@@ -485,10 +509,22 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
         px_error e;
         px_mesh *m = px_mesh_load(file, &mo, &e);
         if (!m) return U_FAIL(r, e.code, "URDF file '%s': link '%.80s': %s", r->path, link, e.message);
-        /* Every part of the file, each a part here. */
+        /* Every part of the file, each a part here, if the scale keeps
+         * them within the models' range (a scale of 1e308 would make
+         * infinite points). */
         const double *xyz = px_mesh_vertices(m);
         const uint32_t *tri = px_mesh_triangles(m);
         uint32_t np = px_mesh_part_count(m);
+        double reach = 0;
+        for (size_t i = 0; i < 3 * (size_t)px_mesh_vertex_count(m); ++i)
+            reach = fmax(reach, fabs(xyz[i] * val[1][i % 3]));
+        if (!(reach <= U_MAX_COORD)) {
+            px_mesh_destroy(m);
+            return U_FAIL(r, PX_ERR_RANGE,
+                          "URDF file '%s': link '%.80s': the mesh scaled by %g %g %g reaches %g, beyond the "
+                          "models' range 2^250",
+                          r->path, link, val[1][0], val[1][1], val[1][2], reach);
+        }
         for (uint32_t i = 0; i < np && ok == 1; ++i) {
             px_mesh_part p;
             px_mesh_get_part(m, i, &p);
@@ -647,15 +683,8 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
 
 static once_flag u_xml_once = ONCE_FLAG_INIT;
 /* libxml2's set-up computes NaN and infinities (xmlXPathInit: 0.0 / 0.0):
- * under a caller's floating-point traps that would kill the process, so
- * it runs, as the parse does, with the traps held and the caller's
- * environment restored afterwards. */
-static void u_xml_init(void) {
-    fenv_t env;
-    feholdexcept(&env);
-    xmlInitParser();
-    fesetenv(&env);
-}
+ * it runs inside px_urdf_load, with the caller's traps held. */
+static void u_xml_init(void) { xmlInitParser(); }
 
 /* A link's collision elements as one model (NULL, PX_OK when it has none). */
 static px_status link_model(ureader *r, const ulink *l, const px_urdf_options *o, px_model **out) {
@@ -737,14 +766,25 @@ static px_status read_file(ureader *r, unsigned char **bytes, size_t *size) {
     return PX_OK;
 }
 
-/* libxml2's errors: the first one kept for the message, none printed. */
+/* libxml2's errors: the first one kept for the message, none printed, and
+ * the parse stopped there (libxml2 would go on to the end of a file it
+ * already refuses: prescan's bounds hold for what it reads as XML, and a
+ * broken file may be read otherwise past the break). Warnings (a
+ * namespace URI that is not absolute, XML 1.1) refuse nothing: ROS reads
+ * those files. */
 static void xml_error(void *data, xmlErrorPtr e) {
-    ureader *r = ((xmlParserCtxtPtr)data)->_private;
-    if (r->xml_message[0] || !e) return;
-    r->xml_line = e->line;
-    snprintf(r->xml_message, sizeof r->xml_message, "%s", e->message ? e->message : "not well-formed XML");
-    size_t l = strlen(r->xml_message);
-    while (l && (r->xml_message[l - 1] == '\n' || r->xml_message[l - 1] == ' ')) r->xml_message[--l] = '\0';
+    xmlParserCtxtPtr ctxt = data;
+    ureader *r = ctxt->_private;
+    if (!e || e->level < XML_ERR_ERROR) return;
+    if (!r->xml_message[0]) {
+        r->xml_line = e->line;
+        snprintf(r->xml_message, sizeof r->xml_message, "%s",
+                 e->message ? e->message : "not well-formed XML");
+        size_t l = strlen(r->xml_message);
+        while (l && (r->xml_message[l - 1] == '\n' || r->xml_message[l - 1] == ' '))
+            r->xml_message[--l] = '\0';
+    }
+    xmlStopParser(ctxt);
 }
 
 /* A document type declaration stops the parse before any of it is used. */
@@ -762,9 +802,148 @@ static void xml_doctype(void *data, const xmlChar *name, const xmlChar *external
     xmlStopParser(ctxt);
 }
 
+/* ---- a linear pass over the bytes before libxml2 reads them ----
+ *
+ * libxml2 2.9 checks a start tag's attributes for duplicates pair by pair
+ * (200,000 attributes, 2 MB, take minutes), and builds about 300 bytes of
+ * tree for each element, attribute, comment or processing instruction
+ * (64 MiB of "<a/> " would take 3.4 GB). This pass counts them as libxml2
+ * will read them and refuses more than U_MAX_ATTRIBUTES in one start tag
+ * or U_MAX_MARKUP in all. It skips what libxml2 does not read as markup:
+ * comments (to the first "-->"), CDATA sections ("]]>"), processing
+ * instructions and the XML declaration ("?>"), and quoted attribute
+ * values. Where a file breaks XML's rules (an unterminated comment, a '<'
+ * inside a value, a name it would not read) libxml2 reports an error and
+ * xml_error stops it there, so the pass need only follow well-formed XML
+ * and count at least as much as libxml2 reads of the rest. It also needs
+ * the bytes to be ASCII's for ASCII: a NUL byte (UTF-16, UTF-32), EBCDIC
+ * and declared encodings other than UTF-8, ASCII and ISO-8859-n are
+ * refused. */
+#define U_MAX_ATTRIBUTES 64
+#define U_MAX_MARKUP 1000000u
+
+static int u_blank(unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+static int u_starts(const unsigned char *b, size_t n, size_t i, const char *s) {
+    size_t k = strlen(s);
+    return i + k <= n && memcmp(b + i, s, k) == 0;
+}
+
+/* The first `s` at or after b[i], or n. */
+static size_t u_find(const unsigned char *b, size_t n, size_t i, const char *s) {
+    for (; i < n; ++i)
+        if (b[i] == (unsigned char)s[0] && u_starts(b, n, i, s)) return i;
+    return n;
+}
+
+/* The line of b[at]. */
+static int u_line(const unsigned char *b, size_t at) {
+    int line = 1;
+    for (size_t i = 0; i < at; ++i) line += b[i] == '\n';
+    return line;
+}
+
+/* The encodings whose bytes below 0x80 are ASCII's, as libxml2 names them. */
+static int u_ascii_encoding(const unsigned char *s, size_t len) {
+    static const char *const names[] = {"UTF-8", "UTF8", "US-ASCII", "ASCII"};
+    for (size_t i = 0; i < sizeof names / sizeof *names; ++i)
+        if (len == strlen(names[i]) && strncasecmp((const char *)s, names[i], len) == 0) return 1;
+    if (len < 10 || len > 11 || strncasecmp((const char *)s, "ISO-8859-", 9) != 0) return 0;
+    for (size_t i = 9; i < len; ++i)
+        if (s[i] < '0' || s[i] > '9') return 0;
+    return 1;
+}
+
+static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
+    const unsigned char *nul = memchr(b, '\0', n);
+    if (nul)
+        return U_FAIL(r, PX_ERR_IO,
+                      "URDF file '%s': line %d: a NUL byte (URDF files are UTF-8; UTF-16 and UTF-32 are not "
+                      "read)",
+                      r->path, u_line(b, (size_t)(nul - b)));
+    if (u_starts(b, n, 0, "\x4c\x6f\xa7\x94"))
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': EBCDIC is not read (URDF files are UTF-8)", r->path);
+    /* The XML declaration's encoding: any `encoding = "NAME"` in it. */
+    size_t s = u_starts(b, n, 0, "\xef\xbb\xbf") ? 3 : 0;
+    if (u_starts(b, n, s, "<?xml") && s + 5 < n && u_blank(b[s + 5])) {
+        size_t end = u_find(b, n, s, "?>");
+        for (size_t i = u_find(b, end, s, "encoding"); i < end; i = u_find(b, end, i + 1, "encoding")) {
+            size_t j = i + 8;
+            while (j < end && u_blank(b[j])) ++j;
+            if (j >= end || b[j] != '=') continue;
+            for (++j; j < end && u_blank(b[j]); ++j) {
+            }
+            if (j >= end || (b[j] != '"' && b[j] != '\'')) continue;
+            size_t k = j + 1;
+            while (k < end && b[k] != b[j]) ++k;
+            if (!u_ascii_encoding(b + j + 1, k - j - 1))
+                return U_FAIL(r, PX_ERR_IO,
+                              "URDF file '%s': line %d: encoding '%.*s' is not read (UTF-8, ASCII and "
+                              "ISO-8859-n are)",
+                              r->path, u_line(b, i), (int)(k - j - 1 < 40 ? k - j - 1 : 40), b + j + 1);
+        }
+    }
+    size_t markup = 0;
+    for (size_t i = 0; i < n;) {
+        if (b[i] != '<') {
+            ++i;
+            continue;
+        }
+        if (u_starts(b, n, i, "<!--")) {
+            i = u_find(b, n, i + 4, "-->") + 3;
+        } else if (u_starts(b, n, i, "<![CDATA[")) {
+            i = u_find(b, n, i + 9, "]]>") + 3;
+        } else if (u_starts(b, n, i, "<?")) {
+            i = u_find(b, n, i + 2, "?>") + 2;
+        } else if (u_starts(b, n, i, "<!")) {
+            /* libxml2 stops here: a document type declaration is refused
+             * as it is met, anything else is an error. */
+            return PX_OK;
+        } else if (u_starts(b, n, i, "</")) {
+            i += 2;
+            continue; /* an end tag: a name, no attributes */
+        } else {
+            /* A start tag: its name, then `name = "value"` pairs. */
+            size_t at = i, j = i + 1, attributes = 0;
+            while (j < n && !u_blank(b[j]) && b[j] != '>' && b[j] != '/' && b[j] != '<') ++j;
+            for (;;) {
+                while (j < n && u_blank(b[j])) ++j;
+                size_t k = j;
+                while (k < n && !u_blank(b[k]) && !strchr("=>/<\"'", b[k])) ++k;
+                if (k == j) break; /* the tag's end, or not an attribute: libxml2 stops */
+                while (k < n && u_blank(b[k])) ++k;
+                if (k >= n || b[k] != '=') break;
+                for (++k; k < n && u_blank(b[k]); ++k) {
+                }
+                if (k >= n || (b[k] != '"' && b[k] != '\'')) break;
+                size_t v = k + 1;
+                while (v < n && b[v] != b[k] && b[v] != '<') ++v;
+                if (v >= n || b[v] == '<') { /* not a value: libxml2 stops */
+                    j = v;
+                    break;
+                }
+                j = v + 1;
+                if (++attributes > U_MAX_ATTRIBUTES)
+                    return U_FAIL(r, PX_ERR_IO,
+                                  "URDF file '%s': line %d: an element with more than %d attributes", r->path,
+                                  u_line(b, at), U_MAX_ATTRIBUTES);
+                markup++;
+            }
+            i = j;
+        }
+        if (++markup > U_MAX_MARKUP)
+            return U_FAIL(r, PX_ERR_IO,
+                          "URDF file '%s': line %d: more than %u elements, attributes, comments and "
+                          "processing instructions",
+                          r->path, u_line(b, i < n ? i : n), U_MAX_MARKUP);
+    }
+    return PX_OK;
+}
+
 /* The document, or NULL with the error set. */
 static xmlDoc *parse_xml(ureader *r, const unsigned char *bytes, size_t size) {
     if (size > INT_MAX) return U_FAIL(r, PX_ERR_IO, "URDF file '%s' is too large", r->path), (xmlDoc *)NULL;
+    if (prescan(r, bytes, size) != PX_OK) return NULL;
     xmlParserCtxtPtr ctxt = xmlNewParserCtxt();
     if (!ctxt || !ctxt->sax) {
         xmlFreeParserCtxt(ctxt);
@@ -774,13 +953,8 @@ static xmlDoc *parse_xml(ureader *r, const unsigned char *bytes, size_t size) {
     ctxt->sax->serror = xml_error;
     ctxt->sax->internalSubset = xml_doctype;
     ctxt->sax->externalSubset = xml_doctype;
-    /* libxml2 computes NaN and infinities in places: under a caller's
-     * floating-point traps that would kill the process. */
-    fenv_t env;
-    feholdexcept(&env);
     xmlDoc *doc = xmlCtxtReadMemory(ctxt, (const char *)bytes, (int)size, r->path, NULL,
                                     XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
-    fesetenv(&env);
     int ok = doc && ctxt->wellFormed && ctxt->nsWellFormed && !doc->intSubset && !doc->extSubset &&
              !r->xml_message[0];
     xmlFreeParserCtxt(ctxt);
@@ -791,7 +965,50 @@ static xmlDoc *parse_xml(ureader *r, const unsigned char *bytes, size_t size) {
            (xmlDoc *)NULL;
 }
 
+/* The options, checked before any file is read. */
+static px_status check_options(const px_urdf_options *o, px_error *err) {
+    for (int i = 0; i < 4; ++i)
+        if (o->reserved[i])
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_urdf_load: options.reserved[%d] must be 0", i);
+    /* PX_PIECES_PARTS is 0, the default (TRIANGLES): it cannot be asked for. */
+    if (o->pieces != 0 && o->pieces != PX_PIECES_TRIANGLES && o->pieces != PX_PIECES_APPROXIMATE)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_urdf_load: options.pieces %u is not PX_PIECES_TRIANGLES (or 0) or "
+                         "PX_PIECES_APPROXIMATE",
+                         o->pieces);
+    if (o->pieces != PX_PIECES_APPROXIMATE && (o->tolerance != 0.0 || o->threads))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_urdf_load: options.%s is for PX_PIECES_APPROXIMATE only (0 with exact pieces)",
+                         o->tolerance != 0.0 ? "tolerance" : "threads");
+    if (o->tolerance != 0.0 && !(o->tolerance >= PX_MODEL_MIN_TOLERANCE && o->tolerance <= 1.0))
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_urdf_load: options.tolerance %g is not in [%g, 1] (0: %g)", o->tolerance,
+                         PX_MODEL_MIN_TOLERANCE, PX_MODEL_DEFAULT_TOLERANCE);
+    if (o->base) {
+        px_error e;
+        if (px_pose_check(o->base, &e) != PX_OK)
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_urdf_load: options.base: %s", e.message);
+        if (!(fmax(fabs(o->base->t.x), fmax(fabs(o->base->t.y), fabs(o->base->t.z))) <= U_MAX_COORD))
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                             "px_urdf_load: options.base's translation is beyond 2^250");
+    }
+    return PX_OK;
+}
+
+static px_urdf *urdf_load(const char *path, const px_urdf_options *options, px_error *err);
+
+/* The caller's floating-point traps are held for the whole load (numbers
+ * that overflow in strtod, libxml2's NaN, the geometry's arithmetic) and
+ * the caller's environment, flags included, restored afterwards. */
 px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err) {
+    fenv_t env;
+    feholdexcept(&env);
+    px_urdf *u = urdf_load(path, options, err);
+    fesetenv(&env);
+    return u;
+}
+
+static px_urdf *urdf_load(const char *path, const px_urdf_options *options, px_error *err) {
     pxi_error_clear(err);
     if (!path || !path[0])
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_urdf_load: the path is NULL or empty"),
@@ -799,10 +1016,7 @@ px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error
     px_urdf_options o;
     memset(&o, 0, sizeof o);
     if (options) o = *options;
-    for (int i = 0; i < 4; ++i)
-        if (o.reserved[i])
-            return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_urdf_load: options.reserved[%d] must be 0", i),
-                   (px_urdf *)NULL;
+    if (check_options(&o, err) != PX_OK) return NULL;
     px_allocator alloc;
     if (pxi_allocator_resolve(o.allocator, &alloc, err) != PX_OK) return NULL;
     call_once(&u_xml_once, u_xml_init);

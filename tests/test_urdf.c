@@ -711,6 +711,12 @@ static void test_review_s27(void) {
         }
         free(text);
     }
+    /* Windows' code pages are ASCII's below 0x80 too (0x80: the euro sign). */
+    write_file("cp1252.urdf", "<?xml version='1.0' encoding='windows-1252'?><robot name='r'><link "
+                              "name='a\x80'/></robot>");
+    u = load("cp1252.urdf", NULL, &err);
+    CHECK(u && px_urdf_find_link(u, "a\xe2\x82\xac") == 0, "windows-1252: %s", err.message);
+    px_urdf_destroy(u);
     /* Bytes that would not be read as ASCII. */
     write_file("utf7.urdf", "<?xml version='1.0' encoding='UTF-7'?><robot>+ADw-link name='a'/></robot>");
     CHECK(load("utf7.urdf", NULL, &err) == NULL && err.code == PX_ERR_IO && strstr(err.message, "UTF-7"),

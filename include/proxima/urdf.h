@@ -39,8 +39,9 @@
 /// 1,000,000 elements, attributes, comments and processing instructions
 /// in all (real robots have a few thousand): at that limit a load peaks
 /// at about 500 MiB (a 64 MiB file; 64 MiB of "<a/> " took 3.4 GB
-/// before). The bytes must be UTF-8, ASCII or ISO-8859-n as declared (a
-/// NUL byte, as in UTF-16, EBCDIC and other encodings are refused).
+/// before). The bytes must be UTF-8, ASCII, ISO-8859-n or windows-125n
+/// as declared (a NUL byte, as in UTF-16, EBCDIC and other encodings are
+/// refused).
 /// libxml2 stops at its first error; its warnings (XML 1.1, a
 /// namespace URI that is not absolute) refuse nothing, as ROS reads those
 /// files. A robot has at most 1,024 links and 2,000,000 collision

@@ -817,8 +817,8 @@ static void xml_doctype(void *data, const xmlChar *name, const xmlChar *external
  * xml_error stops it there, so the pass need only follow well-formed XML
  * and count at least as much as libxml2 reads of the rest. It also needs
  * the bytes to be ASCII's for ASCII: a NUL byte (UTF-16, UTF-32), EBCDIC
- * and declared encodings other than UTF-8, ASCII and ISO-8859-n are
- * refused. */
+ * and declared encodings other than UTF-8, ASCII, ISO-8859-n and
+ * windows-125n are refused. */
 #define U_MAX_ATTRIBUTES 64
 #define U_MAX_MARKUP 1000000u
 
@@ -843,15 +843,23 @@ static int u_line(const unsigned char *b, size_t at) {
     return line;
 }
 
-/* The encodings whose bytes below 0x80 are ASCII's, as libxml2 names them. */
+/* The encodings whose bytes below 0x80 are ASCII's, as libxml2 (iconv)
+ * names them: UTF-8, ASCII, ISO-8859-n and the Windows code pages 125n
+ * (latin1 is ISO-8859-1's alias). */
 static int u_ascii_encoding(const unsigned char *s, size_t len) {
-    static const char *const names[] = {"UTF-8", "UTF8", "US-ASCII", "ASCII"};
+    static const char *const names[] = {"UTF-8", "UTF8", "US-ASCII", "ASCII", "LATIN1"};
     for (size_t i = 0; i < sizeof names / sizeof *names; ++i)
         if (len == strlen(names[i]) && strncasecmp((const char *)s, names[i], len) == 0) return 1;
-    if (len < 10 || len > 11 || strncasecmp((const char *)s, "ISO-8859-", 9) != 0) return 0;
-    for (size_t i = 9; i < len; ++i)
-        if (s[i] < '0' || s[i] > '9') return 0;
-    return 1;
+    /* A prefix and one or two digits. */
+    static const char *const prefixes[] = {"ISO-8859-", "ISO8859-", "ISO_8859-", "WINDOWS-125", "CP125"};
+    for (size_t i = 0; i < sizeof prefixes / sizeof *prefixes; ++i) {
+        size_t k = strlen(prefixes[i]);
+        if (len <= k || len > k + 2 || strncasecmp((const char *)s, prefixes[i], k) != 0) continue;
+        for (size_t j = k; j < len; ++j)
+            if (s[j] < '0' || s[j] > '9') return 0;
+        return 1;
+    }
+    return 0;
 }
 
 static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
@@ -878,8 +886,8 @@ static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
             while (k < end && b[k] != b[j]) ++k;
             if (!u_ascii_encoding(b + j + 1, k - j - 1))
                 return U_FAIL(r, PX_ERR_IO,
-                              "URDF file '%s': line %d: encoding '%.*s' is not read (UTF-8, ASCII and "
-                              "ISO-8859-n are)",
+                              "URDF file '%s': line %d: encoding '%.*s' is not read (UTF-8, ASCII, "
+                              "ISO-8859-n and windows-125n are)",
                               r->path, u_line(b, i), (int)(k - j - 1 < 40 ? k - j - 1 : 40), b + j + 1);
         }
     }

@@ -6,9 +6,15 @@
 
 int pxi_orient2d_filter(double px, double py, double qx, double qy, double rx, double ry) {
     const double eps = 0.5 * DBL_EPSILON; /* Shewchuk's epsilon: half an ulp of 1 */
-    double l = (px - rx) * (qy - ry), r = (py - ry) * (qx - rx);
-    double det = l - r, sum = fabs(l) + fabs(r);
+    /* In this order no operation is invalid (a caller's FE_INVALID trap
+     * would fire): a difference beyond the range is refused before any
+     * product of it (inf times 0), and products beyond the range before
+     * their difference (inf - inf). */
+    double a = px - rx, b = qy - ry, c = py - ry, d = qx - rx;
+    if (!(fabs(a) <= DBL_MAX && fabs(b) <= DBL_MAX && fabs(c) <= DBL_MAX && fabs(d) <= DBL_MAX)) return 0;
+    double l = a * b, r = c * d, sum = fabs(l) + fabs(r);
     if (!(sum > 0x1p-900 && sum < 0x1p900)) return 0;
+    double det = l - r;
     if (fabs(det) > (3.0 + 16.0 * eps) * eps * sum) return det > 0 ? 1 : -1;
     return 0;
 }

@@ -803,11 +803,166 @@ static void test_review_cases(void) {
     px_convex_destroy(box);
 }
 
+/* Mimic joints (URDF <mimic>): random chains with some joints following
+ * others (multipliers of either sign and 0, offsets; their own limits NaN,
+ * ignored) give the frames, bit for bit, and the motion bounds of the same
+ * chain without mimics at the values the mimics compute, with limits the
+ * image of the followed joint's and speeds |multiplier| times its speed;
+ * and those bounds hold (finite differences, as test_bounds). */
+static void test_mimic(void) {
+    int chains = tu_scaled(150), mimics = 0;
+    double worst = 0;
+    for (int it = 0; it < chains; ++it) {
+        rchain c, e;
+        random_chain(&c, 2 + (uint32_t)(urand() * 12), 0.2, 0.3, it % 2);
+        uint32_t indep[MAXL], ni = 0, dof_of[MAXL];
+        int follows[MAXL];
+        for (uint32_t k = 0; k < c.n; ++k) {
+            follows[k] = c.link[k].joint != PX_JOINT_FIXED && urand() < 0.4;
+            if (c.link[k].joint != PX_JOINT_FIXED && !follows[k]) dof_of[k] = ni, indep[ni++] = k;
+        }
+        if (ni == 0) continue;
+        e = c;
+        for (uint32_t k = 0; k < c.n; ++k) {
+            if (!follows[k]) continue;
+            px_link_desc *l = &c.link[k], *x = &e.link[k];
+            const px_link_desc *m = &c.link[indep[(uint32_t)(urand() * ni)]];
+            l->mimic = 1;
+            l->mimic_link = (uint32_t)(m - c.link);
+            l->mimic_multiplier = urand() < 0.1 ? 0.0 : 4 * urand() - 2;
+            l->mimic_offset = 0.6 * urand() - 0.3;
+            l->q_min = l->q_max = l->max_speed = NAN;
+            double f = l->mimic_multiplier;
+            double lo = (f == 0 || m->q_min == 0 ? 0 : f * m->q_min) + l->mimic_offset;
+            double hi = (f == 0 || m->q_max == 0 ? 0 : f * m->q_max) + l->mimic_offset;
+            x->q_min = f < 0 ? hi : lo;
+            x->q_max = f < 0 ? lo : hi;
+            x->max_speed = f == 0 || m->max_speed == 0 ? 0 : fabs(f) * m->max_speed;
+            mimics++;
+        }
+        px_error err;
+        px_chain *cm = make_chain(&c, &err), *ce = make_chain(&e, &err);
+        CHECK(cm && ce, "mimic chain: %s", err.message);
+        CHECK(!cm || px_chain_dof(cm) == ni, "mimic chain: %u joint values, %u expected",
+              cm ? px_chain_dof(cm) : 0, ni);
+        for (uint32_t k = 0; cm && ce && k < c.n; ++k) {
+            double v1, w1, v2, w2;
+            px_chain_motion_bounds(cm, k, NULL, &v1, &w1, NULL);
+            px_chain_motion_bounds(ce, k, NULL, &v2, &w2, NULL);
+            CHECK(v1 == v2 && w1 == w2, "mimic chain: link %u's bounds %g %g, without mimics %g %g", k, v1,
+                  w1, v2, w2);
+        }
+        for (int n = 0; cm && ce && n < 10; ++n) {
+            double q[MAXL], full[MAXL], q2[MAXL], h = 1e-7;
+            for (uint32_t i = 0; i < ni; ++i) {
+                const px_link_desc *l = &c.link[indep[i]];
+                double lo = isfinite(l->q_min) ? l->q_min : -10, hi = isfinite(l->q_max) ? l->q_max : 10;
+                q[i] = lo + (hi - lo) * urand();
+                q2[i] = q[i] + h * l->max_speed * (urand() < 0.5 ? -1 : 1) * (0.5 + 0.5 * urand());
+                q2[i] = fmin(fmax(q2[i], l->q_min), l->q_max);
+            }
+            for (uint32_t k = 0, j = 0; k < c.n; ++k) {
+                const px_link_desc *l = &c.link[k];
+                if (l->joint == PX_JOINT_FIXED) continue;
+                uint32_t d = l->mimic ? dof_of[l->mimic_link] : dof_of[k];
+                full[j] = l->mimic ? l->mimic_multiplier * q[d] + l->mimic_offset : q[d];
+                j++;
+            }
+            px_pose g1[MAXL], g2[MAXL], p1[MAXL];
+            px_status s1 = px_chain_forward(cm, q, NULL, g1, &err),
+                      s2 = px_chain_forward(ce, full, NULL, g2, &err);
+            CHECK(s1 == PX_OK && s2 == PX_OK, "mimic forward: %s", err.message);
+            CHECK(s1 != PX_OK || memcmp(g1, g2, c.n * sizeof *g1) == 0,
+                  "mimic forward differs from the explicit chain");
+            if (px_chain_forward(cm, q2, NULL, p1, &err) != PX_OK) continue;
+            for (uint32_t k = 0; k < c.n; ++k) {
+                px_vec3 center;
+                double v, w;
+                px_chain_motion_bounds(cm, k, &center, &v, &w, NULL);
+                worst = fmax(worst, turn_angle(&g1[k], &p1[k]) / h - w);
+                double moved = dist3(px_pose_apply(&g1[k], center), px_pose_apply(&p1[k], center)) / h;
+                worst = fmax(worst, moved - v);
+            }
+        }
+        px_chain_destroy(cm);
+        px_chain_destroy(ce);
+    }
+    CHECK(worst <= 1e-6, "mimic chains: a link moves %g faster than its bound", worst);
+    /* Bad mimics. */
+    rchain c;
+    random_chain(&c, 3, 0.0, 0.0, 1); /* three revolute joints in a row */
+    px_error err;
+    struct {
+        uint32_t mimic, link;
+        double f, off;
+        uint32_t joint1;
+        px_status want;
+        const char *what;
+    } bad[] = {
+        {2, 0, 1, 0, PX_JOINT_REVOLUTE, PX_ERR_INVALID_ARGUMENT, "mimic 2"},
+        {1, 1, 1, 0, PX_JOINT_REVOLUTE, PX_ERR_INVALID_ARGUMENT, "following itself"},
+        {1, 7, 1, 0, PX_JOINT_REVOLUTE, PX_ERR_INVALID_ARGUMENT, "following no link"},
+        {1, 0, 1, 0, PX_JOINT_FIXED, PX_ERR_INVALID_ARGUMENT, "a fixed mimic"},
+        {1, 0, NAN, 0, PX_JOINT_REVOLUTE, PX_ERR_NON_FINITE, "a NaN multiplier"},
+        {1, 0, 1, INFINITY, PX_JOINT_REVOLUTE, PX_ERR_NON_FINITE, "an infinite offset"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; ++i) {
+        rchain b = c;
+        b.link[1].joint = bad[i].joint1;
+        b.link[1].mimic = bad[i].mimic;
+        b.link[1].mimic_link = bad[i].link;
+        b.link[1].mimic_multiplier = bad[i].f;
+        b.link[1].mimic_offset = bad[i].off;
+        px_chain *x = make_chain(&b, &err);
+        CHECK(!x && err.code == bad[i].want && strstr(err.message, "link 1"), "%s: %s", bad[i].what,
+              err.message);
+        px_chain_destroy(x);
+    }
+    /* Following a fixed joint, or a mimic. */
+    rchain b = c;
+    b.link[0].joint = PX_JOINT_FIXED;
+    b.link[1].mimic = 1;
+    b.link[1].mimic_link = 0;
+    px_chain *x = make_chain(&b, &err);
+    CHECK(!x && err.code == PX_ERR_INVALID_ARGUMENT, "following a fixed joint: %s", err.message);
+    px_chain_destroy(x);
+    b = c;
+    b.link[1].mimic = b.link[2].mimic = 1;
+    b.link[1].mimic_link = 0;
+    b.link[2].mimic_link = 1;
+    b.link[1].mimic_multiplier = b.link[2].mimic_multiplier = 1;
+    x = make_chain(&b, &err);
+    CHECK(!x && err.code == PX_ERR_INVALID_ARGUMENT && strstr(err.message, "link 2"), "following a mimic: %s",
+          err.message);
+    px_chain_destroy(x);
+    /* A value that overflows: a continuous joint followed at a large multiplier. */
+    b = c;
+    b.link[0].q_min = -INFINITY;
+    b.link[0].q_max = INFINITY;
+    b.link[1].mimic = 1;
+    b.link[1].mimic_link = 0;
+    b.link[1].mimic_multiplier = 1e300;
+    x = make_chain(&b, &err);
+    CHECK(x != NULL, "a large multiplier: %s", err.message);
+    double q[2] = {1e300, 0}, v, w;
+    px_pose g[3];
+    CHECK(x && px_chain_forward(x, q, NULL, g, &err) == PX_ERR_RANGE && strstr(err.message, "mimic"),
+          "an overflowing mimic value: %s", err.message);
+    CHECK(x && px_chain_motion_bounds(x, 1, NULL, &v, &w, NULL) == PX_OK && !isnan(v) && !isnan(w),
+          "a large multiplier's bounds: %g %g", v, w);
+    px_chain_destroy(x);
+    printf(
+        "mimic: %d chains, %d mimic joints: frames equal to the explicit chains', bounds hold (worst excess "
+        "%.1e)\n",
+        chains, mimics, worst);
+}
+
 int main(void) {
     tu_init("test_chain");
     test_review_cases();
     test_forward();
     test_bounds();
+    test_mimic();
     test_adjacency();
     test_scene();
     test_bad_inputs();

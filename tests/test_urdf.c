@@ -445,14 +445,76 @@ static void test_bad_files(void) {
     memset(&o, 0, sizeof o);
     o.reserved[1] = 1;
     CHECK(px_urdf_load(URDF_PUMA, &o, &err) == NULL && err.code == PX_ERR_INVALID_ARGUMENT, "reserved");
-    /* A mimic joint gets a value of its own. */
-    write_file("mimic.urdf", "<robot><link name='a'/><link name='b'/><link name='c'/>"
-                             "<joint name='j1' type='continuous'><parent link='a'/><child link='b'/></joint>"
-                             "<joint name='j2' type='continuous'><parent link='a'/><child link='c'/>"
-                             "<mimic joint='j1'/></joint></robot>");
-    px_urdf *u = load("mimic.urdf", NULL, &err);
-    CHECK(u && px_chain_dof(px_urdf_chain(u)) == 2, "mimic: %s", err.message);
+    /* Mimic joints follow the joint they name (a gripper's second finger):
+     * no value of their own, frames those of the same robot with the
+     * mimic's value given, limits and speeds from the followed joint. The
+     * mimic is declared before the joint it follows, on a prismatic joint
+     * following a revolute one, and defaults its multiplier to 1. */
+    static const char *box = "<collision><geometry><box size='0.1 0.2 0.3'/></geometry></collision>";
+    char text[4096];
+    const char *mimics = "<mimic joint='j1' multiplier='-0.5' offset='0.1'/>", *plain = "";
+    for (int explicit_ = 0; explicit_ < 2; ++explicit_) {
+        snprintf(
+            text, sizeof text,
+            "<robot name='g'><link name='a'>%s</link><link name='b'>%s</link><link name='c'>%s</link>"
+            "<link name='d'>%s</link>"
+            "<joint name='j2' type='prismatic'><parent link='b'/><child link='c'/><origin xyz='0 0.2 0'/>"
+            "<axis xyz='0 1 0'/><limit lower='%s' upper='%s' velocity='%s'/>%s</joint>"
+            "<joint name='j1' type='revolute'><parent link='a'/><child link='b'/><origin xyz='1 0 0'/>"
+            "<axis xyz='0 0 1'/><limit lower='-1' upper='2' velocity='1'/></joint>"
+            "<joint name='j3' type='revolute'><parent link='c'/><child link='d'/><origin xyz='0 0 0.3'/>"
+            "<limit lower='%s' upper='%s' velocity='%s'/>%s</joint></robot>",
+            box, box, box, box, explicit_ ? "-0.9" : "0", explicit_ ? "0.6" : "0", explicit_ ? "0.5" : "0",
+            explicit_ ? plain : mimics, explicit_ ? "-1" : "0", explicit_ ? "2" : "0", explicit_ ? "1" : "0",
+            explicit_ ? plain : "<mimic joint='j1'/>");
+        write_file(explicit_ ? "mimic_explicit.urdf" : "mimic.urdf", text);
+    }
+    px_urdf *u = load("mimic.urdf", NULL, &err), *x = load("mimic_explicit.urdf", NULL, &err);
+    const px_chain *cu = u ? px_urdf_chain(u) : NULL, *cx = x ? px_urdf_chain(x) : NULL;
+    CHECK(cu && cx && px_chain_dof(cu) == 1 && px_chain_dof(cx) == 3 &&
+              !strcmp(px_urdf_joint_name(u, 0), "j1") && px_urdf_joint_name(u, 1) == NULL,
+          "mimic: %s", err.message);
+    for (int n = 0; cu && cx && n < 7; ++n) {
+        double q = -1.0 + 0.5 * n, full[3] = {q, -0.5 * q + 0.1, q}; /* link order: b (j1), c (j2), d (j3) */
+        px_pose f1[4], f2[4];
+        CHECK(px_chain_forward(cu, &q, f1, NULL, &err) == PX_OK &&
+                  px_chain_forward(cx, full, f2, NULL, &err) == PX_OK && memcmp(f1, f2, sizeof f1) == 0,
+              "mimic at %g: frames differ from the explicit robot's (%s)", q, err.message);
+    }
+    for (uint32_t k = 0; cu && cx && k < 4; ++k) {
+        double v1, w1, v2, w2;
+        px_chain_motion_bounds(cu, k, NULL, &v1, &w1, NULL);
+        px_chain_motion_bounds(cx, k, NULL, &v2, &w2, NULL);
+        CHECK(v1 == v2 && w1 == w2, "mimic: link %u's bounds %g %g, explicit %g %g", k, v1, w1, v2, w2);
+    }
     px_urdf_destroy(u);
+    px_urdf_destroy(x);
+    /* Mimics that cannot be: an unknown joint, a mimic of a mimic (named
+     * by its link), a bad multiplier, no joint named. */
+#define MIMIC_HEAD                                                                                           \
+    "<robot><link name='a'/><link name='b'/><link name='c'/>"                                                \
+    "<joint name='j1' type='continuous'><parent link='a'/><child link='b'/>%s</joint>"                       \
+    "<joint name='j2' type='continuous'><parent link='a'/><child link='c'/>%s</joint></robot>"
+    struct {
+        const char *m1, *m2, *want;
+        px_status code;
+    } bad[] = {
+        {"", "<mimic joint='j9'/>", "no such joint", PX_ERR_IO},
+        {"<mimic joint='j2'/>", "<mimic joint='j1'/>", "link 'b': it follows", PX_ERR_INVALID_ARGUMENT},
+        {"", "<mimic joint='j2'/>", "link 'c'", PX_ERR_INVALID_ARGUMENT},
+        {"", "<mimic joint='j1' multiplier='x'/>", "multiplier", PX_ERR_IO},
+        {"", "<mimic joint='j1' offset='1e999'/>", "offset", PX_ERR_IO},
+        {"", "<mimic/>", "without a joint", PX_ERR_IO},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; ++i) {
+        snprintf(text, sizeof text, MIMIC_HEAD, bad[i].m1, bad[i].m2);
+        write_file("bad_mimic.urdf", text);
+        u = load("bad_mimic.urdf", NULL, &err);
+        CHECK(!u && err.code == bad[i].code && strstr(err.message, bad[i].want), "bad mimic %zu: %s", i,
+              err.message);
+        px_urdf_destroy(u);
+    }
+#undef MIMIC_HEAD
     px_urdf_destroy(NULL);
 }
 

@@ -34,9 +34,10 @@
 /// The scene's guarantee does not rest on these bounds (it measures how
 /// far each body moved); they decide how often pairs are checked.
 ///
-/// Joint values q are one per movable (revolute or prismatic) joint, in
-/// link order. A value outside its joint's limits is refused
-/// (PX_ERR_RANGE), NaN or infinity too (PX_ERR_NON_FINITE).
+/// Joint values q are one per movable (revolute or prismatic) joint that
+/// follows no other (mimic), in link order. A value outside its joint's
+/// limits is refused (PX_ERR_RANGE), NaN or infinity too
+/// (PX_ERR_NON_FINITE); a mimic joint's value is computed from them.
 ///
 /// A chain is immutable once created and may be shared: one chain can be
 /// added to several scenes, or several times to one scene (the caller keeps
@@ -99,6 +100,15 @@ typedef struct px_link_desc {
     px_pose geometry;
     uint32_t group, mask; ///< the body's filters (px_body_desc); 0 and 0: all
     void *user;           ///< the body's user pointer (px_scene_body_user)
+    /// A movable joint that follows another (URDF <mimic>): with `mimic`
+    /// 1, its value is mimic_multiplier * q + mimic_offset, q the value of
+    /// link `mimic_link`'s joint (any other link whose joint is movable and
+    /// follows none), and it takes no joint value of its own. Its limits
+    /// and speed limit are then ignored: it moves over the image of the
+    /// followed joint's limits, at |mimic_multiplier| times its speed.
+    /// 0: an independent joint (the other two fields ignored).
+    uint32_t mimic, mimic_link;
+    double mimic_multiplier, mimic_offset;
     uint32_t reserved[4]; ///< must be zero
 } px_link_desc;
 
@@ -117,8 +127,10 @@ typedef struct px_chain_desc {
 /// PX_CHAIN_MAX_LINKS links, a parent that is not an earlier link, an
 /// unknown joint type, an axis that is zero, limits that are NaN, empty or
 /// both infinite on one side, a negative or NaN speed limit, both a model
-/// and a polytope, non-zero reserved fields; PX_ERR_NON_FINITE for an axis
-/// with a NaN or infinity; the poses as px_pose_check (PX_ERR_NON_FINITE,
+/// and a polytope, non-zero reserved fields, a mimic joint that is fixed
+/// or follows a link that is not another link with a movable joint
+/// following none; PX_ERR_NON_FINITE for an axis, a mimic multiplier or
+/// offset with a NaN or infinity; the poses as px_pose_check (PX_ERR_NON_FINITE,
 /// PX_ERR_INVALID_POSE); PX_ERR_RANGE for an origin or base translated
 /// beyond 2^250 or a geometry frame beyond 2^249; PX_ERR_OUT_OF_MEMORY.
 /// The message names the link.
@@ -127,7 +139,8 @@ PX_API px_chain *px_chain_create(const px_chain_desc *desc, px_error *err);
 /// Frees the chain (not its models or polytopes); NULL is a no-op.
 PX_API void px_chain_destroy(px_chain *chain);
 
-/// The number of links, and of joint values (movable joints).
+/// The number of links, and of joint values (movable joints that follow
+/// no other).
 PX_API uint32_t px_chain_link_count(const px_chain *chain);
 PX_API uint32_t px_chain_dof(const px_chain *chain);
 
@@ -140,7 +153,8 @@ PX_API uint32_t px_chain_joint_link(const px_chain *chain, uint32_t i);
 /// `frames[k]` and the world poses of their geometry in `geometry[k]` (a
 /// link without geometry: its frame). Either may be NULL, and both may be
 /// the same array (it then holds the geometry). PX_ERR_RANGE for a value
-/// outside its limits, or a frame beyond 2^250; PX_ERR_NON_FINITE for NaN
+/// outside its limits, a mimic joint's value that is not finite, or a
+/// frame beyond 2^250; PX_ERR_NON_FINITE for NaN
 /// or infinite values; PX_ERR_INVALID_ARGUMENT for a NULL chain, or a NULL
 /// q with joints; PX_ERR_OUT_OF_MEMORY (chains of more than 32 links take
 /// scratch arrays from the chain's allocator when frames is NULL or

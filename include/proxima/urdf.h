@@ -19,8 +19,10 @@
 /// order of the chain's links, which is the file's tree walked depth
 /// first from the root, children in the order of their joints in the file
 /// (px_urdf_joint_name names each value). A missing velocity limit is
-/// infinite (the link's pairs are then checked at every step). A <mimic>
-/// joint gets a value of its own. Floating and planar joints are refused.
+/// infinite (the link's pairs are then checked at every step). A <mimic
+/// joint multiplier offset> joint follows the joint it names and takes
+/// no value (px_link_desc.mimic: its own <limit> is ignored; it may not
+/// follow another mimic). Floating and planar joints are refused.
 ///
 /// Mesh file names: `package://NAME/rest` is looked up as DIR/NAME/rest
 /// for each folder DIR of options.package_path, then of the folders that

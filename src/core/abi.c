@@ -30,5 +30,5 @@ _Static_assert(sizeof(px_body_desc) == 200 || sizeof(void *) != 8, "px_body_desc
 _Static_assert(sizeof(px_scene_pair) == 88, "px_scene_pair");
 _Static_assert(sizeof(px_scene_event) == 16, "px_scene_event");
 _Static_assert(sizeof(px_scene_stats) == 56 || sizeof(void *) != 8, "px_scene_stats");
-_Static_assert(sizeof(px_link_desc) == 296 || sizeof(void *) != 8, "px_link_desc");
+_Static_assert(sizeof(px_link_desc) == 320 || sizeof(void *) != 8, "px_link_desc");
 _Static_assert(sizeof(px_chain_desc) == 136 || sizeof(void *) != 8, "px_chain_desc");

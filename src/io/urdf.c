@@ -681,6 +681,49 @@ static px_status read_joint(ureader *r, const ujoint *j, px_link_desc *d) {
     return PX_OK;
 }
 
+/* A joint's <mimic joint multiplier offset> (multiplier 1 and offset 0 by
+ * default): the link of the joint it follows into d (chain indices), or
+ * nothing when it has none. The followed joint must exist; px_chain_create
+ * checks that it is movable and follows none. */
+static px_status read_mimic(ureader *r, const ujoint *j, const ujoint *joint, const uname *jnames,
+                            uint32_t nj, const uint32_t *chain_of, px_link_desc *d) {
+    const xmlNode *m = child_el(j->node, "mimic");
+    if (!m || j->type == PX_JOINT_FIXED) return PX_OK; /* urdfdom ignores it on fixed joints too */
+    xmlChar *name = xmlGetNoNsProp(m, (const xmlChar *)"joint");
+    if (!name)
+        return U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s': <mimic> without a joint", r->path,
+                      j->name);
+    uint32_t i = find_name(jnames, nj, (const char *)name);
+    if (i == UINT32_MAX) {
+        px_status st =
+            U_FAIL(r, PX_ERR_IO, "URDF file '%s': joint '%.80s': <mimic joint=\"%.80s\">: no such joint",
+                   r->path, j->name, (const char *)name);
+        xmlFree(name);
+        return st;
+    }
+    xmlFree(name);
+    double v[2] = {1.0, 0.0};
+    const char *keys[2] = {"multiplier", "offset"};
+    for (int k = 0; k < 2; ++k) {
+        xmlChar *x = xmlGetNoNsProp(m, (const xmlChar *)keys[k]);
+        if (!x) continue;
+        int ok = numbers((const char *)x, &v[k], 1);
+        if (!ok) {
+            px_status st = U_FAIL(
+                r, PX_ERR_IO, "URDF file '%s': joint '%.80s': <mimic %s=\"%.60s\"> is not a finite number",
+                r->path, j->name, keys[k], (const char *)x);
+            xmlFree(x);
+            return st;
+        }
+        xmlFree(x);
+    }
+    d->mimic = 1;
+    d->mimic_link = chain_of[joint[i].c];
+    d->mimic_multiplier = v[0];
+    d->mimic_offset = v[1];
+    return PX_OK;
+}
+
 static once_flag u_xml_once = ONCE_FLAG_INIT;
 /* libxml2's set-up computes NaN and infinities (xmlXPathInit: 0.0 / 0.0):
  * it runs inside px_urdf_load, with the caller's traps held. */
@@ -1276,7 +1319,8 @@ static px_urdf *urdf_load(const char *path, const px_urdf_options *options, px_e
             const ujoint *j = &joint[l->parent_joint];
             d->parent = chain_of[j->p];
             st = read_joint(r, j, d);
-            if (st == PX_OK && d->joint != PX_JOINT_FIXED) {
+            if (st == PX_OK) st = read_mimic(r, j, joint, jnames, nj, chain_of, d);
+            if (st == PX_OK && d->joint != PX_JOINT_FIXED && !d->mimic) {
                 u->joint_name[u->dof] = dup_str(&alloc, j->name);
                 if (!u->joint_name[u->dof])
                     st = u_oom(r);

@@ -25,7 +25,10 @@
  * over the links i between them, of |origin_i.t| plus the travel
  * max(|q_min_i|, |q_max_i|) of a prismatic joint i. A prismatic joint
  * moves everything below it at |qd_j|. The angular speed is the sum of the
- * revolute joints' speeds. */
+ * revolute joints' speeds. A mimic joint (URDF <mimic>) takes the value
+ * mult * q + off of the joint it follows: its limits are the image of that
+ * joint's and its speed |mult| times that joint's, so the bounds hold for
+ * it as for any joint. */
 #include "proxima/chain.h"
 
 #include <math.h>
@@ -40,6 +43,8 @@
 
 typedef struct clink {
     uint32_t parent, joint, dof; /* dof: index of its joint value, or UINT32_MAX */
+    uint32_t mimic;              /* the link whose joint it follows, or UINT32_MAX */
+    double mult, off;            /* a mimic joint's value: mult * q_mimic + off */
     px_pose origin, geometry;
     px_vec3 axis;
     double q_min, q_max, qd;
@@ -136,11 +141,22 @@ static px_status check_link(const px_link_desc *d, uint32_t k, px_error *err) {
             return pxi_error(err, PX_ERR_RANGE,
                              "px_chain_create: link %u: the geometry's translation is beyond 2^249", k);
     }
+    if (d->mimic > 1)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_chain_create: link %u: mimic is %u (0 or 1)", k,
+                         d->mimic);
+    if (d->mimic && d->joint == PX_JOINT_FIXED)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                         "px_chain_create: link %u: a fixed joint cannot follow another (mimic)", k);
+    if (d->mimic && (!isfinite(d->mimic_multiplier) || !isfinite(d->mimic_offset)))
+        return pxi_error(err, PX_ERR_NON_FINITE,
+                         "px_chain_create: link %u: the mimic multiplier %g or offset %g is not finite", k,
+                         d->mimic_multiplier, d->mimic_offset);
     if (d->joint == PX_JOINT_FIXED) return PX_OK;
     if (!pxi_is_finite3(d->axis))
         return pxi_error(err, PX_ERR_NON_FINITE, "px_chain_create: link %u: the axis is not finite", k);
     if (!(pxi_max_abs(d->axis) > 0.0))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_chain_create: link %u: the axis is zero", k);
+    if (d->mimic) return PX_OK; /* its limits and speed come from the joint it follows */
     if (isnan(d->q_min) || isnan(d->q_max) || d->q_min > d->q_max || d->q_min == INFINITY ||
         d->q_max == -INFINITY)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
@@ -231,6 +247,17 @@ px_chain *px_chain_create(const px_chain_desc *d, px_error *err) {
                (px_chain *)NULL;
     for (uint32_t k = 0; k < d->n_links; ++k)
         if (check_link(&d->links[k], k, err) != PX_OK) return NULL;
+    for (uint32_t k = 0; k < d->n_links; ++k) {
+        const px_link_desc *l = &d->links[k];
+        if (!l->mimic) continue;
+        uint32_t m = l->mimic_link;
+        if (m >= d->n_links || m == k || d->links[m].joint == PX_JOINT_FIXED || d->links[m].mimic)
+            return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
+                             "px_chain_create: link %u: it follows link %u, which is not another link with a "
+                             "movable joint following none (mimic_link)",
+                             k, m),
+                   (px_chain *)NULL;
+    }
     px_allocator a;
     if (pxi_allocator_resolve(d->allocator, &a, err) != PX_OK) return NULL;
     px_chain *c = pxi_alloc(&a, sizeof *c);
@@ -261,15 +288,30 @@ px_chain *px_chain_create(const px_chain_desc *d, px_error *err) {
         l->group = s->group;
         l->mask = s->mask;
         l->user = s->user;
-        l->dof = UINT32_MAX;
-        if (s->joint != PX_JOINT_FIXED) {
-            l->axis = pxi_unit_safe(s->axis);
+        l->dof = l->mimic = UINT32_MAX;
+        if (s->joint != PX_JOINT_FIXED) l->axis = pxi_unit_safe(s->axis);
+        if (s->joint != PX_JOINT_FIXED && !s->mimic) {
             l->q_min = s->q_min;
             l->q_max = s->q_max;
             l->qd = s->max_speed;
             l->dof = c->dof;
             c->dof_link[c->dof++] = k;
         }
+    }
+    /* Mimic joints: limits and speed from the joint they follow (times():
+     * a multiplier of 0 keeps the joint at its offset whatever the limits). */
+    for (uint32_t k = 0; k < c->n; ++k) {
+        const px_link_desc *s = &d->links[k];
+        if (!s->mimic) continue;
+        clink *l = &c->link[k];
+        const clink *m = &c->link[s->mimic_link];
+        l->mimic = s->mimic_link;
+        l->mult = s->mimic_multiplier;
+        l->off = s->mimic_offset;
+        double lo = times(l->mult, m->q_min) + l->off, hi = times(l->mult, m->q_max) + l->off;
+        l->q_min = l->mult < 0.0 ? hi : lo;
+        l->q_max = l->mult < 0.0 ? lo : hi;
+        l->qd = times(fabs(l->mult), m->qd);
     }
     derive_bounds(c);
     if (find_adjacent(c, err) != PX_OK) {
@@ -322,7 +364,10 @@ static px_status forward(const px_chain *c, const double *q, px_pose *frames, px
         if (l->joint == PX_JOINT_FIXED) {
             frames[k] = o;
         } else {
-            px_pose j = joint_motion(l, q[l->dof]);
+            double v = l->mimic == UINT32_MAX ? q[l->dof] : l->mult * q[c->link[l->mimic].dof] + l->off;
+            if (!isfinite(v))
+                return pxi_error(err, PX_ERR_RANGE, "%s: link %u's mimic joint value is not finite", fn, k);
+            px_pose j = joint_motion(l, v);
             frames[k] = compose(&o, &j);
         }
         px_pose g = compose(&frames[k], &l->geometry);

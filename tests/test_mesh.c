@@ -962,6 +962,161 @@ static void expect_load_error(const char *path, const char *needle, int line) {
 }
 #define EXPECT_LOAD_ERROR(path, needle) expect_load_error(path, needle, __LINE__)
 
+/* A .gltf of one primitive, its buffer embedded as base64: the 6
+ * positions k_strip_pos, then, with n_idx > 0, n_idx uint16 indices;
+ * `mode` < 0 leaves the member out, `mode_text` (if not NULL) is written
+ * as the member's value instead. */
+static const float k_strip_pos[6][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}, {1, 2, 1}};
+
+static const char *write_gltf_prim(const char *name, int mode, const char *mode_text, const uint16_t *idx,
+                                   int n_idx, int n_pos) {
+    unsigned char bin[6 * 12 + 2 * 16];
+    unsigned char *p = bin;
+    for (int v = 0; v < n_pos; ++v)
+        for (int c = 0; c < 3; ++c) p = put_f32(p, k_strip_pos[v][c]);
+    const size_t pos_bytes = (size_t)(p - bin);
+    for (int i = 0; i < n_idx; ++i)
+        *p++ = (unsigned char)(idx[i] & 0xff), *p++ = (unsigned char)(idx[i] >> 8);
+    const size_t len = (size_t)(p - bin);
+    static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    char enc[4 * sizeof bin / 3 + 8], *e = enc;
+    for (size_t i = 0; i < len; i += 3) {
+        unsigned v = (unsigned)bin[i] << 16 | (i + 1 < len ? (unsigned)bin[i + 1] << 8 : 0) |
+                     (i + 2 < len ? bin[i + 2] : 0);
+        *e++ = b64[v >> 18 & 63], *e++ = b64[v >> 12 & 63];
+        *e++ = i + 1 < len ? b64[v >> 6 & 63] : '=';
+        *e++ = i + 2 < len ? b64[v & 63] : '=';
+    }
+    *e = '\0';
+    char mode_member[64] = "", indices_member[32] = "", views[160], accessors[320];
+    if (mode_text || mode >= 0) {
+        char num[16];
+        snprintf(num, sizeof num, "%d", mode);
+        snprintf(mode_member, sizeof mode_member, ", \"mode\": %s", mode_text ? mode_text : num);
+    }
+    snprintf(views, sizeof views, "{\"buffer\": 0, \"byteOffset\": 0, \"byteLength\": %zu}", pos_bytes);
+    snprintf(accessors, sizeof accessors,
+             "{\"bufferView\": 0, \"componentType\": 5126, \"count\": %d, \"type\": \"VEC3\", "
+             "\"min\": [0, 0, 0], \"max\": [1, 2, 1]}",
+             n_pos);
+    if (n_idx > 0) {
+        snprintf(indices_member, sizeof indices_member, ", \"indices\": 1");
+        snprintf(views + strlen(views), sizeof views - strlen(views),
+                 ", {\"buffer\": 0, \"byteOffset\": %zu, \"byteLength\": %d}", pos_bytes, 2 * n_idx);
+        snprintf(accessors + strlen(accessors), sizeof accessors - strlen(accessors),
+                 ", {\"bufferView\": 1, \"componentType\": 5123, \"count\": %d, \"type\": \"SCALAR\"}",
+                 n_idx);
+    }
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}],\n"
+             "\"nodes\": [{\"mesh\": 0}],\n"
+             "\"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}%s%s}]}],\n"
+             "\"buffers\": [{\"uri\": \"data:application/octet-stream;base64,%s\", \"byteLength\": %zu}],\n"
+             "\"bufferViews\": [%s],\n\"accessors\": [%s]}\n",
+             indices_member, mode_member, enc, len, views, accessors);
+    return write_file(name, json, (size_t)-1);
+}
+
+/* glTF triangle strips and fans (modes 5 and 6), points and lines (0-3).
+ * Assimp 5.2 drops a triangle with an index out of range with a warning
+ * only; for strips and fans this went unchecked (only mode-4 primitives
+ * were counted), so fan 0 1 2 3 9 5 over 6 positions loaded with PX_OK
+ * and 2 of its 4 triangles. The oracle: the glTF spec's triangles of a
+ * strip (i, i+1, i+2; every other one with its first two swapped) and of
+ * a fan (0, i+1, i+2), from the index list the test writes, compared as
+ * vertex-index triples up to rotation (the vertices are the POSITIONs in
+ * order); degenerate ones are kept (Assimp 5.2 keeps them). */
+static int has_triangle(const px_mesh *m, uint32_t a, uint32_t b, uint32_t c) {
+    const uint32_t *t = px_mesh_triangles(m);
+    for (uint32_t i = 0; i < px_mesh_triangle_count(m); ++i)
+        for (int r = 0; r < 3; ++r)
+            if (t[3 * i + r] == a && t[3 * i + (r + 1) % 3] == b && t[3 * i + (r + 2) % 3] == c) return 1;
+    return 0;
+}
+
+static void test_gltf_modes(void) {
+    static const struct {
+        const char *name;
+        int mode, n_idx, n_pos; /* n_idx 0: no indices */
+        uint16_t idx[8];
+    } good[] = {
+        {"strip_idx.gltf", 5, 6, 6, {0, 1, 2, 3, 4, 5}},
+        {"strip.gltf", 5, 0, 6, {0}},
+        {"fan_idx.gltf", 6, 6, 6, {0, 5, 4, 3, 2, 1}},
+        {"fan.gltf", 6, 0, 6, {0}},
+        {"strip3.gltf", 5, 0, 3, {0}},
+        {"fan3_idx.gltf", 6, 3, 6, {4, 2, 0}},
+        {"strip_degen.gltf", 5, 7, 6, {0, 1, 2, 2, 3, 4, 5}},
+        {"fan_degen.gltf", 6, 5, 6, {0, 1, 1, 2, 3}},
+    };
+    for (size_t k = 0; k < sizeof good / sizeof good[0]; ++k) {
+        uint16_t idx[8];
+        const int n = good[k].n_idx ? good[k].n_idx : good[k].n_pos;
+        for (int i = 0; i < n; ++i) idx[i] = good[k].n_idx ? good[k].idx[i] : (uint16_t)i;
+        px_mesh *m = load(
+            write_gltf_prim(good[k].name, good[k].mode, NULL, good[k].idx, good[k].n_idx, good[k].n_pos), 0);
+        if (!m) continue;
+        CHECK(px_mesh_vertex_count(m) == (uint32_t)good[k].n_pos &&
+                  px_mesh_triangle_count(m) == (uint32_t)n - 2,
+              "%s: %u vertices, %u triangles, expected %d and %d", good[k].name, px_mesh_vertex_count(m),
+              px_mesh_triangle_count(m), good[k].n_pos, n - 2);
+        for (int i = 0; i + 2 < n; ++i) {
+            uint32_t a = idx[i], b = idx[i + 1], c = idx[i + 2];
+            if (good[k].mode == 6)
+                a = idx[0];
+            else if (i % 2)
+                a = idx[i + 1], b = idx[i];
+            CHECK(has_triangle(m, a, b, c), "%s: triangle %d (%u %u %u) missing", good[k].name, i, a, b, c);
+        }
+        px_mesh_destroy(m);
+    }
+    /* An index out of range (9 of 6 positions): Assimp keeps 2 of the 4
+     * triangles; the count from the file's mode tells. */
+    static const uint16_t oob[6] = {0, 1, 2, 3, 9, 5};
+    EXPECT_LOAD_ERROR(write_gltf_prim("strip_oob.gltf", 5, NULL, oob, 6, 6),
+                      "2 of its 4 glTF triangles have a vertex index out of range");
+    EXPECT_LOAD_ERROR(write_gltf_prim("fan_oob.gltf", 6, NULL, oob, 6, 6),
+                      "2 of its 4 glTF triangles have a vertex index out of range");
+    /* The same through the point loader (the hull would have lost (0 2 0)
+     * and (1 2 1) from no triangle of it: every POSITION is kept). */
+    double *xyz = NULL;
+    size_t np = 0;
+    px_error err;
+    CHECK(px_load_points(write_gltf_prim("fan_oob2.gltf", 6, NULL, oob, 6, 6), NULL, &xyz, &np, &err) ==
+                  PX_ERR_IO &&
+              strstr(err.message, "fan_oob2.gltf") && !xyz && np == 0,
+          "fan_oob2.gltf: %s", err.message);
+    /* Fewer than 3 (Assimp 5.2 reads past the index buffer, throws and
+     * leaks; without indices it computes n - 2 faces unsigned). */
+    EXPECT_LOAD_ERROR(write_gltf_prim("strip2.gltf", 5, NULL, oob, 2, 6),
+                      "glTF meshes[0].primitives[0] is a triangle strip of 2 indices, fewer than 3");
+    EXPECT_LOAD_ERROR(
+        write_gltf_prim("fan2.gltf", 6, NULL, NULL, 0, 2),
+        "glTF meshes[0].primitives[0] is a triangle fan of 2 vertices (no indices), fewer than 3");
+    EXPECT_LOAD_ERROR(write_gltf_prim("loop1.gltf", 2, NULL, oob, 1, 6),
+                      "glTF meshes[0].primitives[0] is a line loop of 1 index, fewer than 2");
+    EXPECT_LOAD_ERROR(write_gltf_prim("lstrip1.gltf", 3, NULL, oob, 1, 6), "is a line strip of 1 index");
+    EXPECT_LOAD_ERROR(write_gltf_prim("mode7.gltf", 7, NULL, NULL, 0, 6),
+                      "has mode 7, not a glTF primitive mode");
+    EXPECT_LOAD_ERROR(write_gltf_prim("mode_neg.gltf", 0, "-1", NULL, 0, 6),
+                      "has a \"mode\" that is not an integer from 0 to 6");
+    EXPECT_LOAD_ERROR(write_gltf_prim("mode_str.gltf", 0, "\"4\"", NULL, 0, 6), "that is not an integer");
+    /* Points and lines (io.h): no triangle, every POSITION a vertex, also
+     * with an index out of range (Assimp drops that point or segment
+     * only); a triangle list of 3 still counts. */
+    static const uint16_t pts[4] = {0, 1, 2, 9};
+    for (int mode = 0; mode <= 4; ++mode) {
+        char name[32];
+        snprintf(name, sizeof name, "mode%d.gltf", mode);
+        px_mesh *m = load(write_gltf_prim(name, mode, NULL, mode < 4 ? pts : pts, mode < 4 ? 4 : 3, 6), 0);
+        if (!m) continue;
+        CHECK(px_mesh_vertex_count(m) == 6 && px_mesh_triangle_count(m) == (mode == 4),
+              "%s: %u vertices, %u triangles", name, px_mesh_vertex_count(m), px_mesh_triangle_count(m));
+        px_mesh_destroy(m);
+    }
+}
+
 /* ASCII STL text that Assimp 5.2 throws on (leaking what it read) or
  * misreads is refused with its line (src/io/stl.c); what it reads well
  * loads, every facet one triangle. */
@@ -1097,8 +1252,9 @@ static void test_bad_files(void) {
     for (int glb = 0; glb < 2; ++glb) {
         EXPECT_LOAD_ERROR(write_gltf_ex(glb, 1),
                           "1 of its 4 glTF triangles have a vertex index out of range");
-        EXPECT_LOAD_ERROR(write_gltf_ex(glb, 2),
-                          "glTF mesh primitive 0 is a triangle list whose index count");
+        EXPECT_LOAD_ERROR(
+            write_gltf_ex(glb, 2),
+            "glTF meshes[0].primitives[0] is a triangle list of 11 indices, not a multiple of 3");
         EXPECT_LOAD_ERROR(write_gltf_ex(glb, 3),
                           "1 of its 4 glTF triangles have a vertex index out of range");
     }
@@ -1652,6 +1808,7 @@ int main(void) {
     test_shipped_models();
     test_bad_files();
     test_stl_walk();
+    test_gltf_modes();
     test_float_cost();
     test_load_alloc_failures();
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);

@@ -223,9 +223,14 @@ extern "C" {
 /// - PX_ERR_IO: everything `px_convex_create_from_file` refuses (the file's
 ///   checks and limits, Assimp's failures), and a face index out of its
 ///   mesh's range (for glTF, whose importer drops such a triangle with a
-///   warning only: fewer triangles than the file's triangle lists hold,
-///   when every primitive the scene reaches is a triangle list; and an
-///   index count that is not a multiple of 3), a NaN or infinite coordinate (also after the node
+///   warning only: fewer triangles than the primitives the scene reaches
+///   define, n / 3 for a triangle list (mode 4) of n indices, or of n
+///   vertices without indices, n - 2 for a strip or fan (modes 5 and 6),
+///   degenerate ones included, none for points and lines (modes 0 to 3),
+///   whose every vertex is kept as a point; and, named by mesh and
+///   primitive, a triangle list of n not a multiple of 3, a strip or fan of
+///   n < 3, a line strip or loop of n < 2, a mode other than 0 to 6), a
+///   NaN or infinite coordinate (also after the node
 ///   transform or the scale), polygons too large to triangulate (the
 ///   squares of the sizes of all polygons of 5 or more corners sum to more
 ///   than 2^28: ear clipping is quadratic), more than PX_IO_MAX_ELEMENTS

@@ -1040,7 +1040,11 @@ static int accessor_element(json *j, u32 index, int depth, void *ctx) {
     return push_u32(j, &j->acc_count, &j->nacc, &j->acc_cap, count);
 }
 
-/* A mesh primitive: "indices", "mode" and "attributes"."POSITION". */
+/* A mesh primitive: "indices", "mode" and "attributes"."POSITION". A
+ * "mode" member whose value is not a plain count (-1, 4.5, "4") is
+ * PRIM_MODE_UNREAD; without one the mode is ~0u (4, triangles). */
+#define PRIM_MODE_UNREAD (~0u - 1)
+
 static int attribute_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     return j_plain_u32(j, k, n, "POSITION", depth, &((u32 *)ctx)[1]);
 }
@@ -1048,7 +1052,12 @@ static int attribute_member(json *j, const unsigned char *k, size_t n, int depth
 static int primitive_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     u32 *pr = ctx;
     if (key_is(k, n, "attributes")) return j_object(j, depth, attribute_member, pr);
-    if (key_is(k, n, "mode")) return j_plain_u32(j, k, n, "mode", depth, &pr[2]);
+    if (key_is(k, n, "mode")) {
+        pr[2] = PRIM_MODE_UNREAD; /* stays so unless a plain count follows */
+        if (!j_plain_u32(j, k, n, "mode", depth, &pr[2])) return 0;
+        if (pr[2] == ~0u) pr[2] = PRIM_MODE_UNREAD; /* a count beyond 32 bits */
+        return 1;
+    }
     return j_plain_u32(j, k, n, "indices", depth, &pr[0]);
 }
 
@@ -1073,17 +1082,33 @@ static int mesh_element(json *j, u32 index, int depth, void *ctx) {
     return push_u32(j, &j->mesh_end, &j->nmesh, &j->mesh_cap, j->nprim / 3);
 }
 
+/* Why gltf_triangles refused a primitive. */
+enum { PRIM_OK, PRIM_LIST_REMAINDER, PRIM_SHORT_STRIP, PRIM_SHORT_LINE, PRIM_BAD_MODE };
+
 /* The triangles Assimp 5.2's glTF 2.0 importer makes: it reads the meshes
  * of the nodes reachable from the scene the "scene" member names (0 by
- * default; glTF2Asset.inl Asset::Load, lazily), each mesh once, one
- * triangle per three indices of a triangle list (mode 4, the default) with
- * a known index count (or, without indices, POSITION count). ~0ull when
- * that is not known (another mode, glTF 1.0, no such scene); 0 with *bad
- * set to the first mesh primitive whose count is not a multiple of 3
- * (Assimp drops the indices left over). `reach` holds one byte per node,
+ * default; glTF2Asset.inl Asset::Load, lazily), each mesh once, and makes
+ * the triangles of a primitive from its index count (or, without indices,
+ * its POSITION count) n (glTF2Importer.cpp ImportMeshes):
+ * - mode 4, triangles (the default): n / 3, the indices left over dropped;
+ * - mode 5, triangle strip, and 6, triangle fan: n - 2, degenerate ones
+ *   (two equal indices) included: Assimp 5.2 keeps them (measured, with
+ *   indices and without);
+ * - modes 0 to 3 (points, lines, line loop, line strip): none; their faces
+ *   have 1 or 2 indices, and every POSITION is kept as a vertex.
+ * Any triangle with an index out of range is dropped with a warning only,
+ * which the count lets import.c see. ~0ull when the count is not known
+ * (glTF 1.0, no such scene, an accessor count not read); 0 with *bad set
+ * to the first mesh primitive Assimp would read wrongly and *why to the
+ * reason: a triangle list whose n is not a multiple of 3, a strip or fan
+ * of n < 3 (Assimp 5.2 computes n - 2 faces in unsigned arithmetic, or
+ * reads past the index buffer, then throws and leaks), a line strip or
+ * loop of n < 2 (it reads a second index that is not there), a "mode"
+ * that is not one of glTF's 0 to 6. `reach` holds one byte per node,
  * `used` one per mesh (zeroed). */
-static u64 gltf_triangles(const json *j, unsigned char *reach, unsigned char *used, u32 *bad) {
+static u64 gltf_triangles(const json *j, unsigned char *reach, unsigned char *used, u32 *bad, int *why) {
     *bad = ~0u;
+    *why = PRIM_OK;
     u32 scene = j->scene == ~0u ? 0 : j->scene;
     if (j->meshes_v1 || scene >= j->nscenes) return ~0ull;
     int any = 0;
@@ -1105,20 +1130,32 @@ static u64 gltf_triangles(const json *j, unsigned char *reach, unsigned char *us
         }
     }
     u64 total = 0;
+    int unknown = 0;
     for (u32 m = 0; m < j->nmesh; ++m) {
         if (!used[m]) continue;
         for (u32 p = m ? j->mesh_end[m - 1] : 0; p < j->mesh_end[m]; ++p) {
             const u32 *pr = &j->prim[3 * p];
-            u32 acc = pr[0] != ~0u ? pr[0] : pr[1], mode = pr[2];
-            if ((mode != ~0u && mode != 4) || acc >= j->nacc || j->acc_count[acc] == ~0u) return ~0ull;
-            if (j->acc_count[acc] % 3 != 0) {
+            u32 acc = pr[0] != ~0u ? pr[0] : pr[1], mode = pr[2] == ~0u ? 4 : pr[2];
+            if (mode > 6) {
+                *bad = p, *why = PRIM_BAD_MODE;
+                return 0;
+            }
+            if (acc >= j->nacc || j->acc_count[acc] == ~0u) {
+                unknown = 1; /* still checking the other primitives' modes */
+                continue;
+            }
+            const u64 n = j->acc_count[acc];
+            if (mode == 4 && n % 3 != 0) *why = PRIM_LIST_REMAINDER;
+            if ((mode == 5 || mode == 6) && n < 3) *why = PRIM_SHORT_STRIP;
+            if ((mode == 2 || mode == 3) && n < 2) *why = PRIM_SHORT_LINE;
+            if (*why != PRIM_OK) {
                 *bad = p;
                 return 0;
             }
-            total += j->acc_count[acc] / 3;
+            total += mode == 4 ? n / 3 : mode >= 5 ? n - 2 : 0;
         }
     }
-    return total;
+    return unknown ? ~0ull : total;
 }
 
 static int top_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
@@ -1277,13 +1314,14 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
         }
     }
     u32 bad = ~0u;
+    int why = PRIM_OK;
     u64 tri = ~0ull;
     unsigned char *reach = pxi_alloc(h->alloc, (size_t)j.nodes + 1),
                   *used = pxi_alloc(h->alloc, (size_t)j.nmesh + 1);
     if (reach && used) {
         memset(reach, 0, (size_t)j.nodes + 1);
         memset(used, 0, (size_t)j.nmesh + 1);
-        tri = gltf_triangles(&j, reach, used, &bad);
+        tri = gltf_triangles(&j, reach, used, &bad, &why);
     }
     if (reach) pxi_free(h->alloc, reach, (size_t)j.nodes + 1);
     if (used) pxi_free(h->alloc, used, (size_t)j.nmesh + 1);
@@ -1292,10 +1330,41 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
         goto done;
     }
     if (bad != ~0u) {
-        st = pxi_error(err, PX_ERR_IO,
-                       "mesh file '%s': glTF mesh primitive %u is a triangle list whose index count is not "
-                       "a multiple of 3 (Assimp 5.2 would drop the indices left over)",
-                       h->path, bad);
+        /* `bad` counts the primitives of all meshes; name the mesh and the
+         * primitive in it, as the file does. */
+        u32 mesh = 0;
+        while (mesh < j.nmesh && j.mesh_end[mesh] <= bad) ++mesh;
+        const u32 first = mesh ? j.mesh_end[mesh - 1] : 0, mode = j.prim[3 * bad + 2];
+        const u32 acc = j.prim[3 * bad] != ~0u ? j.prim[3 * bad] : j.prim[3 * bad + 1];
+        const unsigned long long n = acc < j.nacc ? j.acc_count[acc] : 0;
+        const char *what = j.prim[3 * bad] != ~0u
+                               ? (n == 1 ? "index" : "indices")
+                               : (n == 1 ? "vertex (no indices)" : "vertices (no indices)");
+        if (why == PRIM_LIST_REMAINDER)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': glTF meshes[%u].primitives[%u] is a triangle list of %llu %s, "
+                           "not a multiple of 3 (Assimp 5.2 would drop the indices left over)",
+                           h->path, mesh, bad - first, n, what);
+        else if (why == PRIM_SHORT_STRIP)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': glTF meshes[%u].primitives[%u] is a triangle %s of %llu %s, "
+                           "fewer than 3 (Assimp 5.2 mishandles it)",
+                           h->path, mesh, bad - first, mode == 5 ? "strip" : "fan", n, what);
+        else if (why == PRIM_SHORT_LINE)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': glTF meshes[%u].primitives[%u] is a line %s of %llu %s, fewer "
+                           "than 2 (Assimp 5.2 reads an index that is not there)",
+                           h->path, mesh, bad - first, mode == 2 ? "loop" : "strip", n, what);
+        else if (mode == PRIM_MODE_UNREAD)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': glTF meshes[%u].primitives[%u] has a \"mode\" that is not an "
+                           "integer from 0 to 6",
+                           h->path, mesh, bad - first);
+        else
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': glTF meshes[%u].primitives[%u] has mode %u, not a glTF primitive "
+                           "mode (0 to 6)",
+                           h->path, mesh, bad - first, mode);
         goto done;
     }
     if (h->gltf_triangles) *h->gltf_triangles = tri;

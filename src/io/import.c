@@ -66,8 +66,9 @@ static void ai_message(char *msg, size_t size) {
     snprintf(msg, size, "%s", ai && ai[0] ? ai : "unknown error");
 }
 
-/* The faces of the meshes the node tree reaches from the root, each mesh
- * once: the meshes px_mesh_load reads. (Assimp also loads the meshes of
+/* The triangles (faces of 3 indices; points and lines have 1 or 2) of the
+ * meshes the node tree reaches from the root, each mesh once: the meshes
+ * px_mesh_load reads. (Assimp also loads the meshes of
  * nodes only a skin or an animation names, which no scene reaches; the
  * glTF scan does not count those.) */
 static px_status reached_faces(const struct aiScene *scene, const px_allocator *alloc, const char *path,
@@ -87,7 +88,9 @@ static px_status reached_faces(const struct aiScene *scene, const px_allocator *
             unsigned m = node->mMeshes[i];
             if (m < scene->mNumMeshes && !used[m] && scene->mMeshes[m]) {
                 used[m] = 1;
-                *got += scene->mMeshes[m]->mNumFaces;
+                const struct aiMesh *mesh = scene->mMeshes[m];
+                for (unsigned f = 0; mesh->mFaces && f < mesh->mNumFaces; ++f)
+                    *got += mesh->mFaces[f].mNumIndices == 3;
             }
         }
         if (node->mNumChildren > cap - n) {
@@ -141,8 +144,8 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s' has no root node", path);
     }
     if (st == PX_OK && id->gltf_triangles != ~0ull) {
-        /* glTF2Importer drops a triangle with an index out of range (a
-         * warning only): the counts tell. */
+        /* glTF2Importer drops a triangle (of a list, a strip or a fan) with
+         * an index out of range, a warning only: the counts tell. */
         unsigned long long got = 0;
         st = reached_faces(scene, alloc, path, &got, err);
         if (st == PX_OK && got < id->gltf_triangles)

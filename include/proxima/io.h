@@ -89,7 +89,15 @@
 ///   NUL byte (Assimp stops there) and a solid name over 1023 bytes;
 /// - OBJ: a line that starts with blank space (not a continuation, blank or
 ///   comment line), which Assimp 5.2 skips whole, losing the vertex, face
-///   or object it holds;
+///   or object it holds; a vertex line of other than 3 (x y z), 4 (x y z w;
+///   Assimp divides by w, and refuses w = 0) or 6 (x y z r g b) numbers,
+///   counting words that start with a digit, a sign, "nan" or "inf" (so
+///   7 numbers, or ".5"; Assimp would drop the vertex); a comment after a
+///   face, line or point on its line (Assimp fails on it); and three kinds
+///   of valid point cloud (vertices without any f, l or p line) that Assimp
+///   5.2 cannot read: one with an `o` or `g` line (its vertices go into no
+///   mesh), one with fewer `vn` lines than vertices, one where some but not
+///   all vertices have a colour;
 /// - COLLADA and glTF node graphs: a cycle (a node its own descendant,
 ///   through nesting, <instance_node> or glTF "children"), a node expanding
 ///   to more than PX_IO_MAX_NODES node instances or a file defining more
@@ -245,7 +253,8 @@ PX_API px_mesh *px_mesh_load(const char *path, const px_mesh_options *options, p
 /// units). A mesh referenced by several nodes contributes one copy per node.
 /// Points, lines and faces all count. Vertices no face uses count for PLY,
 /// OFF and glTF (whose readers keep every vertex listed) and for files that
-/// have only vertices (an OBJ point cloud), but not for OBJ and COLLADA files
+/// have only vertices (an OBJ point cloud; Limits lists those Assimp 5.2
+/// cannot read, refused), but not for OBJ and COLLADA files
 /// with faces: Assimp 5.2 builds their meshes from the faces and drops the
 /// other vertices, and offers no option to keep them (STL has no vertex
 /// list). The file is read by `px_mesh_load` (default options) and the

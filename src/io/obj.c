@@ -164,6 +164,7 @@ static void scan_words(const unsigned char *t, size_t b, size_t e, int kind, siz
             *numbers += (c >= '0' && c <= '9') || c == '-' || c == '+' || lower_is(t, w, i, "nan") ||
                         lower_is(t, w, i, "inf");
         } else if (kind == W_FACE) {
+            if (memchr(t + w, '#', i - w)) *bad_index = 3;
             for (size_t k = w; k < i; ++k) {
                 if (k != w && t[k - 1] != '/') continue; /* the start of an index */
                 size_t d = k + (t[k] == '-');
@@ -189,6 +190,13 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
     size_t current = SIZE_MAX, meant = SIZE_MAX, group = SIZE_MAX, p = 0;
     u64 line = 1; /* the editor's line at p */
     const int bom = size >= 3 && t[0] == 0xEF && t[1] == 0xBB && t[2] == 0xBF;
+    /* What a point cloud holds: vertex lines (those with a colour), vn
+     * lines (the first one's line), whether a face, line or point line
+     * came, the line of the first object an `o` or `g` started. */
+    struct {
+        u64 v, coloured, vn, vn_line, object_line;
+        int elements;
+    } cloud = {0, 0, 0, 0, 0, 0};
     while (st == PX_OK && p < size) {
         const size_t b = p;
         const u64 at = line;
@@ -284,17 +292,35 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
             continue;
         }
         if (kind == W_VERTEX && numbers != 3 && numbers != 4 && numbers != 6) {
-            st = refuse(h, at,
-                        "a vertex line of other than 3, 4 or 6 numbers, as Assimp 5.2 counts them (a word "
-                        "that starts with a digit or a sign): it would drop the vertex and shift every later "
-                        "index (write .5 as 0.5)",
-                        err);
+            st = pxi_error(
+                err, PX_ERR_IO,
+                "mesh file '%s', line %llu: a vertex line of %zu numbers, as Assimp 5.2 counts them "
+                "(a word that starts with a digit, a sign, \"nan\" or \"inf\"; .5 is not one): it "
+                "reads 3 (x y z), 4 (x y z w) or 6 (x y z r g b) and would drop this vertex, "
+                "shifting every later index",
+                h->path, (unsigned long long)at, numbers);
             break;
+        }
+        if (kind == W_VERTEX) {
+            ++cloud.v;
+            cloud.coloured += numbers == 6;
+        } else if (kind == W_FACE) {
+            cloud.elements = 1;
+        } else if (t[b] == 'v' && e - b >= 3 && t[b + 1] == 'n' && is_blank(t[b + 2])) {
+            ++cloud.vn;
+            if (!cloud.vn_line) cloud.vn_line = at;
         }
         if (bad_index == 2) {
             st = refuse(h, at,
                         "a word of more than 4095 bytes on a vertex or face line (Assimp 5.2 would read its "
                         "rest as the next number)",
+                        err);
+            break;
+        }
+        if (kind == W_FACE && bad_index == 3) {
+            st = refuse(h, at,
+                        "a comment after a face, line or point (Assimp 5.2 reads its '#' as an index and "
+                        "fails: put the comment on a line of its own)",
                         err);
             break;
         }
@@ -397,6 +423,34 @@ px_status pxi_check_obj(const io_head *h, px_error *err) {
         }
         current = meant = o.n - 1;
         if (!is_o) group = current;
+        if (!cloud.object_line) cloud.object_line = at;
+    }
+    /* A point cloud (vertices, no f, l or p line): Assimp 5.2 makes one
+     * mesh of all vertices only when no `o` or `g` started an object (else
+     * its objects have no faces, and the scene no mesh), and throws when
+     * some but not all vertices have a normal (vn lines, which it pairs
+     * with the vertices in order) or a colour. The file is valid OBJ, but
+     * Assimp cannot read it: refused with the line and the way out. */
+    if (st == PX_OK && cloud.v && !cloud.elements) {
+        if (cloud.object_line)
+            st = refuse(h, cloud.object_line,
+                        "an object or group in a point cloud (vertices, no f, l or p line): Assimp 5.2 reads "
+                        "the vertices into no mesh (remove the o and g lines)",
+                        err);
+        else if (cloud.vn && cloud.vn < cloud.v)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s', line %llu: a point cloud (vertices, no f, l or p line) of %llu "
+                           "vertices and %llu vn lines: Assimp 5.2 refuses one with fewer normals than "
+                           "vertices (remove the vn lines)",
+                           h->path, (unsigned long long)cloud.vn_line, (unsigned long long)cloud.v,
+                           (unsigned long long)cloud.vn);
+        else if (cloud.coloured && cloud.coloured < cloud.v)
+            st = pxi_error(
+                err, PX_ERR_IO,
+                "mesh file '%s': a point cloud (vertices, no f, l or p line) where %llu of its %llu "
+                "vertices have a colour (6 numbers): Assimp 5.2 refuses one unless all or none "
+                "have (remove the colours)",
+                h->path, (unsigned long long)cloud.coloured, (unsigned long long)cloud.v);
     }
     /* Assimp reads the file in blocks of 16 MiB, and in a file of more
      * than one it drops a last line that no line end closes. */

@@ -17,6 +17,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 
+#include <locale.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -768,6 +769,34 @@ static void test_load_formats(void) {
         px_mesh_get_info(m, &info);
         CHECK(info.float_coordinates == 0, "ASCII STL read at full precision");
         px_mesh_destroy(m);
+    }
+    /* The same under a locale whose decimal point is a comma (when the
+     * machine has one): the numbers are still read in C's, to the double
+     * (0.1 is no float). */
+    static const char *const comma_locales[] = {"de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8", "fr_FR.utf8"};
+    locale_t comma = (locale_t)0;
+    for (size_t i = 0; comma == (locale_t)0 && i < sizeof comma_locales / sizeof *comma_locales; ++i)
+        comma = newlocale(LC_ALL_MASK, comma_locales[i], (locale_t)0);
+    if (comma != (locale_t)0) {
+        static const char *tri_stl =
+            "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0.1 0 0\nvertex 1.5 0 0\n"
+            "vertex 0 2.25 0.1\nendloop\nendfacet\nendsolid t\n";
+        static const char *tri_off = "OFF\n3 1 0\n0.1 0 0\n1.5 0 0\n0 2.25 0.1\n3 0 1 2\n";
+        locale_t before = uselocale(comma);
+        CHECK(strtod("0.5", NULL) != 0.5, "the comma locale reads '0.5' as %g", strtod("0.5", NULL));
+        for (int off = 0; off < 2; ++off) {
+            m = load(write_file(off ? "comma.off" : "comma.stl", off ? tri_off : tri_stl, (size_t)-1), 0);
+            px_mesh_info info;
+            int has = m && px_mesh_get_info(m, &info) == PX_OK && info.float_coordinates == 0;
+            const double *v = has ? px_mesh_vertices(m) : NULL;
+            CHECK(has && v[0] == 0.1 && v[3] == 1.5 && v[8] == 0.1,
+                  "%s under a comma locale: read at full precision", off ? "OFF" : "ASCII STL");
+            px_mesh_destroy(m);
+        }
+        uselocale(before);
+        freelocale(comma);
+    } else {
+        printf("  (no de_DE or fr_FR locale here: the comma-locale reading not tested)\n");
     }
     unsigned char stl[84 + 4 * 50];
     m = load(write_file("tet_bin.stl", stl, tet_stl_binary(stl, 0)), 0);

@@ -18,7 +18,9 @@
  * Last, every double must round to within 2 float ulps of Assimp's float
  * for the same vertex, so a reading that paired the wrong numbers with the
  * wrong vertices cannot pass. The file is opened again without blocking and
- * must still be the file the precheck identified.
+ * must still be the file the precheck identified. The numbers are read in
+ * the C locale whatever the caller's (strtod in a de_DE locale stops at
+ * the '.', and every file fell back to the floats).
  */
 #define _POSIX_C_SOURCE 200809L
 
@@ -26,6 +28,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -173,7 +176,17 @@ px_status pxi_io_exact_positions(const char *path, const pxi_file_id *id, const 
     /* a byte-order mark: give up (Assimp skips it; not worth a special case) */
     int c0 = fgetc(f);
     int ok = c0 != EOF && c0 != 0xEF && c0 != 0xFE && c0 != 0xFF && ungetc(c0, f) != EOF;
-    if (ok) ok = format == FORMAT_OFF ? read_off(f, line, out, total) : read_stl(f, line, out, total);
+    /* This thread only, restored at once (without a C locale object: the
+     * floats stay). */
+    locale_t c_locale = ok ? newlocale(LC_NUMERIC_MASK, "C", (locale_t)0) : (locale_t)0;
+    if (c_locale != (locale_t)0) {
+        locale_t caller = uselocale(c_locale);
+        ok = format == FORMAT_OFF ? read_off(f, line, out, total) : read_stl(f, line, out, total);
+        uselocale(caller);
+        freelocale(c_locale);
+    } else {
+        ok = 0;
+    }
     fclose(f);
     pxi_free(alloc, line, EXACT_LINE);
     for (unsigned i = 0, at = 0; ok && i < scene->mNumMeshes; ++i) {

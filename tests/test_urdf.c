@@ -27,7 +27,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "../examples/puma560.c"
 #include "proxima/urdf.h"
@@ -850,6 +852,115 @@ static void test_review_s27(void) {
     }
 }
 
+/* A second review's findings (s28): namespace declarations and nesting
+ * bounded before libxml2 looks prefixes up through them (11 s for a 2 MB
+ * file, 9 minutes for 62 MB); a byte the declared encoding does not define
+ * refused by name, with nothing printed (libxml2's converter printed to
+ * stderr); libxml2's 10 MB look-ahead no longer refuses a file within the
+ * cap; the caller's rounding mode does not change what is read. */
+static void test_review_s28(void) {
+    px_error err;
+    px_urdf *u;
+    /* 200 declarations: refused at once; 20 on <robot> (a xacro's): read. */
+    char *text = repeat("<robot name='r'><link name='a'/>", "<e xmlns:p='urn:x'/>", 200, "</robot>");
+    if (text) {
+        write_file("namespaces.urdf", text);
+        double t0 = tu_now();
+        u = load("namespaces.urdf", NULL, &err);
+        CHECK(!u && err.code == PX_ERR_IO && strstr(err.message, "namespace declarations") &&
+                  tu_now() - t0 < 0.5,
+              "200 namespace declarations: %s", err.message);
+        px_urdf_destroy(u);
+        free(text);
+    }
+    char twenty[1000] = "<robot name='r'";
+    for (int i = 0; i < 20; ++i)
+        snprintf(twenty + strlen(twenty), sizeof twenty - strlen(twenty), " xmlns:x%d='urn:x%d'", i, i);
+    snprintf(twenty + strlen(twenty), sizeof twenty - strlen(twenty), "><link name='a'/></robot>");
+    write_file("namespaces20.urdf", twenty);
+    u = load("namespaces20.urdf", NULL, &err);
+    CHECK(u != NULL, "20 namespace declarations: %s", err.message);
+    px_urdf_destroy(u);
+    /* Nesting: 200 levels refused, 100 read (unknown elements are skipped). */
+    for (int deep = 0; deep < 2; ++deep) {
+        size_t levels = deep ? 200 : 100;
+        char *open_ = repeat("<robot name='r'><link name='a'/>", "<e>", levels, "");
+        char *all = open_ ? repeat(open_, "</e>", levels, "</robot>") : NULL;
+        if (all) {
+            write_file("nested.urdf", all);
+            u = load("nested.urdf", NULL, &err);
+            if (deep)
+                CHECK(!u && err.code == PX_ERR_IO && strstr(err.message, "nested more than"),
+                      "200 levels: %s", err.message);
+            else
+                CHECK(u != NULL, "100 levels: %s", err.message);
+            px_urdf_destroy(u);
+        }
+        free(all);
+        free(open_);
+    }
+    /* 0x81 is no character of windows-1252: refused by name, nothing on
+     * stderr. */
+    write_file("cp1252_hole.urdf", "<?xml version='1.0' encoding='windows-1252'?>\n<robot name='r'>\n<link "
+                                   "name='a\x81'/></robot>");
+    char where[800];
+    snprintf(where, sizeof where, "%s/stderr.txt", scratch);
+    fflush(stderr);
+    int saved = dup(2), fd = open(where, O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (saved >= 0 && fd >= 0) {
+        dup2(fd, 2);
+        u = load("cp1252_hole.urdf", NULL, &err);
+        fflush(stderr);
+        dup2(saved, 2);
+        struct stat sb;
+        CHECK(stat(where, &sb) == 0 && sb.st_size == 0, "an undefined byte: %lld bytes on stderr",
+              (long long)sb.st_size);
+        CHECK(!u && err.code == PX_ERR_IO && strstr(err.message, "declared encoding"),
+              "an undefined byte: %s", err.message);
+        px_urdf_destroy(u);
+    }
+    if (fd >= 0) close(fd);
+    if (saved >= 0) close(saved);
+    /* A long start tag past 10 MB (libxml2's look-ahead limit without
+     * XML_PARSE_HUGE): read. */
+    char name[700];
+    memset(name, 'n', sizeof name - 1);
+    name[sizeof name - 1] = '\0';
+    char tail[800];
+    snprintf(tail, sizeof tail, " --><link name='%s'/></robot>", name);
+    text = repeat("<robot name='r'><!-- ", "          ", 1100000, tail);
+    if (text) {
+        write_file("late_tag.urdf", text);
+        u = load("late_tag.urdf", NULL, &err);
+        CHECK(u && px_urdf_find_link(u, name) == 0, "a long tag past 10 MB: %s", err.message);
+        px_urdf_destroy(u);
+        free(text);
+        char path[800];
+        snprintf(path, sizeof path, "%s/late_tag.urdf", scratch);
+        remove(path);
+    }
+    /* The Puma's frames under every rounding mode: those of round to
+     * nearest, bit for bit, and the caller's mode kept. */
+    px_urdf *ref = px_urdf_load(URDF_PUMA, NULL, &err);
+    const int modes[3] = {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO};
+    for (int i = 0; ref && i < 3; ++i) {
+        fesetround(modes[i]);
+        u = px_urdf_load(URDF_PUMA, NULL, &err);
+        int mode = fegetround();
+        fesetround(FE_TONEAREST);
+        CHECK(mode == modes[i], "rounding mode %d not kept (%d)", modes[i], mode);
+        const px_chain *a = px_urdf_chain(ref), *b = u ? px_urdf_chain(u) : NULL;
+        double q[6] = {0.1, -0.7, 0.3, 1.1, -0.4, 0.9};
+        px_pose fa[16], fb[16];
+        uint32_t n = px_chain_link_count(a);
+        CHECK(b && n <= 16 && px_chain_dof(a) <= 6 && px_chain_forward(a, q, fa, NULL, &err) == PX_OK &&
+                  px_chain_forward(b, q, fb, NULL, &err) == PX_OK && memcmp(fa, fb, n * sizeof *fa) == 0,
+              "the Puma read under rounding mode %d differs", modes[i]);
+        px_urdf_destroy(u);
+    }
+    px_urdf_destroy(ref);
+}
+
 int main(void) {
     tu_init("test_urdf");
     snprintf(scratch, sizeof scratch, "%s/urdf_XXXXXX", PX_BINARY_DIR);
@@ -863,5 +974,6 @@ int main(void) {
     test_bad_files();
     test_hardening();
     test_review_s27();
+    test_review_s28();
     return tu_finish();
 }

@@ -40,17 +40,20 @@
 /// 2.9 compares an element's attributes pair by pair) and more than
 /// 1,000,000 elements, attributes, comments and processing instructions
 /// in all (real robots have a few thousand): at that limit a load peaks
-/// at about 500 MiB (a 64 MiB file; 64 MiB of "<a/> " took 3.4 GB
-/// before). The bytes must be UTF-8, ASCII, ISO-8859-n or windows-125n
-/// as declared (a NUL byte, as in UTF-16, EBCDIC and other encodings are
-/// refused).
+/// at 500 to 800 MB (a 64 MiB file; 64 MiB of "<a/> " took 3.4 GB
+/// before); also more than 128 namespace declarations (xmlns) in all and
+/// elements nested more than 128 deep. The bytes must be UTF-8, ASCII,
+/// ISO-8859-n or windows-125n as declared (a NUL byte, as in UTF-16,
+/// EBCDIC and other encodings are refused, and so is a byte the declared
+/// encoding does not define).
 /// libxml2 stops at its first error; its warnings (XML 1.1, a
 /// namespace URI that is not absolute) refuse nothing, as ROS reads those
 /// files. A robot has at most 1,024 links and 2,000,000 collision
 /// triangles in all. Numbers are decimal (no hexadecimal) and read in the
 /// C locale whatever the caller's. libxml2 prints nothing. The caller's
 /// floating-point environment is held for the load (traps included: an
-/// overflowing number or size is refused, never trapped) and restored.
+/// overflowing number or size is refused, never trapped; numbers rounded
+/// to nearest whatever the caller's rounding mode) and restored.
 #ifndef PROXIMA_URDF_H
 #define PROXIMA_URDF_H
 

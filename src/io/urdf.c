@@ -139,7 +139,8 @@ typedef struct ureader {
     int oom;      /* an allocation failed in attr() */
     int xml_line; /* libxml2's first error, or the DTD refused */
     char xml_message[160];
-    size_t triangles; /* the robot may still have */
+    int encoding_error; /* libxml2 met a byte its converter refused */
+    size_t triangles;   /* the robot may still have */
 } ureader;
 
 #define U_FAIL(r, code, ...) pxi_error((r)->err, (code), __VA_ARGS__)
@@ -830,6 +831,18 @@ static void xml_error(void *data, xmlErrorPtr e) {
     xmlStopParser(ctxt);
 }
 
+/* Errors libxml2 raises without a parser context (its encoding
+ * converters): noted, never printed. */
+static void xml_generic_error(void *data, const char *msg, ...) {
+    ureader *r = data;
+    if (msg && strstr(msg, "encod")) r->encoding_error = 1;
+}
+
+static void xml_structured_error(void *data, xmlErrorPtr e) {
+    ureader *r = data;
+    if (e && (e->domain == XML_FROM_I18N || e->domain == XML_FROM_IO)) r->encoding_error = 1;
+}
+
 /* A document type declaration stops the parse before any of it is used. */
 static void xml_doctype(void *data, const xmlChar *name, const xmlChar *external_id,
                         const xmlChar *system_id) {
@@ -863,6 +876,8 @@ static void xml_doctype(void *data, const xmlChar *name, const xmlChar *external
  * and declared encodings other than UTF-8, ASCII, ISO-8859-n and
  * windows-125n are refused. */
 #define U_MAX_ATTRIBUTES 64
+#define U_MAX_NAMESPACES 128
+#define U_MAX_DEPTH 128
 #define U_MAX_MARKUP 1000000u
 
 static int u_blank(unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
@@ -934,7 +949,7 @@ static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
                               r->path, u_line(b, i), (int)(k - j - 1 < 40 ? k - j - 1 : 40), b + j + 1);
         }
     }
-    size_t markup = 0;
+    size_t markup = 0, namespaces = 0, depth = 0;
     for (size_t i = 0; i < n;) {
         if (b[i] != '<') {
             ++i;
@@ -952,6 +967,7 @@ static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
             return PX_OK;
         } else if (u_starts(b, n, i, "</")) {
             i += 2;
+            depth -= depth > 0;
             continue; /* an end tag: a name, no attributes */
         } else {
             /* A start tag: its name, then `name = "value"` pairs. */
@@ -962,6 +978,10 @@ static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
                 size_t k = j;
                 while (k < n && !u_blank(b[k]) && !strchr("=>/<\"'", b[k])) ++k;
                 if (k == j) break; /* the tag's end, or not an attribute: libxml2 stops */
+                /* libxml2 looks each prefix up through every namespace
+                 * declaration in scope: their number bounds a look-up. */
+                int is_xmlns =
+                    k - j >= 5 && memcmp(b + j, "xmlns", 5) == 0 && (k - j == 5 || b[j + 5] == ':');
                 while (k < n && u_blank(b[k])) ++k;
                 if (k >= n || b[k] != '=') break;
                 for (++k; k < n && u_blank(b[k]); ++k) {
@@ -974,12 +994,20 @@ static px_status prescan(ureader *r, const unsigned char *b, size_t n) {
                     break;
                 }
                 j = v + 1;
+                if (is_xmlns && ++namespaces > U_MAX_NAMESPACES)
+                    return U_FAIL(r, PX_ERR_IO,
+                                  "URDF file '%s': line %d: more than %d namespace declarations (xmlns)",
+                                  r->path, u_line(b, at), U_MAX_NAMESPACES);
                 if (++attributes > U_MAX_ATTRIBUTES)
                     return U_FAIL(r, PX_ERR_IO,
                                   "URDF file '%s': line %d: an element with more than %d attributes", r->path,
                                   u_line(b, at), U_MAX_ATTRIBUTES);
                 markup++;
             }
+            /* Not closed by "/>": its content is one level deeper. */
+            if (!(j < n && b[j] == '/') && ++depth > U_MAX_DEPTH)
+                return U_FAIL(r, PX_ERR_IO, "URDF file '%s': line %d: elements nested more than %d deep",
+                              r->path, u_line(b, at), U_MAX_DEPTH);
             i = j;
         }
         if (++markup > U_MAX_MARKUP)
@@ -1004,13 +1032,32 @@ static xmlDoc *parse_xml(ureader *r, const unsigned char *bytes, size_t size) {
     ctxt->sax->serror = xml_error;
     ctxt->sax->internalSubset = xml_doctype;
     ctxt->sax->externalSubset = xml_doctype;
-    xmlDoc *doc = xmlCtxtReadMemory(ctxt, (const char *)bytes, (int)size, r->path, NULL,
-                                    XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    /* This thread's handlers for the errors raised without the context
+     * (libxml2 keeps them per thread), restored after the parse. */
+    xmlGenericErrorFunc generic = xmlGenericError;
+    void *generic_data = xmlGenericErrorContext;
+    xmlStructuredErrorFunc structured = xmlStructuredError;
+    void *structured_data = xmlStructuredErrorContext;
+    xmlSetGenericErrorFunc(r, xml_generic_error);
+    xmlSetStructuredErrorFunc(r, xml_structured_error);
+    /* XML_PARSE_HUGE: libxml2's own size limits (10 MB for a text node, a
+     * value or the look-ahead of a tag) would refuse files within the 64
+     * MiB cap; the pre-scan bounds nesting, attributes and markup. */
+    xmlDoc *doc =
+        xmlCtxtReadMemory(ctxt, (const char *)bytes, (int)size, r->path, NULL,
+                          XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING | XML_PARSE_HUGE);
+    xmlSetGenericErrorFunc(generic_data, generic);
+    xmlSetStructuredErrorFunc(structured_data, structured);
     int ok = doc && ctxt->wellFormed && ctxt->nsWellFormed && !doc->intSubset && !doc->extSubset &&
-             !r->xml_message[0];
+             !r->xml_message[0] && !r->encoding_error;
     xmlFreeParserCtxt(ctxt);
     if (ok) return doc;
     xmlFreeDoc(doc);
+    if (r->encoding_error)
+        return U_FAIL(r, PX_ERR_IO,
+                      "URDF file '%s': near line %d: a byte that is not a character of the declared encoding",
+                      r->path, r->xml_line ? r->xml_line : 1),
+               (xmlDoc *)NULL;
     if (!r->xml_message[0]) snprintf(r->xml_message, sizeof r->xml_message, "not well-formed XML");
     return U_FAIL(r, PX_ERR_IO, "URDF file '%s': line %d: %s", r->path, r->xml_line, r->xml_message),
            (xmlDoc *)NULL;
@@ -1054,6 +1101,9 @@ static px_urdf *urdf_load(const char *path, const px_urdf_options *options, px_e
 px_urdf *px_urdf_load(const char *path, const px_urdf_options *options, px_error *err) {
     fenv_t env;
     feholdexcept(&env);
+    /* Numbers and frames as in the C library's default: rounded to
+     * nearest (strtod, sin and cos follow the rounding mode). */
+    fesetround(FE_TONEAREST);
     px_urdf *u = urdf_load(path, options, err);
     fesetenv(&env);
     return u;
@@ -1071,7 +1121,7 @@ static px_urdf *urdf_load(const char *path, const px_urdf_options *options, px_e
     px_allocator alloc;
     if (pxi_allocator_resolve(o.allocator, &alloc, err) != PX_OK) return NULL;
     call_once(&u_xml_once, u_xml_init);
-    ureader rd = {&alloc, path, err, 0, 0, "", U_MAX_TRIANGLES}, *r = &rd;
+    ureader rd = {&alloc, path, err, 0, 0, "", 0, U_MAX_TRIANGLES}, *r = &rd;
     unsigned char *bytes = NULL;
     size_t size = 0;
     if (read_file(r, &bytes, &size) != PX_OK) return NULL;

@@ -42,6 +42,7 @@
 #include <unistd.h>
 
 #include "core/core.h"
+#include "math/vec3.h"
 #include "proxima/io.h"
 
 #define U_MAX_ELEMENTS 65536u /* joints */
@@ -418,7 +419,7 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     px_pose pose;
     px_status st = read_origin(r, col, "link", link, &pose);
     if (st != PX_OK) return st;
-    if (!(fmax(fabs(pose.t.x), fmax(fabs(pose.t.y), fabs(pose.t.z))) <= U_MAX_COORD))
+    if (!(pxi_max_abs(pose.t) <= U_MAX_COORD))
         return U_FAIL(r, PX_ERR_RANGE,
                       "URDF file '%s': link '%.80s': a <collision> origin (%g %g %g) is beyond the models' "
                       "range 2^250",
@@ -865,16 +866,15 @@ static void xml_doctype(void *data, const xmlChar *name, const xmlChar *external
  * tree for each element, attribute, comment or processing instruction
  * (64 MiB of "<a/> " would take 3.4 GB). This pass counts them as libxml2
  * will read them and refuses more than U_MAX_ATTRIBUTES in one start tag
- * or U_MAX_MARKUP in all. It skips what libxml2 does not read as markup:
- * comments (to the first "-->"), CDATA sections ("]]>"), processing
- * instructions and the XML declaration ("?>"), and quoted attribute
- * values. Where a file breaks XML's rules (an unterminated comment, a '<'
- * inside a value, a name it would not read) libxml2 reports an error and
- * xml_error stops it there, so the pass need only follow well-formed XML
- * and count at least as much as libxml2 reads of the rest. It also needs
- * the bytes to be ASCII's for ASCII: a NUL byte (UTF-16, UTF-32), EBCDIC
- * and declared encodings other than UTF-8, ASCII, ISO-8859-n and
- * windows-125n are refused. */
+ * or U_MAX_MARKUP in all; it also bounds the namespace declarations
+ * (libxml2 looks each prefix up through every one in scope) and the
+ * nesting depth (libxml2 parses with XML_PARSE_HUGE, which lifts its own). It skips what libxml2 does not
+ * read as markup: comments (to the first "-->"), CDATA sections ("]]>"), processing instructions and the XML
+ * declaration ("?>"), and quoted attribute values. Where a file breaks XML's rules (an unterminated comment,
+ * a '<' inside a value, a name it would not read) libxml2 reports an error and xml_error stops it there, so
+ * the pass need only follow well-formed XML and count at least as much as libxml2 reads of the rest. It also
+ * needs the bytes to be ASCII's for ASCII: a NUL byte (UTF-16, UTF-32), EBCDIC and declared encodings other
+ * than UTF-8, ASCII, ISO-8859-n and windows-125n are refused. */
 #define U_MAX_ATTRIBUTES 64
 #define U_MAX_NAMESPACES 128
 #define U_MAX_DEPTH 128

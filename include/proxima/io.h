@@ -219,9 +219,10 @@ extern "C" {
 /// up-axis rotation into the root node, so the coordinates are already
 /// metres, Y up) and glTF, 0 (unknown) for the other formats.
 /// Precision: Assimp 5.2 stores positions as 32-bit floats (docs/io.md has
-/// the measured cost: up to 5.9e-8 relative, 1.43 half-ulps). Plain OFF and
-/// ASCII STL files are read again at full precision (strtod), the rest of
-/// the mesh still Assimp's; `px_mesh_info.float_coordinates` is 0 then, 1
+/// the measured cost: up to 5.9e-8 relative, 1.43 half-ulps). Plain OFF,
+/// ASCII STL and OBJ files are read again at full precision (strtod), the
+/// rest of the mesh still Assimp's (docs/io.md lists the files left to
+/// the floats); `px_mesh_info.float_coordinates` is 0 then, 1
 /// when the coordinates are Assimp's floats.
 ///
 /// Returns NULL and fills `err` (may be NULL) on:

@@ -1,15 +1,18 @@
-/* Full-precision positions for plain OFF and ASCII STL (issue 9: "where a
- * format can be read without Assimp at full precision, consider doing so").
+/* Full-precision positions for plain OFF, ASCII STL and OBJ (issue 9:
+ * "where a format can be read without Assimp at full precision, consider
+ * doing so").
  *
  * Assimp 5.2 parses numbers into 32-bit floats (and not quite correctly
- * rounded: up to 1.43 half-ulps measured, docs/io.md). For two text formats
- * the order in which Assimp stores the vertices is simple, so the loader
- * keeps Assimp's scene (faces, triangulation, names, tree) and only reads
- * the coordinates again with strtod (correctly rounded to double):
+ * rounded: up to 1.43 half-ulps measured, docs/io.md). The loader keeps
+ * Assimp's scene (faces, triangulation, names, tree) and only reads the
+ * coordinates again with strtod (correctly rounded to double). For two
+ * text formats the order in which Assimp stores the vertices is simple:
  * - OFF: the file's vertex list, in file order, as the one mesh;
  * - ASCII STL: three vertices per facet, every "vertex x y z" line in file
  *   order, the solids' meshes one after the other.
- * The reading is strict and gives up (the floats stay) on anything outside
+ * OBJ's is not (face corners, split by object and material), and its
+ * positions are paired with the file's vertices by their floats: see
+ * read_obj. The OFF and STL reading is strict and gives up (the floats stay) on anything outside
  * that: a header other than a line "OFF" (the NOFF/COFF/... variants,
  * headerless files, a dimension), a blank or comment line inside the
  * vertex list, a vertex line of more or fewer than three numbers, a number
@@ -40,7 +43,10 @@
 
 #define EXACT_LINE 4096
 
-typedef enum { FORMAT_NONE, FORMAT_OFF, FORMAT_STL } exact_format;
+/* read_obj pairs Assimp's positions with the file's by their float bits. */
+_Static_assert(sizeof(ai_real) == sizeof(float), "Assimp built with double precision");
+
+typedef enum { FORMAT_NONE, FORMAT_OFF, FORMAT_STL, FORMAT_OBJ } exact_format;
 
 static exact_format scene_format(const struct aiScene *scene) {
     const struct aiMetadata *md = scene->mMetaData;
@@ -51,6 +57,7 @@ static exact_format scene_format(const struct aiScene *scene) {
         const char *f = ((const struct aiString *)md->mValues[i].mData)->data;
         if (strcmp(f, "OFF Importer") == 0) return FORMAT_OFF;
         if (strcmp(f, "Stereolithography (STL) Importer") == 0) return FORMAT_STL;
+        if (strcmp(f, "Wavefront Object Importer") == 0) return FORMAT_OBJ;
     }
     return FORMAT_NONE;
 }
@@ -131,6 +138,196 @@ static int read_stl(FILE *f, char *line, double *xyz, size_t total) {
     return r == 0 && n == total;
 }
 
+/* ---- OBJ ------------------------------------------------------------------ */
+
+/* Assimp 5.2's fast_atoreal_move<float> (assimp/fast_atof.h, with
+ * AI_FAST_ATOF_RELAVANT_DECIMALS 15), step for step, on a word of the form
+ * [+-] (digits [. [digits]] | . digits) [(e|E) [+-] digits]: the integer
+ * part converted to float, the first 15 decimals as an integer times a
+ * power of ten in double, added in float, then times powf(10, exponent).
+ * 0 for any other word, and for forms it reads with an overflow or that
+ * this does not follow (an integer part of more than 19 digits, an
+ * exponent of more than 4). */
+static int assimp_atof(const char *w, size_t n, float *out) {
+    static const double tenth[16] = {0.0,  0.1,  0.01,  1e-3,  1e-4,  1e-5,  1e-6,  1e-7,
+                                     1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13, 1e-14, 1e-15};
+    size_t i = 0;
+    const int minus = n > 0 && w[0] == '-';
+    if (n > 0 && (w[0] == '-' || w[0] == '+')) ++i;
+#define DIGIT(k) ((k) < n && w[k] >= '0' && w[k] <= '9')
+    if (!DIGIT(i) && !(i < n && w[i] == '.' && DIGIT(i + 1))) return 0;
+    float f = 0.0f;
+    if (w[i] != '.') {
+        uint64_t v = 0;
+        for (int d = 0; DIGIT(i); ++i)
+            if (++d > 19)
+                return 0;
+            else
+                v = 10 * v + (uint64_t)(w[i] - '0');
+        f = (float)v;
+    }
+    if (i < n && w[i] == '.' && DIGIT(i + 1)) {
+        ++i;
+        uint64_t v = 0;
+        unsigned used = 0;
+        for (; DIGIT(i); ++i)
+            if (used < 15) v = 10 * v + (uint64_t)(w[i] - '0'), ++used;
+        f += (float)((double)v * tenth[used]);
+    } else if (i < n && w[i] == '.') {
+        ++i;
+    }
+    if (i < n && (w[i] == 'e' || w[i] == 'E')) {
+        ++i;
+        const int eminus = i < n && w[i] == '-';
+        if (i < n && (w[i] == '-' || w[i] == '+')) ++i;
+        if (!DIGIT(i)) return 0;
+        unsigned e = 0;
+        for (int d = 0; DIGIT(i); ++i)
+            if (++d > 4)
+                return 0;
+            else
+                e = 10 * e + (unsigned)(w[i] - '0');
+        float x = (float)e;
+        if (eminus) x = -x;
+        f *= powf(10.0f, x);
+    }
+#undef DIGIT
+    if (i != n) return 0;
+    *out = minus ? -f : f;
+    return 1;
+}
+
+/* One of the file's vertices: at full precision, and as Assimp's float. */
+typedef struct obj_vertex {
+    double x[3];
+    float f[3];
+    int twin; /* another vertex has the same floats and other doubles */
+} obj_vertex;
+
+/* A vertex line's words after the keyword, [p, e): 3, 4 (homogeneous) or 6
+ * (a colour after) numbers, then nothing or a comment. Assimp counts the
+ * words that start like a number and reads that many words from the
+ * first; this takes only lines where those are the same words. */
+static int obj_vertex_line(const char *p, const char *e, obj_vertex *v) {
+    double d[6];
+    float f[6];
+    int n = 0;
+    for (;;) {
+        while (p < e && (*p == ' ' || *p == '\t')) ++p;
+        if (p == e || *p == '#') break;
+        const char *w = p;
+        while (p < e && *p != ' ' && *p != '\t') ++p;
+        if (n == 6 || !assimp_atof(w, (size_t)(p - w), &f[n])) return 0;
+        char buf[64], *end;
+        if ((size_t)(p - w) >= sizeof buf) return 0;
+        memcpy(buf, w, (size_t)(p - w));
+        buf[p - w] = '\0';
+        d[n] = strtod(buf, &end);
+        if (*end || !isfinite(d[n])) return 0;
+        ++n;
+    }
+    if (n != 3 && n != 4 && n != 6) return 0;
+    for (int k = 0; k < 3; ++k) {
+        /* getHomogeneousVector3 divides in float; w = 0 fails the import. */
+        v->x[k] = n == 4 ? d[k] / d[3] : d[k];
+        v->f[k] = n == 4 ? f[k] / f[3] : f[k];
+        if (!isfinite(v->x[k])) return 0;
+    }
+    v->twin = 0;
+    return 1;
+}
+
+static uint64_t obj_hash(const float f[3]) {
+    uint32_t b[3];
+    memcpy(b, f, sizeof b);
+    uint64_t h = ((uint64_t)b[0] << 32 | b[1]) * 0x9E3779B97F4A7C15ull ^ b[2] * 0xC2B2AE3D27D4EB4Full;
+    return h ^ h >> 29;
+}
+
+/* OBJ: Assimp 5.2 copies position m_Vertices[i] (the i-th `v` line) into
+ * every face corner that names vertex i, mesh by mesh, split by object,
+ * group and material: the order is not simple, but every position of the
+ * scene is one of the file's vertices as Assimp's floats. The vertex
+ * lines are read twice, with strtod and as Assimp's number reader reads
+ * them (assimp_atof), and each position of the scene takes the doubles of
+ * the vertex whose floats it has, bit for bit. Given up: a byte-order
+ * mark (the first line is skipped), a backslash at a line's end (joined
+ * lines), a vertex line of another form than obj_vertex_line's, a position
+ * that no vertex has (a number read otherwise than assimp_atof reads it),
+ * or two vertices with the same floats and different doubles that the
+ * scene uses (which one a corner names is not known). Returns 1 with `xyz`
+ * filled, 0 to keep the floats, -1 out of memory. */
+static int read_obj(FILE *file, size_t size, const struct aiScene *scene, const px_allocator *alloc,
+                    double *xyz) {
+    char *t = size < SIZE_MAX ? pxi_alloc(alloc, size + 1) : NULL;
+    if (!t) return -1;
+    int ok = fread(t, 1, size, file) == size && fgetc(file) == EOF;
+    t[size] = '\0';
+    /* Pass 1 counts the vertex lines, pass 2 reads them. */
+    size_t nv = 0;
+    obj_vertex *v = NULL;
+    for (int pass = 0; ok && pass < 2; ++pass) {
+        size_t k = 0;
+        for (size_t b = 0; ok && b < size;) {
+            size_t e = b;
+            while (e < size && t[e] != '\n' && t[e] != '\r' && t[e] != '\f' && t[e] != '\0') ++e;
+            if (e > b && t[e - 1] == '\\') ok = 0;
+            if (ok && e - b >= 2 && t[b] == 'v' && (t[b + 1] == ' ' || t[b + 1] == '\t')) {
+                if (pass == 1) ok = obj_vertex_line(t + b + 2, t + e, &v[k]);
+                ++k;
+            }
+            b = e + 1;
+        }
+        if (pass == 0) {
+            nv = k;
+            v = ok && nv ? pxi_alloc_array(alloc, nv, sizeof *v) : NULL;
+            if (ok && nv && !v) {
+                pxi_free(alloc, t, size + 1);
+                return -1;
+            }
+            ok = ok && nv;
+        }
+    }
+    pxi_free(alloc, t, size + 1);
+    /* Vertex index + 1 by floats, open addressing. */
+    size_t cap = 16;
+    while (ok && cap < 2 * nv) cap *= 2;
+    uint32_t *slot = ok ? pxi_alloc_array(alloc, cap, sizeof *slot) : NULL;
+    if (ok && (!slot || nv >= UINT32_MAX)) {
+        pxi_free(alloc, v, nv * sizeof *v);
+        pxi_free(alloc, slot, cap * sizeof *slot);
+        return nv >= UINT32_MAX ? 0 : -1;
+    }
+    for (size_t i = 0; ok && i < cap; ++i) slot[i] = 0;
+    for (size_t i = 0; ok && i < nv; ++i) {
+        size_t h = (size_t)obj_hash(v[i].f) & (cap - 1);
+        for (;; h = (h + 1) & (cap - 1)) {
+            if (!slot[h]) {
+                slot[h] = (uint32_t)i + 1;
+                break;
+            }
+            obj_vertex *o = &v[slot[h] - 1];
+            if (memcmp(o->f, v[i].f, sizeof o->f) == 0) {
+                if (memcmp(o->x, v[i].x, sizeof o->x) != 0) o->twin = 1;
+                break;
+            }
+        }
+    }
+    for (unsigned m = 0, at = 0; ok && m < scene->mNumMeshes; ++m) {
+        const struct aiMesh *mesh = scene->mMeshes[m];
+        for (unsigned q = 0; ok && q < mesh->mNumVertices; ++q, ++at) {
+            const float f[3] = {mesh->mVertices[q].x, mesh->mVertices[q].y, mesh->mVertices[q].z};
+            size_t h = (size_t)obj_hash(f) & (cap - 1);
+            while (slot[h] && memcmp(v[slot[h] - 1].f, f, sizeof f) != 0) h = (h + 1) & (cap - 1);
+            ok = slot[h] && !v[slot[h] - 1].twin;
+            if (ok) memcpy(xyz + 3 * (size_t)at, v[slot[h] - 1].x, sizeof v->x);
+        }
+    }
+    pxi_free(alloc, v, nv * sizeof *v);
+    pxi_free(alloc, slot, cap * sizeof *slot);
+    return ok;
+}
+
 /* Within 2 float ulps of x (the float Assimp made of the same text). */
 static int near_float(double x, double f) {
     if (x == f) return 1;
@@ -181,7 +378,9 @@ px_status pxi_io_exact_positions(const char *path, const pxi_file_id *id, const 
     locale_t c_locale = ok ? newlocale(LC_NUMERIC_MASK, "C", (locale_t)0) : (locale_t)0;
     if (c_locale != (locale_t)0) {
         locale_t caller = uselocale(c_locale);
-        ok = format == FORMAT_OFF ? read_off(f, line, out, total) : read_stl(f, line, out, total);
+        ok = format == FORMAT_OFF   ? read_off(f, line, out, total)
+             : format == FORMAT_STL ? read_stl(f, line, out, total)
+                                    : read_obj(f, (size_t)st.st_size, scene, alloc, out);
         uselocale(caller);
         freelocale(c_locale);
     } else {
@@ -189,6 +388,11 @@ px_status pxi_io_exact_positions(const char *path, const pxi_file_id *id, const 
     }
     fclose(f);
     pxi_free(alloc, line, EXACT_LINE);
+    if (ok < 0) {
+        pxi_free(alloc, out, total * 3 * sizeof(double));
+        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s' at full precision",
+                         path);
+    }
     for (unsigned i = 0, at = 0; ok && i < scene->mNumMeshes; ++i) {
         const struct aiMesh *m = scene->mMeshes[i];
         for (unsigned v = 0; ok && v < m->mNumVertices; ++v, ++at) {

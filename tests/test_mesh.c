@@ -1746,6 +1746,86 @@ static void test_obj_number_forms(void) {
     free(want);
 }
 
+/* PLY with double coordinates at full precision: ASCII, and binary in
+ * both byte orders, with other properties around x, y, z, and with y a
+ * float (the float nearest its text); a PLY of floats keeps Assimp's. */
+static void test_ply_full_precision(void) {
+    static const double v[4][3] = {
+        {0.1, 0.2, 0.3}, {1.1, 0.2, 0.3}, {0.1, 1.7000000000000002, 0.3}, {0.1, 0.2, 1.3}};
+    static const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (int form = 0; form < 5; ++form) {
+        /* 0 ascii, 1 little-endian, 2 big-endian, 3 floats (ascii), 4 y float (ascii) */
+        unsigned char buf[2048];
+        size_t n = (size_t)snprintf(
+            (char *)buf, sizeof buf,
+            "ply\nformat %s 1.0\ncomment test\n%selement vertex 4\nproperty float nx\nproperty %s x\n"
+            "property %s y\nproperty %s z\nproperty uchar red\n%send_header\n",
+            form == 1   ? "binary_little_endian"
+            : form == 2 ? "binary_big_endian"
+                        : "ascii",
+            "", form == 3 ? "float" : "double", form >= 3 ? "float" : "double",
+            form == 3 ? "float" : "double", "element face 4\nproperty list uchar int vertex_indices\n");
+        for (int i = 0; i < 4; ++i) {
+            if (form == 1 || form == 2) {
+                unsigned char rec[29];
+                float nx = 0.5f;
+                memcpy(rec, &nx, 4);
+                memcpy(rec + 4, v[i], 24);
+                rec[28] = 7;
+                if (form == 2) {
+                    for (int k = 0; k < 2; ++k) {
+                        unsigned char t = rec[k];
+                        rec[k] = rec[3 - k], rec[3 - k] = t;
+                    }
+                    for (int c = 0; c < 3; ++c)
+                        for (int k = 0; k < 4; ++k) {
+                            unsigned char t = rec[4 + 8 * c + k];
+                            rec[4 + 8 * c + k] = rec[4 + 8 * c + 7 - k], rec[4 + 8 * c + 7 - k] = t;
+                        }
+                }
+                memcpy(buf + n, rec, sizeof rec);
+                n += sizeof rec;
+            } else {
+                n += (size_t)snprintf((char *)buf + n, sizeof buf - n, "0.5 %.17g %.17g %.17g 7\n", v[i][0],
+                                      v[i][1], v[i][2]);
+            }
+        }
+        for (int t = 0; t < 4; ++t) {
+            if (form == 1 || form == 2) {
+                buf[n++] = 3;
+                for (int c = 0; c < 3; ++c) {
+                    const uint32_t x = (uint32_t)f[t][c];
+                    for (int k = 0; k < 4; ++k)
+                        buf[n++] = (unsigned char)(x >> (8 * (form == 2 ? 3 - k : k)));
+                }
+            } else {
+                n += (size_t)snprintf((char *)buf + n, sizeof buf - n, "3 %d %d %d\n", f[t][0], f[t][1],
+                                      f[t][2]);
+            }
+        }
+        static const char *const names[5] = {"d_ascii.ply", "d_le.ply", "d_be.ply", "f_ascii.ply",
+                                             "d_y_float.ply"};
+        px_mesh *m = load(write_file(names[form], buf, n), 0);
+        if (!m) continue;
+        px_mesh_info info;
+        px_mesh_get_info(m, &info);
+        const int exact = form != 3;
+        int found = 0;
+        for (int i = 0; i < 4; ++i) {
+            char text[32];
+            snprintf(text, sizeof text, "%.17g", v[i][1]);
+            found += form == 4 ? has_vertex(m, v[i][0], strtof(text, NULL), v[i][2])
+                     : exact   ? has_vertex(m, v[i][0], v[i][1], v[i][2])
+                               : has_vertex(m, (float)v[i][0], (float)v[i][1], (float)v[i][2]);
+        }
+        CHECK(info.float_coordinates == !exact && found == 4 && px_mesh_vertex_count(m) == 4 &&
+                  px_mesh_triangle_count(m) == 4 && fabs(fabs(part_volume(m, 0)) - 0.25) < 1e-6,
+              "%s: float_coordinates %u, %d of 4 vertices as written", names[form], info.float_coordinates,
+              found);
+        px_mesh_destroy(m);
+    }
+}
+
 /* The PUMA's link 2 (binary STL, inches) in millimetres and moved 1000 mm
  * along x: coordinates about 1e3, edges down to 1.5 mm, written with 17
  * significant digits. OFF, ASCII STL and OBJ are read at full precision
@@ -1987,6 +2067,7 @@ int main(void) {
     test_float_cost();
     test_obj_full_precision();
     test_obj_number_forms();
+    test_ply_full_precision();
     test_load_alloc_failures();
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_dir);

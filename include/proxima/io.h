@@ -220,8 +220,8 @@ extern "C" {
 /// metres, Y up) and glTF, 0 (unknown) for the other formats.
 /// Precision: Assimp 5.2 stores positions as 32-bit floats (docs/io.md has
 /// the measured cost: up to 5.9e-8 relative, 1.43 half-ulps). Plain OFF,
-/// ASCII STL and OBJ files are read again at full precision (strtod), the
-/// rest of the mesh still Assimp's (docs/io.md lists the files left to
+/// ASCII STL, OBJ and PLY files of double coordinates are read again at
+/// full precision (strtod), the rest of the mesh still Assimp's (docs/io.md lists the files left to
 /// the floats); `px_mesh_info.float_coordinates` is 0 then, 1
 /// when the coordinates are Assimp's floats.
 ///

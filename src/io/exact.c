@@ -1,12 +1,13 @@
-/* Full-precision positions for plain OFF, ASCII STL and OBJ (issue 9:
+/* Full-precision positions for plain OFF, ASCII STL, OBJ and PLY (issue 9:
  * "where a format can be read without Assimp at full precision, consider
  * doing so").
  *
  * Assimp 5.2 parses numbers into 32-bit floats (and not quite correctly
  * rounded: up to 1.43 half-ulps measured, docs/io.md). The loader keeps
  * Assimp's scene (faces, triangulation, names, tree) and only reads the
- * coordinates again with strtod (correctly rounded to double). For two
- * text formats the order in which Assimp stores the vertices is simple:
+ * coordinates again with strtod (correctly rounded to double). For three
+ * formats the order in which Assimp stores the vertices is simple (PLY: see
+ * read_ply):
  * - OFF: the file's vertex list, in file order, as the one mesh;
  * - ASCII STL: three vertices per facet, every "vertex x y z" line in file
  *   order, the solids' meshes one after the other.
@@ -46,7 +47,7 @@
 /* read_obj pairs Assimp's positions with the file's by their float bits. */
 _Static_assert(sizeof(ai_real) == sizeof(float), "Assimp built with double precision");
 
-typedef enum { FORMAT_NONE, FORMAT_OFF, FORMAT_STL, FORMAT_OBJ } exact_format;
+typedef enum { FORMAT_NONE, FORMAT_OFF, FORMAT_STL, FORMAT_OBJ, FORMAT_PLY } exact_format;
 
 static exact_format scene_format(const struct aiScene *scene) {
     const struct aiMetadata *md = scene->mMetaData;
@@ -58,6 +59,7 @@ static exact_format scene_format(const struct aiScene *scene) {
         if (strcmp(f, "OFF Importer") == 0) return FORMAT_OFF;
         if (strcmp(f, "Stereolithography (STL) Importer") == 0) return FORMAT_STL;
         if (strcmp(f, "Wavefront Object Importer") == 0) return FORMAT_OBJ;
+        if (strcmp(f, "Stanford Polygon Library (PLY) Importer") == 0) return FORMAT_PLY;
     }
     return FORMAT_NONE;
 }
@@ -136,6 +138,127 @@ static int read_stl(FILE *f, char *line, double *xyz, size_t total) {
         ++n;
     }
     return r == 0 && n == total;
+}
+
+/* PLY: Assimp 5.2 keeps the vertex element's instances in file order as
+ * the one mesh. Read when the header is plain ("ply", a format line,
+ * comments, elements and properties, "end_header") and the first element
+ * is `vertex`, of the scene's vertex count, with scalar properties only,
+ * one each named x, y and z, at least one of them double (Assimp turns
+ * doubles into floats; float and integer properties are what the file
+ * holds already, and such files keep float_coordinates 1, like binary
+ * STL). ASCII: one instance a line, as many numbers as properties, read
+ * with strtod (strtof for a float property). Binary (either byte order): fixed-size records. */
+/* PLY's scalar types: char, uchar, short, ushort, int, uint, float,
+ * double (and their sized names), by index. */
+static const int ply_size[8] = {1, 1, 2, 2, 4, 4, 4, 8};
+
+static int ply_type(const char *t) {
+    static const char *const names[8][2] = {{"char", "int8"},     {"uchar", "uint8"},   {"short", "int16"},
+                                            {"ushort", "uint16"}, {"int", "int32"},     {"uint", "uint32"},
+                                            {"float", "float32"}, {"double", "float64"}};
+    for (int i = 0; i < 8; ++i)
+        if (strcmp(t, names[i][0]) == 0 || strcmp(t, names[i][1]) == 0) return i;
+    return -1;
+}
+
+/* A binary scalar of type index `t`, as a double (on a little-endian
+ * machine, which the caller checks). */
+static double ply_binary_value(const unsigned char *p, int t, int big) {
+    const int size = ply_size[t];
+    unsigned char b[8];
+    for (int i = 0; i < size; ++i) b[i] = big ? p[size - 1 - i] : p[i];
+    if (t == 7) {
+        double d;
+        memcpy(&d, b, 8);
+        return d;
+    }
+    if (t == 6) {
+        float f;
+        memcpy(&f, b, 4);
+        return f;
+    }
+    uint32_t u = 0;
+    for (int i = size - 1; i >= 0; --i) u = u << 8 | b[i];
+    if (t % 2 == 1) return u; /* unsigned */
+    const uint32_t sign = 1u << (8 * size - 1);
+    return (double)(int64_t)(u ^ sign) - (double)sign;
+}
+
+static int read_ply(FILE *f, char *line, double *xyz, size_t total) {
+    enum { MAX_PROPS = 64 };
+    int type[MAX_PROPS];
+    int at[3] = {-1, -1, -1}, np = 0, format = -1, element = 0, doubles = 0;
+    if (next_line(f, line) != 1 || strcmp(line, "ply") != 0) return 0;
+    for (;;) {
+        if (next_line(f, line) != 1) return 0;
+        char word[3][64];
+        unsigned long long count = 0;
+        char more;
+        if (strcmp(line, "end_header") == 0) break;
+        if (strncmp(line, "comment", 7) == 0 || strncmp(line, "obj_info", 8) == 0) continue;
+        if (sscanf(line, "format %63s 1.0 %c", word[0], &more) == 1) {
+            format = strcmp(word[0], "ascii") == 0                  ? 0
+                     : strcmp(word[0], "binary_little_endian") == 0 ? 1
+                     : strcmp(word[0], "binary_big_endian") == 0    ? 2
+                                                                    : -1;
+            if (format < 0) return 0;
+        } else if (sscanf(line, "element %63s %llu %c", word[0], &count, &more) == 2) {
+            if (++element == 1 && (strcmp(word[0], "vertex") != 0 || count != total)) return 0;
+        } else if (element == 1 && sscanf(line, "property %63s %63s %c", word[0], word[1], &more) == 2) {
+            const int t = ply_type(word[0]);
+            if (t < 0 || np == MAX_PROPS) return 0;
+            for (int k = 0; k < 3; ++k)
+                if (strcmp(word[1], (const char *[]){"x", "y", "z"}[k]) == 0) {
+                    if (at[k] >= 0) return 0;
+                    at[k] = np;
+                    doubles += t == 7;
+                }
+            type[np++] = t;
+        } else if (element != 1 && strncmp(line, "property ", 9) == 0) {
+            continue;
+        } else {
+            return 0; /* a list property in the vertex element, or anything else */
+        }
+    }
+    if (format < 0 || element == 0 || at[0] < 0 || at[1] < 0 || at[2] < 0 || !doubles) return 0;
+    if (format == 0) {
+        for (size_t i = 0; i < total; ++i) {
+            if (next_line(f, line) != 1) return 0;
+            char *p = line;
+            for (int k = 0; k < np; ++k) {
+                p = skip_blank(p);
+                char *end;
+                /* a float property is the float nearest the text */
+                const double v = type[k] == 6 ? (double)strtof(p, &end) : strtod(p, &end);
+                if (end == p || (*end && *end != ' ' && *end != '\t') || !isfinite(v)) return 0;
+                for (int c = 0; c < 3; ++c)
+                    if (at[c] == k) xyz[3 * i + c] = v;
+                p = end;
+            }
+            if (*skip_blank(p)) return 0;
+        }
+        return 1;
+    }
+    const uint16_t one = 1;
+    unsigned char little;
+    memcpy(&little, &one, 1);
+    if (!little) return 0;
+    int offset[MAX_PROPS], record = 0;
+    for (int k = 0; k < np; ++k) {
+        offset[k] = record;
+        record += ply_size[type[k]];
+    }
+    unsigned char rec[MAX_PROPS * 8];
+    for (size_t i = 0; i < total; ++i) {
+        if (fread(rec, 1, (size_t)record, f) != (size_t)record) return 0;
+        for (int c = 0; c < 3; ++c) {
+            const double v = ply_binary_value(rec + offset[at[c]], type[at[c]], format == 2);
+            if (!isfinite(v)) return 0;
+            xyz[3 * i + c] = v;
+        }
+    }
+    return 1;
 }
 
 /* ---- OBJ ------------------------------------------------------------------ */
@@ -346,7 +469,8 @@ px_status pxi_io_exact_positions(const char *path, const pxi_file_id *id, const 
     if (format == FORMAT_NONE) return PX_OK;
     size_t total = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) total += scene->mMeshes[i]->mNumVertices;
-    if (total == 0 || (format == FORMAT_OFF && scene->mNumMeshes != 1)) return PX_OK;
+    if (total == 0 || ((format == FORMAT_OFF || format == FORMAT_PLY) && scene->mNumMeshes != 1))
+        return PX_OK;
 
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) return PX_OK;
@@ -380,6 +504,7 @@ px_status pxi_io_exact_positions(const char *path, const pxi_file_id *id, const 
         locale_t caller = uselocale(c_locale);
         ok = format == FORMAT_OFF   ? read_off(f, line, out, total)
              : format == FORMAT_STL ? read_stl(f, line, out, total)
+             : format == FORMAT_PLY ? read_ply(f, line, out, total)
                                     : read_obj(f, (size_t)st.st_size, scene, alloc, out);
         uselocale(caller);
         freelocale(c_locale);

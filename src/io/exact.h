@@ -11,7 +11,7 @@
 /* Reads the positions of the file at `path` (the one the precheck found as
  * `id`) again, in doubles, in the order of Assimp's scene: the vertices of
  * scene->mMeshes[0], then [1], ... On PX_OK, `*xyz` is either NULL (the
- * file is not plain OFF, ASCII STL or OBJ as exact.c reads them, or its numbers
+ * file is not plain OFF, ASCII STL, OBJ or PLY as exact.c reads them, or its numbers
  * disagree with Assimp's floats: keep those) or 3 * (the scene's vertex
  * count) doubles, pxi_alloc'ed, to free with pxi_free(alloc, *xyz,
  * *count * 3 * sizeof(double)). PX_ERR_OUT_OF_MEMORY otherwise. */

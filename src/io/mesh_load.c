@@ -32,7 +32,7 @@
  * moves as one body, so it is one part; a mesh that two nodes reference is
  * two parts.
  *
- * Coordinates: Assimp's floats, or, for plain OFF, ASCII STL and OBJ, the same
+ * Coordinates: Assimp's floats, or, for plain OFF, ASCII STL, OBJ and PLY, the same
  * vertices read again at full precision by exact.c.
  *
  * The node tree is walked iteratively (BAD_INPUTS item 29: explicit stack,

@@ -27,7 +27,7 @@ extern "C" {
 #endif
 
 #define PX_VERSION_MAJOR 0
-#define PX_VERSION_MINOR 2
+#define PX_VERSION_MINOR 3
 #define PX_VERSION_PATCH 0
 /// The version the headers describe, as one number (major, minor and patch
 /// in 8 bits each). Compare it with `px_version()` to detect a header and

@@ -20,6 +20,13 @@ const char *px_status_string(px_status status) {
 #define PXI_STR2(x) #x
 #define PXI_STR(x) PXI_STR2(x)
 
+/* The header's version is the project's (CMakeLists.txt: the soname,
+ * pkg-config and the CMake package config take theirs from it); 0.3.0
+ * shipped with 0.2.0 in base.h, which px_version() could not catch. */
+#ifdef PXI_PROJECT_VERSION
+_Static_assert(PX_VERSION == (PXI_PROJECT_VERSION), "PX_VERSION_* in base.h differ from project(VERSION)");
+#endif
+
 uint32_t px_version(void) { return PX_VERSION; }
 
 const char *px_version_string(void) {

@@ -93,8 +93,18 @@ typedef struct sbody {
     double fat[6]; /* the fat box in the sweep: lo xyz, hi xyz */
     uint32_t group, mask, flags;
     uint32_t first_pair; /* head of its list of pairs */
+    uint32_t first_excl; /* head of its list of exclusions (sexcl) */
+    uint32_t dirty_at;   /* its place in `dirty` while dirty */
     void *user;
 } sbody;
+
+/* One body's side of an excluded pair: the other body, the next record of
+ * the body's list (the removal of a body drops its exclusions without a
+ * walk over the table: review s29 measured 274 us a removal with 20,000
+ * exclusions). */
+typedef struct sexcl {
+    uint32_t other, next;
+} sexcl;
 
 typedef struct spair {
     uint32_t a, b;
@@ -167,6 +177,8 @@ struct px_scene {
     spair *pair;
     uint32_t n_pair, cap_pair, free_pair, live_pairs;
     shash pairs, excluded;
+    sexcl *excl; /* records of both sides of every exclusion; free ones chained by next */
+    uint32_t n_excl, cap_excl, free_excl;
     shent *heap;
     uint32_t cap_heap, n_heap;
     snear *near;
@@ -1602,6 +1614,7 @@ px_scene *px_scene_create(const px_scene_options *options, px_error *err) {
     s->model_cache_bytes = o.model_cache_bytes ? o.model_cache_bytes : (size_t)256 << 10;
     s->time = -INFINITY;
     s->free_pair = S_NONE;
+    s->free_excl = S_NONE;
     s->bytes = sizeof *s;
     if (o.threads > 1) {
         s->pool = pool_create(s, o.threads);
@@ -1629,6 +1642,7 @@ void px_scene_destroy(px_scene *s) {
     pxi_free(&a, s->pair, (size_t)s->cap_pair * sizeof *s->pair);
     hash_free(s, &s->pairs);
     hash_free(s, &s->excluded);
+    pxi_free(&a, s->excl, (size_t)s->cap_excl * sizeof *s->excl);
     pxi_free(&a, s->heap, (size_t)s->cap_heap * sizeof *s->heap);
     pxi_free(&a, s->near, (size_t)s->cap_near * sizeof *s->near);
     pxi_free(&a, s->slot, (size_t)s->cap_slot * sizeof *s->slot);
@@ -1770,6 +1784,7 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
     b->mask = d->mask ? d->mask : UINT32_MAX;
     b->flags = d->flags;
     b->first_pair = S_NONE;
+    b->first_excl = S_NONE;
     b->user = d->user;
     b->alive = 1;
     b->added = 1;
@@ -1799,15 +1814,28 @@ px_status px_scene_remove_body(px_scene *s, uint32_t id, px_error *err) {
         s->added--;
     if (b->chain) s->chains--;
     /* Exclusions name ids, which will be reused. */
-    for (uint32_t i = 0; i < s->excluded.cap;) {
-        uint64_t k = s->excluded.key[i];
-        if (s->excluded.val[i] != S_NONE && ((uint32_t)(k >> 32) == id || (uint32_t)k == id))
-            hash_del(&s->excluded, k); /* the slot may now hold a shifted entry: test it again */
-        else
-            ++i;
+    for (uint32_t r = b->first_excl; r != S_NONE;) {
+        const uint32_t o = s->excl[r].other, next = s->excl[r].next;
+        hash_del(&s->excluded, pair_key(id, o));
+        for (uint32_t *at = &s->body[o].first_excl; *at != S_NONE; at = &s->excl[*at].next)
+            if (s->excl[*at].other == id) {
+                const uint32_t q = *at;
+                *at = s->excl[q].next;
+                s->excl[q].next = s->free_excl;
+                s->free_excl = q;
+                break;
+            }
+        s->excl[r].next = s->free_excl;
+        s->free_excl = r;
+        r = next;
     }
-    for (uint32_t i = 0; i < s->n_dirty; ++i)
-        if (s->dirty[i] == id) s->dirty[i--] = s->dirty[--s->n_dirty];
+    b->first_excl = S_NONE;
+    if (b->dirty) {
+        const uint32_t last = s->dirty[--s->n_dirty];
+        s->dirty[b->dirty_at] = last;
+        s->body[last].dirty_at = b->dirty_at;
+        b->dirty = 0;
+    }
     b->alive = 0;
     s->alive--;
     if (id < s->free_hint) s->free_hint = id;
@@ -1821,8 +1849,32 @@ px_status px_scene_exclude_pair(px_scene *s, uint32_t a, uint32_t b, px_error *e
     if (!body_ok(s, a) || !body_ok(s, b) || a == b)
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                          "px_scene_exclude_pair: bodies %u and %u are not two bodies of the scene", a, b);
-    if (!hash_put(s, &s->excluded, pair_key(a, b), 0))
-        return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_exclude_pair: out of memory");
+    if (hash_get(&s->excluded, pair_key(a, b)) == S_NONE) {
+        /* Two records (from the free list, or new), then the table entry. */
+        uint32_t r[2];
+        for (int k = 0; k < 2; ++k) {
+            if (s->free_excl != S_NONE) {
+                r[k] = s->free_excl;
+                s->free_excl = s->excl[r[k]].next;
+            } else if (GROW(s, s->excl, s->cap_excl, s->n_excl + 1)) {
+                r[k] = s->n_excl++;
+            } else {
+                r[k] = S_NONE;
+            }
+        }
+        if (r[0] == S_NONE || r[1] == S_NONE || !hash_put(s, &s->excluded, pair_key(a, b), 0)) {
+            for (int k = 0; k < 2; ++k)
+                if (r[k] != S_NONE) {
+                    s->excl[r[k]].next = s->free_excl;
+                    s->free_excl = r[k];
+                }
+            return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_exclude_pair: out of memory");
+        }
+        s->excl[r[0]] = (sexcl){b, s->body[a].first_excl};
+        s->body[a].first_excl = r[0];
+        s->excl[r[1]] = (sexcl){a, s->body[b].first_excl};
+        s->body[b].first_excl = r[1];
+    }
     uint32_t p = hash_get(&s->pairs, pair_key(a, b));
     if (p != S_NONE) free_pair(s, p, 1);
     return PX_OK;
@@ -1832,6 +1884,7 @@ static px_status mark_dirty(px_scene *s, uint32_t id) {
     sbody *b = &s->body[id];
     if (!b->dirty) {
         b->dirty = 1;
+        b->dirty_at = s->n_dirty;
         s->dirty[s->n_dirty++] = id; /* capacity: one per body */
     }
     return PX_OK;
@@ -2009,9 +2062,13 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
     }
     if (s->resync && rebuild(s)) s->resync = 0;
     settle_doomed(s);
-    if (s->resync) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
+    /* The moved bodies were measured against `time`: it is the step's now,
+     * also when the sweep failed (else the next step would measure its
+     * motion against the same interval again, and pairs keyed from the
+     * bounds would come due too late: review s29). */
     s->time = time;
     s->stepped = 1;
+    if (s->resync) return pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_scene_step: out of memory");
     /* Due pairs. */
     s->n_rep = 0;
     s->n_later = 0;

@@ -71,7 +71,7 @@ typedef struct sbody {
     double accel;         /* amax + alphamax * radius: bound on a point's acceleration (0: none) */
     double s_now, s_prev; /* |v| + |w| radius given for this step and for the last one */
     double size;          /* half-diagonal of the body-frame box */
-    uint8_t alive, dirty, added, vel_now, chain;
+    uint8_t alive, dirty, added, vel_now, chain, fitted;
     double fit_travel; /* travel when the fat box was last checked */
     double fit_room;   /* how far the body could then move and stay in it */
     const px_model *model;
@@ -86,15 +86,14 @@ typedef struct sbody {
     px_vec3 ic; /* a polytope's inner ball (inner_center + origin, body frame; ir 0: none),
                  * copied here so that inner_overlap reads no polytope memory */
     double ir;
-    double vmax, wmax;  /* speed bounds */
-    double sk, sk_last; /* skews (how far from rotations) of pose and last */
-    double reach;       /* |sc| + 3 sr: bounds |body-frame point - origin| (frame_pad) */
-    int fitted;
-    double fat[6]; /* the fat box in the sweep: lo xyz, hi xyz */
-    uint32_t group, mask, flags;
-    uint32_t first_pair; /* head of its list of pairs */
+    double vmax, wmax;   /* speed bounds */
+    double sk, sk_last;  /* skews (how far from rotations) of pose and last */
+    double reach;        /* |sc| + 3 sr: bounds |body-frame point - origin| (frame_pad) */
     uint32_t first_excl; /* head of its list of exclusions (sexcl) */
     uint32_t dirty_at;   /* its place in `dirty` while dirty */
+    double fat[6];       /* the fat box in the sweep: lo xyz, hi xyz */
+    uint32_t group, mask, flags;
+    uint32_t first_pair; /* head of its list of pairs */
     void *user;
 } sbody;
 

@@ -29,8 +29,12 @@
 /// which holds it to within rounding, and the queries answer it from
 /// support functions alone (docs/methods.md).
 /// Points exactly collinear or coplanar count as such however they were
-/// produced; points one ulp off a plane make a solid (a very thin one, see
-/// PX_ERR_DEGENERATE below).
+/// produced; points one ulp off a plane make a solid (a very thin one),
+/// unless double precision cannot hold its planes: then points within 64
+/// ulps of their coordinates' magnitude of one plane make the polygon of
+/// their hull in that plane (a plate turned into place), of one line the
+/// segment between the extreme two, of one point that point (see
+/// PX_ERR_DEGENERATE below). The corners kept are input points.
 /// Accessors: every accessor that takes an index returns PX_OK, or
 /// PX_ERR_INVALID_ARGUMENT with its outputs zeroed when the polytope or an
 /// output is NULL or the index is out of range. Counts of a NULL polytope
@@ -78,7 +82,9 @@ typedef struct px_convex_options {
 ///   the points' extent (per coordinate, on a grid) are welded and the
 ///   hull is tried once more: near-duplicates a few ulps apart (cut points
 ///   computed twice, scans) make tiny faces whose normals are noise. The
-///   hull then differs from the exact one by at most that distance;
+///   hull then differs from the exact one by at most that distance. Points
+///   that flat (above) are taken as a polygon, segment or point instead,
+///   within 64 ulps of the exact hull;
 /// - PX_ERR_OUT_OF_MEMORY.
 /// On success `err->code` is PX_OK. `options` may be NULL.
 PX_API px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,

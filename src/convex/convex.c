@@ -554,6 +554,128 @@ static void hull_release(pxcd_hull *h, const tri_hull *local) {
     if (h != &local->h) pxcd_hull_free(h);
 }
 
+/* A polygon for points that are flat to within rounding but that CGAL's
+ * exact predicates call a solid: a plate whose corners were turned into
+ * place (a unit square under a random rotation is off its plane by ~1e-16,
+ * and 63 % of them were refused as too thin for double precision, review
+ * s29). The plane: a, the point b farthest from it, the point c farthest
+ * from the line ab. Taken when every point is within 64 ulps of the
+ * coordinates' magnitude of it (the rounding of a turn, and below the
+ * queries' contact band); the hull is then the 2D hull of the points'
+ * coordinates in the plane (CGAL, exact on those), its corners the input
+ * points themselves. Likewise points within that of the line ab (a rod
+ * turned into place: 977 of 1000 five-point ones were refused) make the
+ * segment between the two extreme ones along it, and points within that
+ * of a make a point. */
+typedef struct flat_hull {
+    pxcd_hull h;
+    int dim;
+    size_t n, offsets[3];
+    double *v;     /* 3 n */
+    uint32_t *ids; /* 2 n: the ring, then the ring reversed */
+} flat_hull;
+
+static void flat_hull_free(flat_hull *f, const px_allocator *alloc) {
+    pxi_free(alloc, f->v, f->n * 3 * sizeof *f->v);
+    pxi_free(alloc, f->ids, f->n * 2 * sizeof *f->ids);
+    f->v = NULL, f->ids = NULL, f->n = 0;
+}
+
+/* 1: f holds the polygon; 0: the points are not that flat (or no plane);
+ * -1: out of memory. */
+static int flat_hull_build(const double *xyz, size_t count, const px_allocator *alloc, flat_hull *f) {
+    memset(f, 0, sizeof *f);
+#define P(i) pxi_v(xyz[3 * (i)], xyz[3 * (i) + 1], xyz[3 * (i) + 2])
+    const px_vec3 a = P(0);
+    size_t ib = 0, ic = 0;
+    double best = 0.0;
+    for (size_t i = 1; i < count; ++i) {
+        double d = pxi_len2(pxi_sub(P(i), a));
+        if (d > best) best = d, ib = i;
+    }
+    const px_vec3 ab = pxi_sub(P(ib), a);
+    best = 0.0;
+    for (size_t i = 1; i < count; ++i) {
+        double d = pxi_len2(pxi_cross(pxi_sub(P(i), a), ab));
+        if (d > best) best = d, ic = i;
+    }
+    px_vec3 n = pxi_cross(ab, pxi_sub(P(ic), a));
+    const double ln = pxi_len(n), lab = pxi_len(ab);
+    double mag = lab;
+    for (size_t i = 0; i < count; ++i) mag = pxi_max2(mag, pxi_max_abs(P(i)));
+    const double tol = 64.0 * DBL_EPSILON * mag;
+    if (!isfinite(ln) || !isfinite(lab) || !(tol < INFINITY)) return 0;
+    if (!(lab > tol) || !(ln / lab > tol)) {
+        /* A point, or a segment between the extremes along ab. */
+        size_t lo = 0, hi = 0;
+        double tlo = 0.0, thi = 0.0;
+        for (size_t i = 0; lab > 0.0 && i < count; ++i) {
+            const double t = pxi_dot(ab, pxi_sub(P(i), a));
+            if (t < tlo) tlo = t, lo = i;
+            if (t > thi) thi = t, hi = i;
+        }
+        for (size_t i = 0; lab > tol && i < count; ++i)
+            if (!(pxi_len(pxi_cross(pxi_sub(P(i), a), ab)) / lab <= tol)) return 0;
+        f->dim = lab > tol ? 1 : 0;
+        f->n = (size_t)f->dim + 1;
+        f->v = pxi_alloc_array(alloc, f->n, 3 * sizeof *f->v);
+        f->ids = f->v ? pxi_alloc_array(alloc, f->n, 2 * sizeof *f->ids) : NULL;
+        if (!f->ids) {
+            flat_hull_free(f, alloc);
+            return -1;
+        }
+        memcpy(f->v, xyz + 3 * (f->dim ? lo : 0), 3 * sizeof *f->v);
+        if (f->dim) memcpy(f->v + 3, xyz + 3 * hi, 3 * sizeof *f->v);
+        f->offsets[0] = 0;
+        f->h = (pxcd_hull){f->n, f->v, 0, f->offsets, f->ids};
+        return 1;
+    }
+    n = pxi_scale(n, 1.0 / ln);
+    const px_vec3 u = pxi_scale(ab, 1.0 / lab), w = pxi_cross(n, u);
+    double off = 0.0;
+    for (size_t i = 0; i < count; ++i) off = pxi_max2(off, fabs(pxi_dot(n, pxi_sub(P(i), a))));
+    if (!(off <= tol)) return 0;
+    double *q = pxi_alloc_array(alloc, count, 3 * sizeof *q);
+    if (!q) return -1;
+    for (size_t i = 0; i < count; ++i) {
+        const px_vec3 d = pxi_sub(P(i), a);
+        q[3 * i] = pxi_dot(u, d), q[3 * i + 1] = pxi_dot(w, d), q[3 * i + 2] = 0.0;
+    }
+    pxcd_hull *h = NULL;
+    int dim = 0, r = 0;
+    const pxcd_status hs = pxcd_hull_compute(q, count, &h, &dim, NULL, 0);
+    if (hs == PXCD_OUT_OF_MEMORY) r = -1;
+    if (hs == PXCD_OK && h && dim == 2 && h->face_count == 2 && h->face_offsets[1] == h->vertex_count &&
+        h->face_offsets[2] == 2 * h->vertex_count) {
+        f->n = h->vertex_count;
+        f->v = pxi_alloc_array(alloc, f->n, 3 * sizeof *f->v);
+        f->ids = f->v ? pxi_alloc_array(alloc, f->n, 2 * sizeof *f->ids) : NULL;
+        r = f->ids ? 1 : -1;
+        /* Each corner back to an input point with its plane coordinates. */
+        for (size_t k = 0; r == 1 && k < f->n; ++k) {
+            size_t i = 0;
+            while (i < count && !(q[3 * i] == h->vertices[3 * k] && q[3 * i + 1] == h->vertices[3 * k + 1]))
+                ++i;
+            if (i == count)
+                r = 0;
+            else
+                memcpy(f->v + 3 * k, xyz + 3 * i, 3 * sizeof *f->v);
+        }
+        if (r == 1) {
+            f->dim = 2;
+            memcpy(f->ids, h->face_indices, f->n * 2 * sizeof *f->ids);
+            f->offsets[0] = 0, f->offsets[1] = f->n, f->offsets[2] = 2 * f->n;
+            f->h = (pxcd_hull){f->n, f->v, 2, f->offsets, f->ids};
+        } else {
+            flat_hull_free(f, alloc);
+        }
+    }
+    pxcd_hull_free(h);
+    pxi_free(alloc, q, count * 3 * sizeof *q);
+    return r;
+#undef P
+}
+
 px_convex *px_convex_create(const double *xyz, size_t count, const px_convex_options *options,
                             px_error *err) {
     return convex_create(xyz, count, options, 1, err);
@@ -663,9 +785,31 @@ static px_convex *convex_create(const double *xyz, size_t count, const px_convex
             }
             pxi_free(&alloc, kept, count * 3 * sizeof *kept);
         }
-        st = pxi_error(err, PX_ERR_DEGENERATE,
-                       "px_convex_create: the hull is %s but too thin for double precision (%s)",
-                       what[c->dim <= 3 ? c->dim : 3], why.message);
+        flat_hull fh;
+        const int flat = c->dim >= 2 ? flat_hull_build(xyz, count, &alloc, &fh) : 0;
+        px_convex *p = flat > 0 ? pxi_alloc(&alloc, sizeof *p) : NULL;
+        const int oom = flat < 0 || (flat > 0 && !p);
+        if (p) {
+            memset(p, 0, sizeof *p);
+            p->uid = pxi_next_uid();
+            p->alloc = alloc;
+            p->bytes = sizeof *p;
+            if ((uint32_t)fh.dim < c->dim && build_from_hull(p, &fh.h, fh.dim, NULL) == PX_OK &&
+                validate_local(p, NULL) == PX_OK) {
+                px_convex_destroy(c);
+                c = p;
+            } else {
+                px_convex_destroy(p);
+                p = NULL;
+            }
+        }
+        if (flat > 0) flat_hull_free(&fh, &alloc);
+        if (oom)
+            st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "px_convex_create: out of memory");
+        else if (!p)
+            st = pxi_error(err, PX_ERR_DEGENERATE,
+                           "px_convex_create: the hull is %s but too thin for double precision (%s)",
+                           what[c->dim <= 3 ? c->dim : 3], why.message);
     }
     if (st == PX_OK) {
         uint32_t res =

@@ -157,6 +157,12 @@ if [ -n "$A" ]; then
   expect 0 "found: +nothing" -- "$B" check "$T/stl" --clearance 0.25 $IGN
   expect 0 "closest: +0.5 between e_gap.stl and f_gap.stl" -- "$B" check "$T/stl" --clearance 0.25 $IGN
   expect 1 "found: +1 pairs" -- "$B" check "$T/stl" --clearance 0.75 $IGN
+  # Decimal numbers only (review s29: 0x10 ran as 16, -0 printed as -0).
+  expect 2 "finite number >= 0, not '0x10'" -- "$B" check "$T/stl" --clearance 0x10
+  expect 2 "finite number >= 0, not 'inf'" -- "$B" check "$T/stl" --clearance inf
+  expect 1 "closer than 0$" -- "$B" check "$T/stl" --clearance -0
+  expect 2 "positive number, not '0x1p-1'" -- "$B" check "$T/stl" --scale 0x1p-1
+  expect 2 "bad pose" -- "$B" distance "$T/l3.pxm" "$T/l3.pxm" --pose-b 0x1,0,0
   expect 2 "not two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl,nope.stl
   expect 2 "two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl
   # A part of lines only is skipped, and --ignore may still name it.

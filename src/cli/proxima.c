@@ -93,15 +93,43 @@ typedef struct opts {
     int nignore;
 } opts;
 
+/* A decimal number only: [+-] (digits [. digits] | . digits) [e [+-] digits],
+ * none of strtod's hexadecimal, infinities or NaNs (review s29: --clearance
+ * 0x10 ran with 16). Returns where it stopped, or NULL. */
+static const char *decimal(const char *s, double *out) {
+    const char *p = s + (*s == '+' || *s == '-');
+    int digits = 0;
+    while (*p >= '0' && *p <= '9') ++p, ++digits;
+    if (*p == '.')
+        for (++p; *p >= '0' && *p <= '9'; ++p) ++digits;
+    if (!digits) return NULL;
+    if (*p == 'e' || *p == 'E') {
+        const char *q = p + 1 + (p[1] == '+' || p[1] == '-');
+        if (!(*q >= '0' && *q <= '9')) return NULL;
+        while (*q >= '0' && *q <= '9') ++q;
+        p = q;
+    }
+    char *end;
+    errno = 0;
+    *out = strtod(s, &end);
+    if (end != p) return NULL;
+    *out += 0.0; /* -0 is 0 */
+    return p;
+}
+
+/* A whole argument that is a decimal number. */
+static int decimal_arg(const char *s, double *out) {
+    const char *end = decimal(s, out);
+    return end && !*end;
+}
+
 static int parse_pose(const char *s, px_pose *out) {
     double v[7];
     int n = 0;
     const char *p = s;
     while (n < 7) {
-        char *end;
-        errno = 0;
-        v[n] = strtod(p, &end);
-        if (end == p || errno) return 0;
+        const char *end = decimal(p, &v[n]);
+        if (!end || errno || !isfinite(v[n])) return 0;
         ++n;
         p = end;
         if (*p == '\0') break;
@@ -146,21 +174,16 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             o->threads = (unsigned)t;
         } else if (!strcmp(a, "--tolerance")) {
             if (!has_value) return usage_error("%s needs a number", a);
-            char *end;
             const char *v = argv[++i];
-            errno = 0;
-            o->tolerance = strtod(v, &end);
-            if (end == v || *end || (errno == ERANGE && (isinf(o->tolerance) || o->tolerance == 0.0)) ||
+            if (!decimal_arg(v, &o->tolerance) ||
+                (errno == ERANGE && (isinf(o->tolerance) || o->tolerance == 0.0)) ||
                 !(o->tolerance >= PX_MODEL_MIN_TOLERANCE && o->tolerance <= 1.0))
                 return usage_error("--tolerance takes a number in [%g, 1], not '%s'", PX_MODEL_MIN_TOLERANCE,
                                    v);
         } else if (!strcmp(a, "--scale")) {
             if (!has_value) return usage_error("%s needs a number", a);
-            char *end;
             const char *v = argv[++i];
-            errno = 0;
-            o->scale = strtod(v, &end);
-            if (end == v || *end || (errno == ERANGE && (isinf(o->scale) || o->scale == 0.0)) ||
+            if (!decimal_arg(v, &o->scale) || (errno == ERANGE && (isinf(o->scale) || o->scale == 0.0)) ||
                 !isfinite(o->scale) || !(o->scale > 0.0))
                 return usage_error("--scale takes a positive number, not '%s'", v);
         } else if (!strcmp(a, "--pose-a") || !strcmp(a, "--pose-b")) {
@@ -172,13 +195,11 @@ static int parse(int argc, char **argv, int first, opts *o, const char **ignore)
             o->has_pose = 1;
         } else if (!strcmp(a, "--clearance")) {
             if (!has_value) return usage_error("%s needs a number", a);
-            char *end;
             const char *v = argv[++i];
-            errno = 0;
-            o->clearance = strtod(v, &end);
-            if (end != v && !*end && errno == ERANGE && (isinf(o->clearance) || o->clearance == 0.0))
+            const int number = decimal_arg(v, &o->clearance);
+            if (number && errno == ERANGE && (isinf(o->clearance) || o->clearance == 0.0))
                 return usage_error("--clearance '%s' is beyond the range of doubles", v);
-            if (end == v || *end || !isfinite(o->clearance) || !(o->clearance >= 0.0))
+            if (!number || !isfinite(o->clearance) || !(o->clearance >= 0.0))
                 return usage_error("--clearance takes a finite number >= 0, not '%s'", v);
             o->has_clearance = 1;
         } else if (!strcmp(a, "--json")) {

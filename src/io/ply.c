@@ -611,9 +611,9 @@ static px_status ply_sizes(ply_state *s, int binary, u64 body, px_error *err) {
             char noun[64];
             elem_noun(e, noun, sizeof noun);
             return pxi_error(err, PX_ERR_IO,
-                             "mesh file '%s' declares %llu %s but has only %llu bytes (PLY %s: at least %llu "
-                             "needed after the header)",
-                             h->path, e->declared, noun, h->size, binary ? "binary" : "ascii", need);
+                             "mesh file '%s' declares %llu %s but has only %llu bytes after its header (PLY %s: "
+                             "at least %llu needed)",
+                             h->path, e->declared, noun, avail, binary ? "binary" : "ascii", need);
         }
     }
     if (total > PX_IO_MAX_ELEMENTS)

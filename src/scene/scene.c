@@ -34,6 +34,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdatomic.h>
+#include <stdio.h>
 #include <string.h>
 #include <threads.h>
 #include <time.h>
@@ -1666,12 +1667,14 @@ int pxi_scene_body_movable(const px_scene *s, uint32_t id) {
 
 /* The pose's translation must stay where differences of coordinates are
  * exact enough and finite (the queries' range). */
-static px_status check_pose(const px_pose *pose, const char *fn, px_error *err) {
-    if (!pose) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "%s: pose is NULL", fn);
-    px_status st = px_pose_check(pose, err);
-    if (st != PX_OK) return st;
+/* `what` names the call and the body ("px_scene_set_pose: body 3"). */
+static px_status check_pose(const px_pose *pose, const char *what, px_error *err) {
+    if (!pose) return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "%s: pose is NULL", what);
+    px_error why;
+    px_status st = px_pose_check(pose, &why);
+    if (st != PX_OK) return pxi_error(err, st, "%s: %s", what, why.message);
     if (!(pxi_max_abs(pose->t) <= 0x1p250))
-        return pxi_error(err, PX_ERR_RANGE, "%s: the pose's translation is beyond 2^250", fn);
+        return pxi_error(err, PX_ERR_RANGE, "%s: the pose's translation is beyond 2^250", what);
     return PX_OK;
 }
 
@@ -1903,7 +1906,9 @@ px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_er
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_pose: body %u is static", id);
     double sk;
     if (!pose || !pose_fast(pose, &sk)) {
-        px_status st = check_pose(pose, "px_scene_set_pose", err);
+        char what[48];
+        snprintf(what, sizeof what, "px_scene_set_pose: body %u", id);
+        px_status st = check_pose(pose, what, err);
         /* Not reached: pose_fast refuses only what check_pose refuses. */
         if (st == PX_OK) st = pxi_error(err, PX_ERR_INTERNAL, "px_scene_set_pose: pose test mismatch");
         return st;

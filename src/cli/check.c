@@ -941,22 +941,23 @@ static void print_table(const assembly *as, const check_opts *o, const findings 
     }
 }
 
-/* Names the open parts (up to 8): a part inside one of them is not found,
- * and a flaw of the mesh (a hole, an edge of three triangles, a flipped,
+/* Names the open parts (up to 8): a part inside one of them is not found
+ * (with one hull per part, the hull is a solid and it is), and a flaw of
+ * the mesh (a hole, an edge of three triangles, a T-junction, a flipped,
  * repeated or zero-area triangle) is the usual reason a part meant as a
  * solid is open. */
-static void note_open_parts(const assembly *as) {
+static void note_open_parts(const assembly *as, const check_opts *o) {
     if (as->count < 2) return;
     uint32_t open = 0;
     for (uint32_t i = 0; i < as->count; ++i) {
         if (as->parts[i].closed) continue;
         if (open++ >= 8) continue;
         char *e = escaped(as->parts[i].name);
-        note("note: part '%s' is not a closed surface (a hole, an edge of three or more triangles, or a "
-             "flipped, repeated or zero-area triangle): it is checked as a surface, and a part inside it is "
-             "not "
-             "found",
-             e ? e : as->parts[i].name);
+        note("note: part '%s' is not a closed surface (a hole, an edge of three or more triangles, a "
+             "T-junction, or a flipped, repeated or zero-area triangle): %s",
+             e ? e : as->parts[i].name,
+             o->pieces == PX_PIECES_PARTS ? "its hull, a solid, is checked"
+                                          : "it is checked as a surface, and a part inside it is not found");
         free(e);
     }
     if (open > 8) note("note: and %u more open parts", open - 8);
@@ -977,7 +978,7 @@ int check_run(const check_opts *o) {
     findings fs = {NULL, 0};
     px_scene *scene = NULL;
     if (!(as.folder ? load_folder(&as, o) : load_file(&as, o))) goto done;
-    note_open_parts(&as);
+    note_open_parts(&as, o);
     nig = resolve_ignores(&as, o, &ig);
     if (nig < 0) goto done;
 

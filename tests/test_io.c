@@ -12,6 +12,7 @@
  * and the file's name in the message, under a 2 GiB address-space limit. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <ctype.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -536,6 +537,14 @@ static void test_stl_files(void) {
     char bom[1024];
     snprintf(bom, sizeof bom, "\xEF\xBB\xBF%s", ascii);
     expect_tetrahedron(write_file("tet_ascii_bom.stl", bom));
+    /* Keywords in upper case: Assimp 5.2 reads them in lower case only
+     * (review s29: the message spoke of a binary STL of 1163153989
+     * triangles). A binary STL whose header says "SolidWorks" still loads. */
+    char upper[1024];
+    for (size_t i = 0; i <= strlen(ascii); ++i) upper[i] = (char)toupper((unsigned char)ascii[i]);
+    expect_refused(write_file("tet_upper.stl", upper), "keywords not in lower case");
+    len = make_stl(buf, "SolidWorks export", 4, 4, 0);
+    expect_tetrahedron(write_bytes("tet_solidworks.stl", buf, len));
 
     /* Truncated: 4 triangles declared, 3 written; also cut inside the header. */
     len = make_stl(buf, "binary", 4, 3, 0);

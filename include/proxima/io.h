@@ -9,9 +9,9 @@
 /// convex polytope: the convex hull of every vertex of every mesh in the
 /// file (`px_convex_create_from_file`).
 /// Positions pass through Assimp as 32-bit floats (about 7 significant
-/// digits), except that `px_mesh_load` reads plain OFF and ASCII STL
-/// coordinates again at full precision; do not route precision-critical
-/// geometry through other files.
+/// digits), except that `px_mesh_load` reads plain OFF, ASCII STL, OBJ and
+/// PLY-of-doubles coordinates again at full precision (docs/io.md says
+/// when); do not route precision-critical geometry through other files.
 ///
 /// Frames and units: the node tree of the file is applied, so vertices are in
 /// the file's root ("scene") frame. No unit conversion is made by proxima:
@@ -81,7 +81,8 @@
 ///   count, more faces of 10 or more vertices (which Assimp drops) than the
 ///   declared face count, and a UTF-16 byte-order mark;
 /// - ASCII STL (text starting with `solid`): the solids are read as Assimp
-///   reads them; refused, with the line, are a facet without `normal`, a
+///   reads them; refused: keywords in upper case (`SOLID`: Assimp reads
+///   lower case only) and, with the line, a facet without `normal`, a
 ///   normal or vertex without three numbers on its line, a vertex before
 ///   any facet or a fourth one in a facet (Assimp drops it), a facet of
 ///   fewer than three vertices, a number with more than 19 digits before

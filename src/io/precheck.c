@@ -369,13 +369,22 @@ static u64 read_u32le(const unsigned char *b) {
  * UTF-8 byte-order mark), and no control byte other than blank space in the
  * first 512 bytes. A binary STL's header may also start with "solid", but its
  * triangle count and coordinates hold NUL and control bytes. */
-static int stl_is_ascii(const io_head *h) {
+/* Whether the file's first 512 bytes are text that starts (after blank
+ * space) with `solid` in lower case (ascii 1) or in another case (ascii 2:
+ * Assimp 5.2 compares case-sensitively and reads "SOLID" as binary). */
+static int stl_text_kind(const io_head *h) {
     size_t p = has_utf8_bom(h) ? 3 : 0;
     for (size_t i = p; i < h->len && i < 512; ++i)
         if (h->data[i] < ' ' && !(h->data[i] >= '\t' && h->data[i] <= '\r')) return 0;
     while (p < h->len && (h->data[p] == ' ' || (h->data[p] >= '\t' && h->data[p] <= '\r'))) ++p;
-    return h->len - p >= 5 && memcmp(h->data + p, "solid", 5) == 0;
+    if (h->len - p < 5) return 0;
+    if (memcmp(h->data + p, "solid", 5) == 0) return 1;
+    for (int k = 0; k < 5; ++k)
+        if (pxi_lower(h->data[p + k]) != "solid"[k]) return 0;
+    return 2;
 }
+
+static int stl_is_ascii(const io_head *h) { return stl_text_kind(h) == 1; }
 
 /* STL. Assimp reads a file as binary when (84 + 50 n) mod 2^32 equals its
  * size mod 2^32, n being the 32-bit count at byte 80 of its buffer (which
@@ -408,6 +417,13 @@ static px_status check_stl(const io_head *h, int by_extension, px_error *err) {
             return PX_OK;
         }
     }
+    /* Text whose `solid` is not in lower case (and that is no binary STL
+     * of the right size): Assimp 5.2 would not read it as ASCII. */
+    if (stl_text_kind(h) == 2)
+        return pxi_error(err, PX_ERR_IO,
+                         "mesh file '%s': an ASCII STL with keywords not in lower case ('SOLID', 'FACET'): "
+                         "Assimp 5.2 reads them in lower case only; write them so",
+                         h->path);
     if (!by_extension || stl_is_ascii(h)) {
         /* Text Assimp reads as ASCII STL: `solid` after spaces and tabs. */
         size_t p = skip;

@@ -32,11 +32,13 @@
 //      a bounding-volume hierarchy (ours, see Bvh); the max is the estimate.
 //   3. A piece above tolerance is cut by the best of 3 x kOffsets
 //      axis-aligned planes across its box (score: max of the two halves'
-//      concavities, sampled coarsely, with branch and bound), refined by a
-//      few halving steps on the offset; each half is split into connected
-//      components and goes back on the worklist. A piece is kept as is when
-//      it is small (box diagonal <= tolerance, which bounds its concavity),
-//      at depth kMaxDepth, when no plane separates it, or at max_pieces.
+//      concavities, sampled coarsely, with branch and bound; scores equal
+//      up to rounding are told apart by the sum, see Candidates), refined
+//      by a few halving steps on the offset; each half is split into
+//      connected components and goes back on the worklist. A piece is kept
+//      as is when it is small (box diagonal <= tolerance, which bounds its
+//      concavity), at depth kMaxDepth, when no plane separates it, or at
+//      max_pieces.
 //   4. Merge pass: pairs whose boxes, grown by the tolerance, overlap are
 //      candidates; cost = concavity of the hull of both pieces measured
 //      against the union of both soups; the cheapest pair within tolerance
@@ -50,6 +52,16 @@
 //   - Planes are axis-aligned, x[a] = c, so the side of a vertex,
 //     x[a] - c, has an exact sign (a rounded difference is zero iff the
 //     operands are equal and otherwise keeps the sign).
+//   - A vertex within ctx.band of the plane (2^-40 of the input's largest
+//     coordinate or diagonal, about 4096 ulps) counts as on it. A mesh
+//     turned by a half-turn (sin(pi) = 1.2e-16) has the corners of a face
+//     that lay in a coordinate plane a few ulps apart; a plane snapped onto
+//     one of them (snap_offset) cut the face into ulp-thin flakes, each
+//     half getting some (the 3D stairs of test_decomp turned so: 3 to 5
+//     pieces at tolerance 0.02 instead of 2). With the band the cut sees
+//     that face in the plane, as before the turn. Vertices keep their
+//     coordinates (a half may reach the band beyond c); the side is still a
+//     function of the vertex alone, so all that follows holds.
 //   - Simulation of simplicity: for the negative half a vertex on the
 //     plane counts as outside (as if the plane were at c - eps), for the
 //     positive half likewise (plane at c + eps). Each half thus sees a plane
@@ -73,10 +85,12 @@
 //     is off by at most that drift. The builder re-certifies h anyway.
 //   - Caps: the section segments, with pairs of identical segments removed
 //     (even-odd), are inserted as constraints into a 2D constrained Delaunay
-//     triangulation (CGAL, exact predicates; crossing constraints from
-//     self-intersecting input get intersection vertices); faces at odd
-//     nesting depth (flood fill across constraints, the CGAL manual's
-//     "polygon_triangulation" example) are the cap.
+//     triangulation (CGAL); faces at odd nesting depth (flood fill across
+//     constraints, the CGAL manual's "polygon_triangulation" example) are
+//     the cap. Only exact points are ever triangulated: Epick with exact
+//     predicates and no constructions, and where segments cross
+//     (self-intersecting or near-degenerate input) Epeck, whose crossing
+//     points become new vertices (see triangulate_cap).
 //
 // Threads: candidate planes (per axis, and per refinement step) and merge
 // pairs are evaluated in batches by up to `threads` threads; each result goes
@@ -92,11 +106,14 @@
 // counts and sums are the same from run to run.
 //
 // Valgrind: unlike hull.cpp there is no exact-kernel fallback here; under
-// valgrind Epick's filters may misbehave (see hull.cpp).
+// valgrind the interval filters of Epick and Epeck may misbehave (see
+// hull.cpp).
 
 #include "pxcd.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
@@ -510,7 +527,10 @@ double concavity(const Hull &hull, const Soup *const *soups, size_t n_soups, siz
     double worst2 = 0;
     for (const Point_3 &q : samples) {
         worst2 = std::max(worst2, bvh.dist2(Vec3{{q.x(), q.y(), q.z()}}, worst2));
-        if (worst2 > bound2) break;
+        // Above bound, even when the square root rounds back onto it: the
+        // callers read "<= bound" as "measured in full" (a cut short at
+        // bound, read so, once chose a cut whose half was at 0.56 > 0.53).
+        if (worst2 > bound2) return std::max(std::sqrt(worst2), std::nextafter(bound, HUGE_VAL));
     }
     return std::sqrt(worst2);
 }
@@ -522,33 +542,60 @@ double concavity_of(const Soup &s, const Hull &h, size_t target, double bound) {
 
 // ---- Cutting ----------------------------------------------------------------
 
+// Caps. The section segments are constraints of a 2D constrained Delaunay
+// triangulation, filled by the even-odd rule. Segments cross only where the
+// input intersects itself or is near-degenerate, and a crossing needs a new
+// point. Epick with Exact_predicates_tag (as we had) rounds that point, and
+// a rounded crossing can make new crossings; CGAL 5.5 snaps such points
+// (CGAL pull request 6602), but nothing proves the insertion ends. (It was
+// the first suspect when the Puma's link6 turned by a half-turn never
+// finished; the time went into the cut cascade Candidates describes, with
+// no crossing in 15 minutes of it.) So the fast triangulation (Epick)
+// refuses crossings (No_constraint_intersection_requiring_constructions_tag
+// throws; a segment through a vertex, or overlapping another, needs no new
+// point and is accepted), and a cap whose segments cross is made again with
+// exact constructions (Epeck, through Constrained_triangulation_plus_2,
+// which computes each crossing from the input segments, not from pieces of
+// them). Each triangulates exact points only, which ends. On the
+// self-intersecting soups of test_decomp about one cap in five goes the
+// exact way.
 struct Face_info {
     int nesting = -1;
 };
-using Cdt_vb = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, K>;
-using Cdt_fbb = CGAL::Triangulation_face_base_with_info_2<Face_info, K>;
-using Cdt_fb = CGAL::Constrained_triangulation_face_base_2<K, Cdt_fbb>;
-using Cdt_tds = CGAL::Triangulation_data_structure_2<Cdt_vb, Cdt_fb>;
-using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Cdt_tds, CGAL::Exact_predicates_tag>;
+struct Vertex_info {
+    uint32_t id = kNone; // kNone: a crossing point (exact triangulation only)
+};
+template <class Gt, class Itag> struct Cdt_of {
+    using Vb = CGAL::Triangulation_vertex_base_with_info_2<Vertex_info, Gt>;
+    using Fbb = CGAL::Triangulation_face_base_with_info_2<Face_info, Gt>;
+    using Fb = CGAL::Constrained_triangulation_face_base_2<Gt, Fbb>;
+    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+    using type = CGAL::Constrained_Delaunay_triangulation_2<Gt, Tds, Itag>;
+};
+using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
+using Cdt_fast = Cdt_of<K, CGAL::No_constraint_intersection_requiring_constructions_tag>::type;
+using Cdt_exact = CGAL::Constrained_triangulation_plus_2<Cdt_of<Epeck, CGAL::Exact_intersections_tag>::type>;
 
 // Nesting depth of every face: flood fill from the infinite face, +1 across
 // each constraint (CGAL manual, 2D triangulations, "polygon_triangulation").
-void mark_nesting(Cdt &cdt) {
-    for (Cdt::Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
-    std::deque<Cdt::Edge> border;
-    auto fill = [&](Cdt::Face_handle start, int level) {
+template <class Cdt> void mark_nesting(Cdt &cdt) {
+    using Face_handle = typename Cdt::Face_handle;
+    using Edge = typename Cdt::Edge;
+    for (Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
+    std::deque<Edge> border;
+    auto fill = [&](Face_handle start, int level) {
         if (start->info().nesting != -1) return;
-        std::deque<Cdt::Face_handle> queue{start};
+        std::deque<Face_handle> queue{start};
         while (!queue.empty()) {
-            Cdt::Face_handle f = queue.front();
+            Face_handle f = queue.front();
             queue.pop_front();
             if (f->info().nesting != -1) continue;
             f->info().nesting = level;
             for (int i = 0; i < 3; ++i) {
-                Cdt::Face_handle n = f->neighbor(i);
+                Face_handle n = f->neighbor(i);
                 if (n->info().nesting != -1) continue;
-                if (cdt.is_constrained(Cdt::Edge(f, i)))
-                    border.push_back(Cdt::Edge(f, i));
+                if (cdt.is_constrained(Edge(f, i)))
+                    border.push_back(Edge(f, i));
                 else
                     queue.push_back(n);
             }
@@ -556,15 +603,59 @@ void mark_nesting(Cdt &cdt) {
     };
     fill(cdt.infinite_face(), 0);
     while (!border.empty()) {
-        Cdt::Edge e = border.front();
+        Edge e = border.front();
         border.pop_front();
-        Cdt::Face_handle n = e.first->neighbor(e.second);
+        Face_handle n = e.first->neighbor(e.second);
         if (n->info().nesting == -1) fill(n, e.first->info().nesting + 1);
     }
 }
 
+// Triangulates the segments `odd` (vertex ids of `out`) in the (u, w)
+// coordinates of the plane x[axis] = c and adds the cap: its faces at odd
+// nesting depth, and crossing points as new vertices on the plane. Throws
+// Cdt::Intersection_of_constraints_exception when Cdt refuses crossings
+// and two segments cross; `out` is then unchanged.
+template <class Cdt>
+void triangulate_cap(Soup &out, const std::vector<std::pair<uint32_t, uint32_t>> &odd, int axis, double c) {
+    using Vertex_handle = typename Cdt::Vertex_handle;
+    using Point = typename Cdt::Point;
+    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+    Cdt cdt;
+    std::unordered_map<uint32_t, Vertex_handle> handle;
+    auto vh = [&](uint32_t id) {
+        auto it = handle.find(id);
+        if (it != handle.end()) return it->second;
+        // Two ids at the same 2D point share one vertex, which takes the
+        // later id.
+        Vertex_handle h = cdt.insert(Point(out.v[id][u], out.v[id][w]));
+        h->info().id = id;
+        handle.emplace(id, h);
+        return h;
+    };
+    for (const auto &s : odd) {
+        Vertex_handle a = vh(s.first), b = vh(s.second);
+        if (a != b) cdt.insert_constraint(a, b);
+    }
+    if (cdt.dimension() < 2) return;
+    mark_nesting(cdt);
+    for (Vertex_handle h : cdt.finite_vertex_handles()) {
+        if (h->info().id != kNone) continue;
+        Vec3 p;
+        p[axis] = c;
+        p[u] = CGAL::to_double(h->point().x());
+        p[w] = CGAL::to_double(h->point().y());
+        h->info().id = uint32_t(out.v.size());
+        out.v.push_back(p);
+    }
+    for (auto f : cdt.finite_face_handles()) {
+        if (f->info().nesting % 2 != 1) continue;
+        out.t.push_back(Tri{{f->vertex(0)->info().id, f->vertex(1)->info().id, f->vertex(2)->info().id}});
+        out.cap.push_back(1);
+    }
+}
+
 // Adds to `out` the cap on the plane x[axis] = c bounded by `segs` (vertex
-// ids of `out`, all on the plane).
+// ids of `out`, all within ctx.band of the plane).
 void add_cap(Soup &out, std::vector<std::pair<uint32_t, uint32_t>> &segs, int axis, double c) {
     for (auto &s : segs)
         if (s.first > s.second) std::swap(s.first, s.second);
@@ -578,41 +669,10 @@ void add_cap(Soup &out, std::vector<std::pair<uint32_t, uint32_t>> &segs, int ax
         i = j;
     }
     if (odd.size() < 3) return;
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    Cdt cdt;
-    std::unordered_map<uint32_t, Cdt::Vertex_handle> handle;
-    auto vh = [&](uint32_t id) {
-        auto it = handle.find(id);
-        if (it != handle.end()) return it->second;
-        Cdt::Vertex_handle h = cdt.insert(K::Point_2(out.v[id][u], out.v[id][w]));
-        h->info() = id;
-        handle.emplace(id, h);
-        return h;
-    };
-    for (const auto &s : odd) {
-        Cdt::Vertex_handle a = vh(s.first), b = vh(s.second);
-        if (a != b) cdt.insert_constraint(a, b);
-    }
-    if (cdt.dimension() < 2) return;
-    mark_nesting(cdt);
-    // Vertices created at crossing constraints (self-intersections) get new
-    // ids; a vertex inserted twice at the same 2D point keeps the first id.
-    for (Cdt::Vertex_handle h : cdt.finite_vertex_handles()) {
-        // info() is only meaningful for vertices we inserted (CGAL leaves it
-        // uninitialised in the others).
-        auto it = handle.find(h->info());
-        if (it != handle.end() && it->second == h) continue;
-        Vec3 p;
-        p[axis] = c;
-        p[u] = h->point().x();
-        p[w] = h->point().y();
-        h->info() = uint32_t(out.v.size());
-        out.v.push_back(p);
-    }
-    for (Cdt::Face_handle f : cdt.finite_face_handles()) {
-        if (f->info().nesting % 2 != 1) continue;
-        out.t.push_back(Tri{{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()}});
-        out.cap.push_back(1);
+    try {
+        triangulate_cap<Cdt_fast>(out, odd, axis, c);
+    } catch (const Cdt_fast::Intersection_of_constraints_exception &) {
+        triangulate_cap<Cdt_exact>(out, odd, axis, c);
     }
 }
 
@@ -620,10 +680,13 @@ void add_cap(Soup &out, std::vector<std::pair<uint32_t, uint32_t>> &segs, int ax
 // negative, else the positive side (x > c); see the header comment for the
 // treatment of vertices on the plane. With caps, the section is closed by a
 // cap. Vertices keep their coordinates; unused vertices are dropped.
-Soup clip_half(const Soup &s, int axis, double c, bool negative, bool caps) {
+Soup clip_half(const Soup &s, int axis, double c, bool negative, bool caps, double band) {
     Soup out;
     std::vector<double> f(s.v.size());
-    for (size_t i = 0; i < s.v.size(); ++i) f[i] = negative ? s.v[i][axis] - c : c - s.v[i][axis];
+    for (size_t i = 0; i < s.v.size(); ++i) {
+        f[i] = negative ? s.v[i][axis] - c : c - s.v[i][axis];
+        if (std::fabs(f[i]) <= band) f[i] = 0; // on the plane (see the header comment)
+    }
     std::vector<uint32_t> map(s.v.size(), kNone);
     auto keep = [&](uint32_t i) {
         if (map[i] == kNone) {
@@ -747,7 +810,9 @@ struct Piece {
 };
 
 struct Context {
-    double tol = 0; // absolute
+    double tol = 0;  // absolute
+    double band = 0; // vertices this close to a cutting plane are on it (absolute)
+    double tie = 0;  // cut scores this close are equal (absolute; see Candidates)
     bool closed = false;
     unsigned max_pieces = kDefaultMaxPieces;
     unsigned threads = 1;
@@ -815,9 +880,9 @@ Cut evaluate(const Context &ctx, const Soup &s, int axis, double c, double best)
     Cut r;
     r.axis = axis;
     r.offset = c;
-    const Soup a = clip_half(s, axis, c, true, ctx.closed);
+    const Soup a = clip_half(s, axis, c, true, ctx.closed, ctx.band);
     if (a.t.empty()) return r;
-    const Soup b = clip_half(s, axis, c, false, ctx.closed);
+    const Soup b = clip_half(s, axis, c, false, ctx.closed, ctx.band);
     if (b.t.empty()) return r;
     const double ca = concavity_of(a, hull_of_soup(a), kRankSamples, best);
     if (ca > best) {
@@ -830,24 +895,50 @@ Cut evaluate(const Context &ctx, const Soup &s, int axis, double c, double best)
     return r;
 }
 
-bool better(const Cut &x, const Cut &y) {
-    if (x.score != y.score) return x.score < y.score;
-    return x.sum < y.sum;
-}
+// The cuts evaluated for one piece, and the choice among them. Scores
+// within ctx.tie of the lowest count as equal (2^-30 of the input's largest
+// coordinate or diagonal, at most 2^-10 of the tolerance), and among those
+// the lowest sum wins (the cut whose other half is best), then the lowest
+// score, then the first evaluated. Why: often every good cut leaves the
+// same worst feature in one half (a symmetric part), so their scores are
+// equal but for rounding, and only the sum tells them apart. Compared
+// exactly, the rounding chose. On the Puma's link6 turned by a half-turn
+// (sin(pi) = 1.2e-16 moves coordinates by ulps), a cut scored 2 ulps below
+// the cut that sliced off a clean piece left both halves as concave as the
+// whole, and so did the cuts after it: after 15 minutes 370 pieces had been
+// cut, to depth 10, each still spanning the link, of up to 26,000
+// triangles (caps cut into caps), and px_urdf_load never returned.
+struct Candidates {
+    std::vector<Cut> all;
+    double lowest = HUGE_VAL; // lowest score so far
+
+    Cut best(double tie) const {
+        Cut b;
+        if (!(lowest < HUGE_VAL)) return b;
+        for (const Cut &c : all) {
+            if (!(c.score <= lowest + tie)) continue;
+            if (b.axis < 0 || c.sum < b.sum || (c.sum == b.sum && c.score < b.score)) b = c;
+        }
+        return b;
+    }
+};
 
 // Evaluates the planes x[axis] = offsets[i] as one batch (in parallel when
-// ctx.threads > 1), all with the bound `best.score` taken before the batch,
-// and folds them into `best` in index order. Same winner as a sequential
-// scan with a running bound: a candidate cut short by the bound has a true
-// score above the final best, and candidates at or below it are exact.
+// ctx.threads > 1), all with the bound `lowest + tie` taken before the
+// batch, and adds them to `cands` in index order. Same choice as evaluating
+// every candidate in full: a candidate cut short by the bound scores above
+// it, hence outside the ties for good (the lowest only goes down), and
+// candidates within the bound are exact.
 void evaluate_batch(const Context &ctx, const Soup &s, int axis, const std::vector<double> &offsets,
-                    Cut &best) {
+                    Candidates &cands) {
     std::vector<Cut> r(offsets.size());
-    const double bound = best.score;
+    const double bound = cands.lowest + ctx.tie;
     parallel_for(ctx.threads, offsets.size(),
                  [&](size_t i) { r[i] = evaluate(ctx, s, axis, offsets[i], bound); });
-    for (const Cut &c : r)
-        if (better(c, best)) best = c;
+    for (const Cut &c : r) {
+        cands.all.push_back(c);
+        cands.lowest = std::min(cands.lowest, c.score);
+    }
 }
 
 // Sorted coordinates of the soup's vertices along `axis`.
@@ -879,7 +970,7 @@ double snap_offset(const std::vector<double> &sorted, double c, double extent) {
 }
 
 Cut best_cut(const Context &ctx, const Piece &p, double fraction) {
-    Cut best;
+    Candidates cands;
     double step[3];
     std::vector<double> sorted[3];
     for (int axis = 0; axis < 3; ++axis) {
@@ -892,20 +983,23 @@ Cut best_cut(const Context &ctx, const Piece &p, double fraction) {
             const double c = snap_offset(sorted[axis], lo + (hi - lo) * i / (kOffsets + 1), hi - lo);
             if (c > lo && c < hi) offsets.push_back(c);
         }
-        evaluate_batch(ctx, p.soup, axis, offsets, best);
+        evaluate_batch(ctx, p.soup, axis, offsets, cands);
         ctx.report(PXCD_STAGE_CUT, fraction);
     }
+    Cut best = cands.best(ctx.tie);
     if (best.axis < 0) return best;
     // Local refinement of the offset (CoACD refines its best plane too).
-    double h = step[best.axis] * 0.5;
-    const double lo = p.box.lo[best.axis], hi = p.box.hi[best.axis];
-    for (int it = 0; it < kRefineSteps; ++it, h *= 0.5) {
+    const int axis = best.axis;
+    double h = step[axis] * 0.5;
+    const double lo = p.box.lo[axis], hi = p.box.hi[axis];
+    for (int it = 0; it < kRefineSteps && best.axis == axis; ++it, h *= 0.5) {
         std::vector<double> offsets;
         for (int sgn = -1; sgn <= 1; sgn += 2) {
-            const double c = snap_offset(sorted[best.axis], best.offset + sgn * h, hi - lo);
+            const double c = snap_offset(sorted[axis], best.offset + sgn * h, hi - lo);
             if (c > lo && c < hi) offsets.push_back(c);
         }
-        evaluate_batch(ctx, p.soup, best.axis, offsets, best);
+        evaluate_batch(ctx, p.soup, axis, offsets, cands);
+        best = cands.best(ctx.tie);
     }
     return best;
 }
@@ -951,7 +1045,7 @@ std::vector<Piece> cut_all(Context &ctx, std::vector<Soup> &&initial, double tot
         }
         ++ctx.cuts;
         for (int side = 0; side < 2; ++side) {
-            Soup half = clip_half(p.soup, cut.axis, cut.offset, side == 0, ctx.closed);
+            Soup half = clip_half(p.soup, cut.axis, cut.offset, side == 0, ctx.closed, ctx.band);
             for (Soup &c : components(half)) work.push_back(make_piece(std::move(c), p.depth + 1));
         }
     }
@@ -1133,6 +1227,15 @@ pxcd_decomp_result *run(const double *xyz, size_t n_vertices, const uint32_t *tr
     const double diagonal = box.diagonal();
     ctx.tol = opt->tolerance * diagonal;
     if (!std::isfinite(diagonal)) throw Bad_input("the mesh's bounding-box diagonal overflows");
+    {
+        // 2^12 ulps of the largest coordinate or of the diagonal: far above
+        // the rounding of a turned or scaled mesh, far below any tolerance.
+        double scale = diagonal;
+        for (int k = 0; k < 3; ++k)
+            scale = std::max(scale, std::max(std::fabs(box.lo[k]), std::fabs(box.hi[k])));
+        ctx.band = std::ldexp(scale, -40);
+        ctx.tie = std::min(std::ldexp(scale, -30), std::ldexp(ctx.tol, -10));
+    }
 
     ctx.report(PXCD_STAGE_CUT, 0.0);
     const double total_area = surface_area(all);

@@ -16,7 +16,10 @@
  *   caller's floating-point traps, take long on an element of many
  *   attributes or build a tree of gigabytes (refused at once, timed);
  *   files with markup in comments and values, XML 1.1 and a relative
- *   namespace URI load; options are refused before any file is read.
+ *   namespace URI load; options are refused before any file is read;
+ * - PX_PIECES_APPROXIMATE on the Puma (review s28): link6 as the URDF turns
+ *   it loads in seconds with every vertex of its mesh in a piece, and the
+ *   approximate link models bracket the exact (triangle) distances.
  * The files are written into a scratch folder under the build tree. */
 /* examples/puma560.c: stat; mkdtemp. feenableexcept: _GNU_SOURCE, which
  * tests/CMakeLists.txt defines. */
@@ -961,6 +964,141 @@ static void test_review_s28(void) {
     px_urdf_destroy(ref);
 }
 
+/* Review s28 (approx_hang): px_urdf_load of the Puma with
+ * PX_PIECES_APPROXIMATE never returned. Link6's collision rpy (pi, 0, pi/2)
+ * moves its coordinates by ulps (sin(pi) = 1.2e-16), and the decomposer
+ * then chose its cuts by rounding noise, cutting without end
+ * (convexdecomp/decompose.cpp, Candidates; test_decomp's test_turned). Here
+ * link6 alone, so placed, at the default tolerance: loaded in seconds (it
+ * ran for hours; ctest's timeout stops a hang), in a few pieces that hold
+ * every vertex of the mesh; then the whole Puma, whose approximate link
+ * models bracket the exact distances between links at random joint
+ * values. */
+static void test_approximate_puma(void) {
+    const char *stl = PX_SOURCE_DIR "/models/puma560/nimasarli_puma560_description/meshes/puma_link6.stl";
+    const double rpy[3] = {3.141592653589793, 0, 1.5707963267948966}, scale = 0.0254;
+    char text[1024];
+    snprintf(text, sizeof text,
+             "<robot name='r'><link name='link6'><collision><origin rpy='%.17g %.17g %.17g'/><geometry><mesh "
+             "filename='%s' scale='%g %g %g'/></geometry></collision></link></robot>",
+             rpy[0], rpy[1], rpy[2], stl, scale, scale, scale);
+    write_file("link6.urdf", text);
+    px_urdf_options o;
+    memset(&o, 0, sizeof o);
+    o.pieces = PX_PIECES_APPROXIMATE;
+    px_error err;
+    double t0 = tu_now();
+    px_urdf *u = load("link6.urdf", &o, &err);
+    const double secs = tu_now() - t0, limit = tu_sanitized() ? 300 : 60;
+    CHECK(u != NULL && secs < limit, "link6 turned by rpy (pi, 0, pi/2), approximate: %.1f s (limit %g): %s",
+          secs, limit, u ? "" : err.message);
+    const px_model *m = u ? px_urdf_link_model(u, 0) : NULL;
+    px_model_info info;
+    memset(&info, 0, sizeof info);
+    CHECK(m && px_model_get_info(m, &info) == PX_OK && info.pieces == PX_PIECES_APPROXIMATE &&
+              info.leaves >= 1 && info.leaves <= 8,
+          "link6: %u pieces", info.leaves);
+    /* Every vertex of the mesh, placed as urdf.c places it (R = Rz Ry Rx,
+     * applied row by row), lies in a piece. */
+    px_mesh *mesh = px_mesh_load(stl, NULL, &err);
+    CHECK(mesh != NULL, "%s: %s", stl, err.message);
+    int uncovered = 0;
+    uint32_t nv = mesh ? px_mesh_vertex_count(mesh) : 0;
+    if (m && mesh) {
+        const double cr = cos(rpy[0]), sr = sin(rpy[0]), cp = cos(rpy[1]), sp = sin(rpy[1]), cy = cos(rpy[2]),
+                     sy = sin(rpy[2]);
+        const double r[9] = {cy * cp,
+                             cy * sp * sr - sy * cr,
+                             cy * sp * cr + sy * sr,
+                             sy * cp,
+                             sy * sp * sr + cy * cr,
+                             sy * sp * cr - cy * sr,
+                             -sp,
+                             cp * sr,
+                             cp * cr};
+        const double *v = px_mesh_vertices(mesh);
+        const px_pose id = px_pose_identity();
+        for (uint32_t i = 0; i < nv; ++i) {
+            const double x = v[3 * i] * scale, y = v[3 * i + 1] * scale, z = v[3 * i + 2] * scale;
+            double p[3];
+            for (int k = 0; k < 3; ++k) p[k] = r[3 * k] * x + r[3 * k + 1] * y + r[3 * k + 2] * z;
+            px_convex *pt = px_convex_create(p, 1, NULL, &err);
+            px_model_distance_result d;
+            int in = pt && px_model_distance_convex(m, &id, pt, &id, NULL, &d) == PX_OK &&
+                     d.distance <= 1e-12 * (1.0 + info.max_h);
+            uncovered += !in;
+            px_convex_destroy(pt);
+        }
+    }
+    CHECK(nv > 0 && uncovered == 0, "link6: %d of %u vertices outside every piece", uncovered, nv);
+    printf("approximate link6 turned by rpy (pi, 0, pi/2): %u pieces in %.2f s, largest h %.3g, every one of "
+           "%u vertices in a piece\n",
+           info.leaves, secs, info.max_h, nv);
+    px_mesh_destroy(mesh);
+    px_urdf_destroy(u);
+
+    /* The whole Puma: every link approximate, within the limit; the
+     * approximate distance and its upper bound bracket the exact (triangle)
+     * distance of each pair of links that are not neighbours. */
+    o.threads = 2;
+    t0 = tu_now();
+    px_urdf *a = px_urdf_load(URDF_PUMA, &o, &err);
+    const double puma_secs = tu_now() - t0;
+    CHECK(a != NULL && puma_secs < 2 * limit, "the Puma, approximate: %.1f s (limit %g): %s", puma_secs,
+          2 * limit, a ? "" : err.message);
+    px_urdf *t = px_urdf_load(URDF_PUMA, NULL, &err);
+    CHECK(t != NULL, "the Puma: %s", err.message);
+    if (!a || !t) {
+        px_urdf_destroy(a);
+        px_urdf_destroy(t);
+        return;
+    }
+    uint32_t pieces = 0;
+    for (uint32_t k = 0; k < PUMA_LINKS; ++k) {
+        px_model_info li;
+        CHECK(px_model_get_info(px_urdf_link_model(a, k), &li) == PX_OK && li.pieces == PX_PIECES_APPROXIMATE,
+              "link %u is not approximate", k + 1);
+        pieces += li.leaves;
+    }
+    const px_chain *c = px_urdf_chain(t);
+    int pairs = 0, bad = 0;
+    double worst_gap = 0;
+    for (int n = 0; n < (tu_sanitized() ? 5 : 20); ++n) {
+        double q[PUMA_JOINTS];
+        for (int j = 0; j < PUMA_JOINTS; ++j)
+            q[j] = puma_q_min[j] + (puma_q_max[j] - puma_q_min[j]) * urand() +
+                   puma_urdf_offset[PUMA_NIMASARLI][j];
+        px_pose pose[PUMA_LINKS];
+        if (px_chain_forward(c, q, pose, NULL, &err) != PX_OK) {
+            CHECK(0, "forward: %s", err.message);
+            break;
+        }
+        for (uint32_t x = 0; x < PUMA_LINKS; ++x)
+            for (uint32_t y = x + 2; y < PUMA_LINKS; ++y) {
+                px_model_distance_result da, dt;
+                CHECK(px_model_distance(px_urdf_link_model(a, x), &pose[x], px_urdf_link_model(a, y),
+                                        &pose[y], NULL, &da) == PX_OK &&
+                          px_model_distance(px_urdf_link_model(t, x), &pose[x], px_urdf_link_model(t, y),
+                                            &pose[y], NULL, &dt) == PX_OK,
+                      "distance");
+                ++pairs;
+                if (!(da.distance <= dt.distance + 1e-9 && dt.distance <= da.upper_bound + 1e-9)) {
+                    if (bad++ < 5)
+                        fprintf(stderr, "links %u-%u: exact %.9g outside [%.9g, %.9g]\n", x + 1, y + 1,
+                                dt.distance, da.distance, da.upper_bound);
+                } else {
+                    worst_gap = fmax(worst_gap, da.upper_bound - da.distance);
+                }
+            }
+    }
+    CHECK(bad == 0, "the Puma: %d of %d pairs outside the bracket", bad, pairs);
+    printf("approximate Puma: %u pieces in %.1f s; %d pairs, the exact distance within the bracket (widest "
+           "%.3g m)\n",
+           pieces, puma_secs, pairs, worst_gap);
+    px_urdf_destroy(a);
+    px_urdf_destroy(t);
+}
+
 int main(void) {
     tu_init("test_urdf");
     snprintf(scratch, sizeof scratch, "%s/urdf_XXXXXX", PX_BINARY_DIR);
@@ -975,5 +1113,6 @@ int main(void) {
     test_hardening();
     test_review_s27();
     test_review_s28();
+    test_approximate_puma();
     return tu_finish();
 }

@@ -163,6 +163,7 @@ if [ -n "$A" ]; then
   expect 1 "closer than 0$" -- "$B" check "$T/stl" --clearance -0
   expect 2 "positive number, not '0x1p-1'" -- "$B" check "$T/stl" --scale 0x1p-1
   expect 2 "bad pose" -- "$B" distance "$T/l3.pxm" "$T/l3.pxm" --pose-b 0x1,0,0
+  expect 0 "distance" -- "$B" distance "$T/l3.pxm" "$T/l3.pxm" --pose-b 1e-310,0.5,0
   expect 2 "not two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl,nope.stl
   expect 2 "two part names" -- "$B" check "$T/stl" --ignore a_overlap.stl
   # A part of lines only is skipped, and --ignore may still name it.

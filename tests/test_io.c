@@ -543,6 +543,10 @@ static void test_stl_files(void) {
     char upper[1024];
     for (size_t i = 0; i <= strlen(ascii); ++i) upper[i] = (char)toupper((unsigned char)ascii[i]);
     expect_refused(write_file("tet_upper.stl", upper), "keywords not in lower case");
+    /* ... but only a .stl file: this is an OBJ whose first line says "Solid". */
+    expect_tetrahedron(write_file("solid_words.obj",
+                                  "Solid model exported by CAD\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                                  "v 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"));
     len = make_stl(buf, "SolidWorks export", 4, 4, 0);
     expect_tetrahedron(write_bytes("tet_solidworks.stl", buf, len));
 
@@ -665,6 +669,34 @@ static const char *write_gltf(const char *name, const char *nodes, const char *s
  * took 1.4 GB and 75 s and loaded; "ply0" + a format line and nothing else
  * made Assimp loop forever (its header loop ends only at end_header, and
  * getNextLine at the end of the file leaves the line as it was). */
+/* Comments in PLY headers (review s29): where exporters put them (before
+ * the elements, TextureFile, obj_info, between elements, CRLF) they load;
+ * among an element's properties Assimp makes the comment an element that
+ * takes the properties after it (a vertex lost its z, with PX_OK): refused. */
+static void test_ply_comments(void) {
+    static const char *body = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    static const char *const good[] = {
+        "comment VCGLIB generated\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 4\nproperty list uchar int vertex_indices\n",
+        "comment TextureFile tex.png\nobj_info num_cols 4\nelement vertex 4\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\n",
+        "element vertex 4\nproperty float x\nproperty float y\nproperty float z\ncomment faces next\n"
+        "element face 4\nproperty list uchar int vertex_indices\n",
+        "comment a\ncomment a much longer comment line than the others here\nelement vertex 4\n"
+        "property float x\nproperty float y\nproperty float z\nelement face 4\n"
+        "property list uchar int vertex_indices\n"};
+    char text[1024];
+    for (size_t i = 0; i < sizeof good / sizeof *good; ++i) {
+        snprintf(text, sizeof text, "ply\nformat ascii 1.0\n%send_header\n%s", good[i], body);
+        expect_tetrahedron(write_file("comments.ply", text));
+    }
+    snprintf(text, sizeof text,
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\ncomment z next\n"
+             "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n%s",
+             body);
+    expect_refused(write_file("comment_in_props.ply", text), "comment among an element's properties");
+}
+
 static void test_ply_magic(void) {
     const char *props = "property float x\nproperty float y\nproperty float z\n";
     char text[1024];
@@ -1356,6 +1388,7 @@ int main(void) {
     test_unchecked_formats();
     test_special_files();
     test_ply_magic();
+    test_ply_comments();
     test_ply_lists();
     test_referenced_files();
     test_off_faces();

@@ -65,15 +65,17 @@
 /// - PLY: any file whose first line starts with "ply" in any case, whatever
 ///   follows on that line (as Assimp detects PLY), is read as Assimp reads it:
 ///   refused are a header Assimp would loop on (no `end_header` line it
-///   reaches), a line break other than "\n" or "\r\n" that makes it read
-///   past its buffer, a property type it does not read or a property line
-///   without a name, several vertex elements or several face/tristrips
-///   elements, records that do not fit in the file (binary) or on their line
-///   (ascii: one record per line, every value a number of its property's
-///   type), a list declaring more values than the bytes left (binary) or
-///   its line (ascii) can hold, or more than PX_IO_MAX_PLY_LIST, lists
-///   holding more than 4 * PX_IO_MAX_ELEMENTS values in all, and a face whose
-///   6 to 8 texcoord values outnumber its vertex indices;
+///   reaches), a comment line among an element's properties (Assimp makes
+///   it an element that takes the properties after it), a line break other
+///   than "\n" or "\r\n" that makes it read past its buffer, a property
+///   type it does not read or a property line without a name, several
+///   vertex elements or several face/tristrips elements, records that do
+///   not fit in the file (binary) or on their line (ascii: one record per
+///   line, every value a number of its property's type), a list declaring
+///   more values than the bytes left (binary) or its line (ascii) can hold,
+///   or more than PX_IO_MAX_PLY_LIST, lists holding more than
+///   4 * PX_IO_MAX_ELEMENTS values in all, and a face whose 6 to 8 texcoord
+///   values outnumber its vertex indices;
 /// - OFF: the vertex and face lines are read as Assimp reads them: refused
 ///   are a text that ends before its declared vertices and faces, a line of
 ///   4096 bytes or more, a face of fewer than 3 vertices, with an index that
@@ -98,7 +100,9 @@
 ///   of valid point cloud (vertices without any f, l or p line) that Assimp
 ///   5.2 cannot read: one with an `o` or `g` line (its vertices go into no
 ///   mesh), one with fewer `vn` lines than vertices, one where some but not
-///   all vertices have a colour;
+///   all vertices have a colour. These checks also run on a file of another
+///   name that Assimp reads as OBJ (it picks the OBJ importer by content
+///   for a `.txt`, a `.dat` or no extension);
 /// - COLLADA and glTF node graphs: a cycle (a node its own descendant,
 ///   through nesting, <instance_node> or glTF "children"), a node expanding
 ///   to more than PX_IO_MAX_NODES node instances or a file defining more

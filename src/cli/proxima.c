@@ -129,7 +129,8 @@ static int parse_pose(const char *s, px_pose *out) {
     const char *p = s;
     while (n < 7) {
         const char *end = decimal(p, &v[n]);
-        if (!end || errno || !isfinite(v[n])) return 0;
+        /* (a subnormal sets ERANGE too, and is a number) */
+        if (!end || !isfinite(v[n]) || (errno == ERANGE && v[n] == 0.0)) return 0;
         ++n;
         p = end;
         if (*p == '\0') break;

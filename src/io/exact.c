@@ -327,20 +327,34 @@ typedef struct obj_vertex {
     int twin; /* another vertex has the same floats and other doubles */
 } obj_vertex;
 
+/* Whether Assimp 5.2's getNumComponentsInDataDefinition counts the word
+ * at w (n bytes) as a number: it starts with a digit, '-' or '+', or with
+ * "nan" or "inf" in any case. */
+static int assimp_counts(const char *w, size_t n) {
+    if (*w == '-' || *w == '+' || (*w >= '0' && *w <= '9')) return 1;
+    if (n < 3) return 0;
+    const char a = (char)(w[0] | 0x20), b = (char)(w[1] | 0x20), c = (char)(w[2] | 0x20);
+    return (a == 'n' && b == 'a' && c == 'n') || (a == 'i' && b == 'n' && c == 'f');
+}
+
 /* A vertex line's words after the keyword, [p, e): 3, 4 (homogeneous) or 6
  * (a colour after) numbers, then nothing or a comment. Assimp counts the
- * words that start like a number and reads that many words from the
- * first; this takes only lines where those are the same words. */
+ * words that start like a number, comment included, and reads that many
+ * words from the first: this takes only lines where those are the same
+ * words (review s29: "v 16777216 0 0 .5" is three numbers to Assimp, and
+ * was taken for a homogeneous vertex). */
 static int obj_vertex_line(const char *p, const char *e, obj_vertex *v) {
     double d[6];
     float f[6];
-    int n = 0;
+    int n = 0, counted = 0, comment = 0;
     for (;;) {
         while (p < e && (*p == ' ' || *p == '\t')) ++p;
-        if (p == e || *p == '#') break;
+        if (p == e) break;
         const char *w = p;
         while (p < e && *p != ' ' && *p != '\t') ++p;
-        if (n == 6 || !assimp_atof(w, (size_t)(p - w), &f[n])) return 0;
+        counted += assimp_counts(w, (size_t)(p - w));
+        if (comment || (*w == '#' && (comment = 1))) continue;
+        if (!assimp_counts(w, (size_t)(p - w)) || n == 6 || !assimp_atof(w, (size_t)(p - w), &f[n])) return 0;
         char buf[64], *end;
         if ((size_t)(p - w) >= sizeof buf) return 0;
         memcpy(buf, w, (size_t)(p - w));
@@ -349,7 +363,7 @@ static int obj_vertex_line(const char *p, const char *e, obj_vertex *v) {
         if (*end || !isfinite(d[n])) return 0;
         ++n;
     }
-    if (n != 3 && n != 4 && n != 6) return 0;
+    if ((n != 3 && n != 4 && n != 6) || counted != n) return 0;
     for (int k = 0; k < 3; ++k) {
         /* getHomogeneousVector3 divides in float; w = 0 fails the import. */
         v->x[k] = n == 4 ? d[k] / d[3] : d[k];

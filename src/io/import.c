@@ -114,6 +114,27 @@ static px_status reached_faces(const struct aiScene *scene, const px_allocator *
 }
 
 /* The import proper, with the lock held. */
+/* Whether Assimp's OBJ importer made the scene. */
+static int obj_scene(const struct aiScene *scene) {
+    const struct aiMetadata *md = scene->mMetaData;
+    for (unsigned i = 0; md && md->mKeys && md->mValues && i < md->mNumProperties; ++i)
+        if (strcmp(md->mKeys[i].data, "SourceAsset_Format") == 0 && md->mValues[i].mType == AI_AISTRING &&
+            md->mValues[i].mData)
+            return strcmp(((const struct aiString *)md->mValues[i].mData)->data,
+                          "Wavefront Object Importer") == 0;
+    return 0;
+}
+
+/* Whether the file name ends in ".obj" (any case): the precheck ran the
+ * OBJ checks then. */
+static int obj_name(const char *path) {
+    const size_t n = strlen(path);
+    if (n < 4 || path[n - 4] != '.') return 0;
+    for (int k = 0; k < 3; ++k)
+        if ((path[n - 3 + k] | 0x20) != "obj"[k]) return 0;
+    return 1;
+}
+
 static px_status import_locked(const char *path, const pxi_file_id *id, const px_allocator *alloc,
                                unsigned post_flags, pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx,
                                px_error *err) {
@@ -143,6 +164,8 @@ static px_status import_locked(const char *path, const pxi_file_id *id, const px
     } else if (!scene->mRootNode) {
         st = pxi_error(err, PX_ERR_IO, "mesh file '%s' has no root node", path);
     }
+    /* Read as OBJ under another name: the OBJ checks now. */
+    if (st == PX_OK && obj_scene(scene) && !obj_name(path)) st = pxi_io_check_as_obj(path, alloc, id, err);
     if (st == PX_OK && id->gltf_triangles != ~0ull) {
         /* glTF2Importer drops a triangle (of a list, a strip or a fan) with
          * an index out of range, a warning only: the counts tell. */

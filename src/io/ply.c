@@ -495,6 +495,58 @@ static int parse_element(ply_state *s) {
     return s->bad_property ? -1 : 1;
 }
 
+/* The header as the PLY format defines it, against the elements Assimp
+ * read (ply_header): "element NAME N" starts an element, "property ..."
+ * adds to the last one, "comment" and "obj_info" lines are nothing.
+ * Assimp reads a comment line among an element's properties as an element
+ * of its own (and, with the stale bytes a short line leaves, more), which
+ * takes the properties after it: review s29's "property y / comment /
+ * property z" gave vertices without z, with PX_OK. Compared: the number of
+ * elements that have properties, and each one's count and property count
+ * (Assimp's comment "elements" have none unless they took some). Returns 1
+ * when they agree. */
+static int header_as_defined(const ply_state *s) {
+    const unsigned char *t = s->h->data;
+    const size_t n = s->h->len;
+    size_t k = 0; /* Assimp's next element with properties */
+    size_t props = 0;
+    u64 count = 0;
+    int open = 0;
+    for (size_t b = 0; b < n;) {
+        size_t e = b;
+        while (e < n && t[e] != '\n') ++e;
+        size_t q = b;
+        while (q < e && (t[q] == ' ' || t[q] == '\t')) ++q;
+        const int element =
+            e - q > 8 && memcmp(t + q, "element", 7) == 0 && (t[q + 7] == ' ' || t[q + 7] == '\t');
+        const int property =
+            e - q > 9 && memcmp(t + q, "property", 8) == 0 && (t[q + 8] == ' ' || t[q + 8] == '\t');
+        const int end = e - q >= 10 && memcmp(t + q, "end_header", 10) == 0;
+        if ((element || end) && open && props > 0) {
+            while (k < s->nelem && s->elem[k].nprop == 0) ++k;
+            if (k == s->nelem || s->elem[k].nprop != props || s->elem[k].declared != count) return 0;
+            ++k;
+        }
+        if (end) {
+            while (k < s->nelem && s->elem[k].nprop == 0) ++k;
+            return k == s->nelem;
+        }
+        if (element) {
+            open = 1, props = 0, count = 0;
+            size_t c = q + 8;
+            while (c < e && (t[c] == ' ' || t[c] == '\t')) ++c;
+            while (c < e && t[c] != ' ' && t[c] != '\t') ++c; /* the name */
+            while (c < e && (t[c] == ' ' || t[c] == '\t')) ++c;
+            while (c < e && t[c] >= '0' && t[c] <= '9')
+                count = pxi_sat_add(pxi_sat_mul(count, 10), (u64)(t[c++] - '0'));
+        } else if (property && open) {
+            ++props;
+        }
+        b = e + 1;
+    }
+    return 0;
+}
+
 /* PLYImporter::InternReadFile up to the header's end, and
  * PLY::DOM::ParseHeader. Returns PX_OK with *format = 0 when Assimp's PLY
  * importer would refuse the file before reading a header (no "ply" magic
@@ -610,10 +662,11 @@ static px_status ply_sizes(ply_state *s, int binary, u64 body, px_error *err) {
         if (need > (binary ? avail : pxi_sat_add(avail, 1))) {
             char noun[64];
             elem_noun(e, noun, sizeof noun);
-            return pxi_error(err, PX_ERR_IO,
-                             "mesh file '%s' declares %llu %s but has only %llu bytes after its header (PLY %s: "
-                             "at least %llu needed)",
-                             h->path, e->declared, noun, avail, binary ? "binary" : "ascii", need);
+            return pxi_error(
+                err, PX_ERR_IO,
+                "mesh file '%s' declares %llu %s but has only %llu bytes after its header (PLY %s: "
+                "at least %llu needed)",
+                h->path, e->declared, noun, avail, binary ? "binary" : "ascii", need);
         }
     }
     if (total > PX_IO_MAX_ELEMENTS)
@@ -922,6 +975,13 @@ px_status pxi_check_ply(const io_head *h, px_error *err) {
     int format;
     st = ply_header(s, &format, err);
     if (st != PX_OK || !format) goto done;
+    if (!header_as_defined(s)) {
+        st = pxi_error(err, PX_ERR_IO,
+                       "mesh file '%s': a PLY comment among an element's properties (Assimp 5.2 makes it an "
+                       "element that takes the properties after it): put comments before the first element",
+                       h->path);
+        goto done;
+    }
     /* Where Assimp's body starts: binary, the rest of the cache after the
      * end_header line, less a first '\n' (meant for "\r\n"; a body whose first
      * byte is 0x0A loses it). The header lies in the first block. */

@@ -417,9 +417,11 @@ static px_status check_stl(const io_head *h, int by_extension, px_error *err) {
             return PX_OK;
         }
     }
-    /* Text whose `solid` is not in lower case (and that is no binary STL
-     * of the right size): Assimp 5.2 would not read it as ASCII. */
-    if (stl_text_kind(h) == 2)
+    /* A .stl file of text whose `solid` is not in lower case (and that is
+     * no binary STL of the right size): Assimp 5.2 would not read it as
+     * ASCII. (Another name picks another importer: an OBJ whose first line
+     * is "Solid model ..." is an OBJ.) */
+    if (by_extension && stl_text_kind(h) == 2)
         return pxi_error(err, PX_ERR_IO,
                          "mesh file '%s': an ASCII STL with keywords not in lower case ('SOLID', 'FACET'): "
                          "Assimp 5.2 reads them in lower case only; write them so",
@@ -598,10 +600,14 @@ static px_status check_formats(const io_head *h, px_error *err) {
     return st;
 }
 
-px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, px_error *err) {
+/* The precheck (obj_again 0: *id is filled), or the OBJ checks alone on
+ * the file *id identifies (obj_again 1). */
+static px_status precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, int obj_again,
+                          px_error *err) {
     /* stat() first: open() of a FIFO would block (O_NONBLOCK below covers one
      * put in its place meanwhile), and a device has no size. */
     struct stat sb, fsb;
+    const pxi_file_id expect = *id;
     memset(id, 0, sizeof *id);
     if (stat(path, &sb) != 0) {
         int e = errno;
@@ -643,6 +649,15 @@ px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_
     id->size = h.size;
     id->mtime_sec = (long long)fsb.st_mtim.tv_sec;
     id->mtime_nsec = (long long)fsb.st_mtim.tv_nsec;
+    if (obj_again) {
+        const int same = id->dev == expect.dev && id->ino == expect.ino && id->size == expect.size &&
+                         id->mtime_sec == expect.mtime_sec && id->mtime_nsec == expect.mtime_nsec;
+        *id = expect;
+        if (!same) {
+            close(fd);
+            return pxi_error(err, PX_ERR_IO, "mesh file '%s' changed while it was read", path);
+        }
+    }
     io_reader rd;
     memset(&rd, 0, sizeof rd);
     rd.fd = fd;
@@ -659,11 +674,22 @@ px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_
             st = pxi_rd_error(&h, err);
         } else {
             h.data = head;
-            st = check_formats(&h, err);
+            st = obj_again ? pxi_check_obj(&h, err) : check_formats(&h, err);
         }
     }
     if (head) pxi_free(alloc, head, h.len);
     if (rd.buf) pxi_free(alloc, rd.buf, PXI_IO_READER_BYTES);
     close(fd);
     return st;
+}
+
+px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, px_error *err) {
+    memset(id, 0, sizeof *id);
+    return precheck(path, alloc, id, 0, err);
+}
+
+px_status pxi_io_check_as_obj(const char *path, const px_allocator *alloc, const pxi_file_id *id,
+                              px_error *err) {
+    pxi_file_id again = *id;
+    return precheck(path, alloc, &again, 1, err);
 }

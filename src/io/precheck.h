@@ -30,4 +30,11 @@ typedef struct pxi_file_id {
  * Thread-safe: touches no global state and does not call Assimp. */
 px_status pxi_io_precheck(const char *path, const px_allocator *alloc, pxi_file_id *id, px_error *err);
 
+/* The OBJ checks (obj.c) on the file `id` identifies, for a file Assimp
+ * read as OBJ under another name (it picks an importer by the file's
+ * content when the extension is none of its own: review s29 found a `.txt`
+ * OBJ whose indented vertex line Assimp lost, with PX_OK). */
+px_status pxi_io_check_as_obj(const char *path, const px_allocator *alloc, const pxi_file_id *id,
+                              px_error *err);
+
 #endif

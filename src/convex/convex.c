@@ -581,6 +581,21 @@ static void flat_hull_free(flat_hull *f, const px_allocator *alloc) {
     f->v = NULL, f->ids = NULL, f->n = 0;
 }
 
+/* A point's coordinates in the plane, and its index: sorted, so that each
+ * corner of the 2D hull finds its input point in log time (a flat disc of
+ * 100,000 points has as many corners). */
+typedef struct plane_point {
+    double x, y;
+    size_t i;
+} plane_point;
+
+static int cmp_plane_point(const void *a, const void *b) {
+    const plane_point *p = a, *q = b;
+    if (p->x != q->x) return p->x < q->x ? -1 : 1;
+    if (p->y != q->y) return p->y < q->y ? -1 : 1;
+    return (p->i > q->i) - (p->i < q->i);
+}
+
 /* 1: f holds the polygon; 0: the points are not that flat (or no plane);
  * -1: out of memory. */
 static int flat_hull_build(const double *xyz, size_t count, const px_allocator *alloc, flat_hull *f) {
@@ -650,17 +665,27 @@ static int flat_hull_build(const double *xyz, size_t count, const px_allocator *
         f->n = h->vertex_count;
         f->v = pxi_alloc_array(alloc, f->n, 3 * sizeof *f->v);
         f->ids = f->v ? pxi_alloc_array(alloc, f->n, 2 * sizeof *f->ids) : NULL;
-        r = f->ids ? 1 : -1;
+        plane_point *pp = f->ids ? pxi_alloc_array(alloc, count, sizeof *pp) : NULL;
+        r = pp ? 1 : -1;
+        for (size_t i = 0; pp && i < count; ++i) pp[i] = (plane_point){q[3 * i], q[3 * i + 1], i};
+        if (pp) qsort(pp, count, sizeof *pp, cmp_plane_point);
         /* Each corner back to an input point with its plane coordinates. */
         for (size_t k = 0; r == 1 && k < f->n; ++k) {
-            size_t i = 0;
-            while (i < count && !(q[3 * i] == h->vertices[3 * k] && q[3 * i + 1] == h->vertices[3 * k + 1]))
-                ++i;
-            if (i == count)
+            const plane_point key = {h->vertices[3 * k], h->vertices[3 * k + 1], 0};
+            size_t lo = 0, hi = count;
+            while (lo < hi) {
+                const size_t mid = lo + (hi - lo) / 2;
+                if (cmp_plane_point(&pp[mid], &key) < 0)
+                    lo = mid + 1;
+                else
+                    hi = mid;
+            }
+            if (lo == count || pp[lo].x != key.x || pp[lo].y != key.y)
                 r = 0;
             else
-                memcpy(f->v + 3 * k, xyz + 3 * i, 3 * sizeof *f->v);
+                memcpy(f->v + 3 * k, xyz + 3 * pp[lo].i, 3 * sizeof *f->v);
         }
+        pxi_free(alloc, pp, count * sizeof *pp);
         if (r == 1) {
             f->dim = 2;
             memcpy(f->ids, h->face_indices, f->n * 2 * sizeof *f->ids);

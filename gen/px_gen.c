@@ -400,6 +400,21 @@ void pg_rot_orthonormalize(double r[9]) {
     z[2] = x[0] * y[1] - x[1] * y[0];
 }
 
+void pg_rot_rpy(double roll, double pitch, double yaw, double r[9]) {
+    const double cr = cos(roll), sr = sin(roll), cp = cos(pitch), sp = sin(pitch), cy = cos(yaw),
+                 sy = sin(yaw);
+    const double m[9] = {cy * cp,
+                         cy * sp * sr - sy * cr,
+                         cy * sp * cr + sy * sr,
+                         sy * cp,
+                         sy * sp * sr + cy * cr,
+                         sy * sp * cr - cy * sr,
+                         -sp,
+                         cp * sr,
+                         cp * cr};
+    memcpy(r, m, sizeof m);
+}
+
 px_vec3 pg_rot_apply(const double r[9], px_vec3 p) {
     return vec(r[0] * p.x + r[1] * p.y + r[2] * p.z, r[3] * p.x + r[4] * p.y + r[5] * p.z,
                r[6] * p.x + r[7] * p.y + r[8] * p.z);

@@ -175,6 +175,9 @@ void pg_mat_mul(const double a[9], const double b[9], double out[9]); /* out = a
 void pg_rot_orthonormalize(double r[9]);
 /* R p. */
 px_vec3 pg_rot_apply(const double r[9], px_vec3 p);
+/* URDF's fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll), the
+ * products grouped as src/io/urdf.c groups them (bit for bit its matrix). */
+void pg_rot_rpy(double roll, double pitch, double yaw, double r[9]);
 
 /* ------------------------------------------------------------------------- */
 /* Poses                                                                     */

@@ -30,6 +30,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "px_gen.h"
+
 #include "proxima/io.h"
 #include "proxima/proxima.h"
 
@@ -217,18 +219,8 @@ static px_pose compose(const px_pose *a, const px_pose *b) {
 
 /* URDF origin: translation, then fixed-axis roll-pitch-yaw (R = Rz Ry Rx). */
 static px_pose origin(double x, double y, double z, double roll, double pitch, double yaw) {
-    double cr = cos(roll), sr = sin(roll), cp = cos(pitch), sp = sin(pitch), cy = cos(yaw), sy = sin(yaw);
     px_pose p;
-    double r[9] = {cy * cp,
-                   cy * sp * sr - sy * cr,
-                   cy * sp * cr + sy * sr,
-                   sy * cp,
-                   sy * sp * sr + cy * cr,
-                   sy * sp * cr - cy * sr,
-                   -sp,
-                   cp * sr,
-                   cp * cr};
-    memcpy(p.r, r, sizeof r);
+    pg_rot_rpy(roll, pitch, yaw, p.r);
     p.t = (px_vec3){x, y, z};
     return p;
 }

@@ -30,6 +30,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "px_gen.h"
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -1005,17 +1007,8 @@ static void test_approximate_puma(void) {
     int uncovered = 0;
     uint32_t nv = mesh ? px_mesh_vertex_count(mesh) : 0;
     if (m && mesh) {
-        const double cr = cos(rpy[0]), sr = sin(rpy[0]), cp = cos(rpy[1]), sp = sin(rpy[1]), cy = cos(rpy[2]),
-                     sy = sin(rpy[2]);
-        const double r[9] = {cy * cp,
-                             cy * sp * sr - sy * cr,
-                             cy * sp * cr + sy * sr,
-                             sy * cp,
-                             sy * sp * sr + cy * cr,
-                             sy * sp * cr - cy * sr,
-                             -sp,
-                             cp * sr,
-                             cp * cr};
+        double r[9];
+        pg_rot_rpy(rpy[0], rpy[1], rpy[2], r);
         const double *v = px_mesh_vertices(mesh);
         const px_pose id = px_pose_identity();
         for (uint32_t i = 0; i < nv; ++i) {

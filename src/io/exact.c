@@ -41,6 +41,7 @@
 #include <unistd.h>
 
 #include "core/core.h"
+#include "io/import.h"
 
 #define EXACT_LINE 4096
 
@@ -50,17 +51,12 @@ _Static_assert(sizeof(ai_real) == sizeof(float), "Assimp built with double preci
 typedef enum { FORMAT_NONE, FORMAT_OFF, FORMAT_STL, FORMAT_OBJ, FORMAT_PLY } exact_format;
 
 static exact_format scene_format(const struct aiScene *scene) {
-    const struct aiMetadata *md = scene->mMetaData;
-    for (unsigned i = 0; md && md->mKeys && md->mValues && i < md->mNumProperties; ++i) {
-        if (strcmp(md->mKeys[i].data, "SourceAsset_Format") != 0 || md->mValues[i].mType != AI_AISTRING ||
-            !md->mValues[i].mData)
-            continue;
-        const char *f = ((const struct aiString *)md->mValues[i].mData)->data;
-        if (strcmp(f, "OFF Importer") == 0) return FORMAT_OFF;
-        if (strcmp(f, "Stereolithography (STL) Importer") == 0) return FORMAT_STL;
-        if (strcmp(f, "Wavefront Object Importer") == 0) return FORMAT_OBJ;
-        if (strcmp(f, "Stanford Polygon Library (PLY) Importer") == 0) return FORMAT_PLY;
-    }
+    const char *f = pxi_io_scene_format(scene);
+    if (!f) return FORMAT_NONE;
+    if (strcmp(f, "OFF Importer") == 0) return FORMAT_OFF;
+    if (strcmp(f, "Stereolithography (STL) Importer") == 0) return FORMAT_STL;
+    if (strcmp(f, "Wavefront Object Importer") == 0) return FORMAT_OBJ;
+    if (strcmp(f, "Stanford Polygon Library (PLY) Importer") == 0) return FORMAT_PLY;
     return FORMAT_NONE;
 }
 

@@ -113,16 +113,19 @@ static px_status reached_faces(const struct aiScene *scene, const px_allocator *
     return st;
 }
 
-/* The import proper, with the lock held. */
-/* Whether Assimp's OBJ importer made the scene. */
-static int obj_scene(const struct aiScene *scene) {
+const char *pxi_io_scene_format(const struct aiScene *scene) {
     const struct aiMetadata *md = scene->mMetaData;
     for (unsigned i = 0; md && md->mKeys && md->mValues && i < md->mNumProperties; ++i)
         if (strcmp(md->mKeys[i].data, "SourceAsset_Format") == 0 && md->mValues[i].mType == AI_AISTRING &&
             md->mValues[i].mData)
-            return strcmp(((const struct aiString *)md->mValues[i].mData)->data,
-                          "Wavefront Object Importer") == 0;
-    return 0;
+            return ((const struct aiString *)md->mValues[i].mData)->data;
+    return NULL;
+}
+
+/* Whether Assimp's OBJ importer made the scene. */
+static int obj_scene(const struct aiScene *scene) {
+    const char *f = pxi_io_scene_format(scene);
+    return f && strcmp(f, "Wavefront Object Importer") == 0;
 }
 
 /* Whether the file name ends in ".obj" (any case): the precheck ran the
@@ -135,6 +138,7 @@ static int obj_name(const char *path) {
     return 1;
 }
 
+/* The import proper, with the lock held. */
 static px_status import_locked(const char *path, const pxi_file_id *id, const px_allocator *alloc,
                                unsigned post_flags, pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx,
                                px_error *err) {

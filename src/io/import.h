@@ -31,6 +31,11 @@ typedef px_status (*pxi_io_scene_fn)(const char *path, const pxi_file_id *id, co
 px_status pxi_io_import(const char *path, const px_allocator *alloc, unsigned post_flags,
                         pxi_io_scene_fn check, pxi_io_scene_fn use, void *ctx, px_error *err);
 
+/* The name of the Assimp importer that made `scene` (its
+ * "SourceAsset_Format" metadata, e.g. "Wavefront Object Importer"), or
+ * NULL when the scene does not say. */
+const char *pxi_io_scene_format(const struct aiScene *scene);
+
 /* Affine map as a row-major 3x4 matrix [R | t]: p' = R p + t, in doubles
  * (Assimp's float matrices convert exactly). */
 typedef struct pxi_xform {

@@ -311,15 +311,9 @@ static void free_arrays(load_ctx *c) {
 
 /* The unit of the coordinates Assimp hands over (mesh.h, unit_metres). */
 static double scene_unit(const struct aiScene *scene) {
-    const struct aiMetadata *md = scene->mMetaData;
-    for (unsigned i = 0; md && md->mKeys && md->mValues && i < md->mNumProperties; ++i) {
-        if (strcmp(md->mKeys[i].data, "SourceAsset_Format") != 0 || md->mValues[i].mType != AI_AISTRING ||
-            !md->mValues[i].mData)
-            continue;
-        const char *format = ((const struct aiString *)md->mValues[i].mData)->data;
-        /* COLLADA: Assimp 5.2 folds <unit meter> into the root node; glTF: metres */
-        if (strstr(format, "Collada") || strstr(format, "glTF")) return 1.0;
-    }
+    const char *format = pxi_io_scene_format(scene);
+    /* COLLADA: Assimp 5.2 folds <unit meter> into the root node; glTF: metres */
+    if (format && (strstr(format, "Collada") || strstr(format, "glTF"))) return 1.0;
     return 0.0;
 }
 

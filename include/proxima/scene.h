@@ -120,8 +120,9 @@ typedef enum px_body_flags {
 ///
 /// Filters: bodies i and j are paired only when
 /// (group_i & mask_j) != 0 and (group_j & mask_i) != 0, and the pair was
-/// not excluded (px_scene_exclude_pair). group = mask = 0 means "all"
-/// (0xFFFFFFFF).
+/// not excluded (px_scene_exclude_pair). Each of group and mask taken as
+/// 0 means "all" (0xFFFFFFFF), so a mask of 0 cannot say "pair with
+/// nothing": give such a body a group no mask has, or exclude its pairs.
 typedef struct px_body_desc {
     const px_model *model;
     const px_convex *convex;
@@ -211,8 +212,9 @@ typedef struct px_scene_event {
 
 /// Statistics of the last step.
 typedef struct px_scene_stats {
-    uint32_t bodies;          ///< bodies in the scene
-    uint32_t moved;           ///< bodies whose pose was set since the step before
+    uint32_t bodies; ///< bodies in the scene
+    uint32_t moved;  ///< bodies whose pose or velocity was set since the step before (or whose velocity chain
+                     ///< lapsed)
     uint32_t box_updates;     ///< bodies that left their fat box and were moved in the sweep
     uint32_t violations;      ///< bodies that moved more than their bounds allow
     uint64_t candidate_pairs; ///< pairs whose fat boxes overlap (queued)
@@ -255,7 +257,8 @@ PX_API px_status px_scene_get_stats(const px_scene *scene, px_scene_stats *out);
 /// Exact: when no pair is within the report distance, the bodies' boxes
 /// order the search and each pair is measured only if its boxes are closer
 /// than the best distance found. Errors: PX_ERR_INVALID_ARGUMENT for NULL
-/// arguments; a query's error, with the pair in `err` (PX_ERR_RANGE for
+/// arguments and before the scene's first step (there are no poses to
+/// measure yet); a query's error, with the pair in `err` (PX_ERR_RANGE for
 /// bodies placed more than 2^250 apart, as px_scene_step).
 PX_API px_status px_scene_min_distance(px_scene *scene, px_scene_pair *out, px_error *err);
 

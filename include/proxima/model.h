@@ -189,12 +189,12 @@ PX_API px_model *px_model_load_memory(const void *data, size_t size, const px_mo
 /// stopped, each with its lower bound: the next query re-measures only the
 /// pairs that B's motion since could have brought within reach (front
 /// tracking; docs/model.md). Everything is allocated on first use through
-/// `allocator` (NULL: malloc) up to `max_bytes` (0: 16 MiB); when full,
-/// further node pairs, or the whole front, run cold (counted in
-/// `cold_runs`). Release it with px_model_cache_release. A cache used with
-/// another pair of models is reset: every model and polytope carries an
-/// identity of its own, so one built where a destroyed one was is another.
-/// One cache may serve distance, collide and within queries of its pair.
+/// `allocator` (NULL: malloc) up to `max_bytes` (0: 16 MiB), the moment
+/// a table grows (old and new copy) included; when full, further node
+/// pairs, or the whole front, run cold (counted in `cold_runs`). Release it with px_model_cache_release. A
+/// cache used with another pair of models is reset: every model and polytope carries an identity of its own,
+/// so one built where a destroyed one was is another. One cache may serve distance, collide and within
+/// queries of its pair.
 typedef struct px_model_cache {
     const px_allocator *allocator;
     size_t max_bytes;
@@ -247,8 +247,8 @@ PX_API px_status px_model_distance(const px_model *a, const px_pose *pose_a, con
 
 /// Result of px_model_collide and px_model_within.
 typedef struct px_model_collide_result {
-    /// 1 when the models intersect (collide) or are closer than the
-    /// tolerance (within); 0 otherwise.
+    /// 1 when the models intersect (collide) or are at most the tolerance
+    /// apart (within); 0 otherwise.
     int hit;
     /// 1 when the hit is a containment: a piece of one model lies inside a
     /// solid of the other without touching its surface.
@@ -263,8 +263,9 @@ typedef struct px_model_collide_result {
 PX_API px_status px_model_collide(const px_model *a, const px_pose *pose_a, const px_model *b,
                                   const px_pose *pose_b, px_model_cache *cache, px_model_collide_result *out);
 
-/// Tolerance verification: are the models closer than `tolerance` (>= 0,
-/// finite)? Prunes every node pair farther than it; solids as in collide.
+/// Tolerance verification: are the models at most `tolerance` (>= 0,
+/// finite) apart (a distance equal to it is a hit, as the scene's margin
+/// is)? Prunes every node pair farther than it; solids as in collide.
 PX_API px_status px_model_within(const px_model *a, const px_pose *pose_a, const px_model *b,
                                  const px_pose *pose_b, double tolerance, px_model_cache *cache,
                                  px_model_collide_result *out);

@@ -421,8 +421,9 @@ px_model *px_model_create_from_points(const double *xyz, const uint32_t *piece_e
         for (uint32_t i = 0; i < piece_count && st == PX_OK; ++i) {
             if (piece_end[i] <= start) {
                 st = pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                               "px_model_create_from_points: piece %u is empty (piece_end[%u] = %u)", i, i,
-                               piece_end[i]);
+                               "px_model_create_from_points: piece %u is empty: piece_end[%u] = %u is not "
+                               "above the piece's start %u (piece_end must increase)",
+                               i, i, piece_end[i], start);
                 break;
             }
             px_error e;

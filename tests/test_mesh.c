@@ -1249,6 +1249,22 @@ static void test_bad_files(void) {
     tet_stl_binary(stl, 0);
     EXPECT_LOAD_ERROR(write_file("cut.stl", stl, 84 + 2 * 50), "declares 4 triangles");
     EXPECT_LOAD_ERROR(write_file("cut.dae", k_dae, strlen(k_dae) / 2), "malformed XML");
+    /* review s30: Assimp 5.2 keeps a PLY strip's last triangle only, and
+     * takes quantized glTF positions for float bits */
+    EXPECT_LOAD_ERROR(
+        write_file("strip.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 6\nproperty double x\nproperty double "
+                   "y\nproperty double z\nelement tristrips 1\nproperty list int int "
+                   "vertex_indices\nend_header\n0 0 0\n0 1 0\n1 0 0\n1 1 0\n2 0 0\n2 1 0\n6 0 "
+                   "1 2 3 4 5\n",
+                   (size_t)-1),
+        "tristrips");
+    EXPECT_LOAD_ERROR(write_file("quantized.gltf",
+                                 "{\"asset\": {\"version\": \"2.0\"}, \"extensionsUsed\": "
+                                 "[\"KHR_mesh_quantization\"], \"extensionsRequired\": "
+                                 "[\"KHR_mesh_quantization\"]}",
+                                 (size_t)-1),
+                      "KHR_mesh_quantization");
     /* malformed text: a PLY value that is not a number (the precheck),
      * an ASCII STL vertex of two numbers (Assimp's own error) */
     EXPECT_LOAD_ERROR(
@@ -1940,6 +1956,149 @@ static void test_float_cost(void) {
 
 /* Every allocation px_mesh_load makes through the options' allocator
  * (prechecks, Assimp's file system, the walk, the mesh) fails in turn. */
+/* Whether 2D point (x, y) is inside polygon P (n corners, winding
+ * number; the sample points below never lie on an edge). */
+static int in_polygon(const double (*P)[2], int n, double x, double y) {
+    int wn = 0;
+    for (int i = 0; i < n; ++i) {
+        const double *a = P[i], *b = P[(i + 1) % n];
+        double c = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
+        if (a[1] <= y && b[1] > y && c > 0) ++wn;
+        if (a[1] > y && b[1] <= y && c < 0) --wn;
+    }
+    return wn != 0;
+}
+
+/* Triangles of the loaded mesh (in the z = 0 plane) that hold (x, y). */
+static int cover_count(const px_mesh *m, double x, double y) {
+    const double *v = px_mesh_vertices(m);
+    const uint32_t *t = px_mesh_triangles(m);
+    int k = 0;
+    for (uint32_t i = 0; i < px_mesh_triangle_count(m); ++i) {
+        const double *a = v + 3 * t[3 * i], *b = v + 3 * t[3 * i + 1], *c = v + 3 * t[3 * i + 2];
+        double d1 = (b[0] - a[0]) * (y - a[1]) - (x - a[0]) * (b[1] - a[1]);
+        double d2 = (c[0] - b[0]) * (y - b[1]) - (x - b[0]) * (c[1] - b[1]);
+        double d3 = (a[0] - c[0]) * (y - c[1]) - (x - c[0]) * (a[1] - c[1]);
+        if ((d1 > 0 && d2 > 0 && d3 > 0) || (d1 < 0 && d2 < 0 && d3 < 0)) ++k;
+    }
+    return k;
+}
+
+/* Polygon faces are cut into triangles by our ear clipping (polygon.c):
+ * Assimp 5.2's Triangulate filled the notch of concave polygons of five
+ * or more corners (review s30). Every shape, from every starting corner
+ * and in both windings, as an OBJ face: n - 2 triangles that cover every
+ * sample point inside the polygon exactly once and none outside. A
+ * polygon crossing itself is refused. */
+static void test_polygons(void) {
+    static const double U[][2] = {{0, 0}, {3, 0}, {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+    static const double stairs[][2] = {{0, 0}, {5, 0}, {5, 1}, {4, 1}, {4, 2}, {3, 2},
+                                       {3, 3}, {2, 3}, {2, 4}, {1, 4}, {1, 5}, {0, 5}};
+    static const double T[][2] = {{0, 2}, {0, 3}, {3, 3}, {3, 2}, {2, 2}, {2, 0}, {1, 0}, {1, 2}};
+    static const double notch[][2] = {{0, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}};
+    /* collinear corners on every side, and a spike's worth of them */
+    static const double flat[][2] = {{0, 0}, {1, 0}, {2, 0},   {2, 1}, {2, 2},
+                                     {1, 2}, {1, 1}, {0.5, 1}, {0, 1}};
+    /* a square with a square hole, joined by a bridge walked both ways */
+    static const double keyhole[][2] = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0},
+                                        {1, 1}, {1, 3}, {3, 3}, {3, 1}, {1, 1}};
+    double star[10][2];
+    for (int i = 0; i < 10; ++i) {
+        double r = i % 2 ? 1.0 : 2.5, a = 0.3 + i * 3.14159265358979 / 5;
+        star[i][0] = r * cos(a);
+        star[i][1] = r * sin(a);
+    }
+    struct {
+        const char *name;
+        const double (*p)[2];
+        int n;
+    } shapes[] = {{"U", U, 8},
+                  {"stairs", stairs, 12},
+                  {"T", T, 8},
+                  {"notch", notch, 5},
+                  {"flat", flat, 9},
+                  {"keyhole", keyhole, 10},
+                  {"star", (const double(*)[2])star, 10}};
+    char text[2048];
+    double Q[16][2];
+    for (size_t si = 0; si < sizeof shapes / sizeof shapes[0]; ++si) {
+        const int n = shapes[si].n;
+        int bad = 0;
+        for (int rev = 0; rev < 2; ++rev)
+            for (int start = 0; start < n; ++start) {
+                size_t len = (size_t)snprintf(text, sizeof text, "o poly\n");
+                for (int k = 0; k < n; ++k) {
+                    int j = (start + k) % n;
+                    if (rev) j = n - 1 - j;
+                    Q[k][0] = shapes[si].p[j][0];
+                    Q[k][1] = shapes[si].p[j][1];
+                    len += (size_t)snprintf(text + len, sizeof text - len, "v %.17g %.17g 0\n", Q[k][0],
+                                            Q[k][1]);
+                }
+                len += (size_t)snprintf(text + len, sizeof text - len, "f");
+                for (int k = 0; k < n; ++k)
+                    len += (size_t)snprintf(text + len, sizeof text - len, " %d", k + 1);
+                snprintf(text + len, sizeof text - len, "\n");
+                px_mesh *m = load(write_file("polygon.obj", text, (size_t)-1), 0);
+                if (!m) continue;
+                if (px_mesh_triangle_count(m) != (uint32_t)(n - 2)) ++bad;
+                double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+                for (int k = 0; k < n; ++k)
+                    for (int c = 0; c < 2; ++c) {
+                        lo[c] = Q[k][c] < lo[c] ? Q[k][c] : lo[c];
+                        hi[c] = Q[k][c] > hi[c] ? Q[k][c] : hi[c];
+                    }
+                for (int a = 0; a <= 40; ++a)
+                    for (int b = 0; b <= 40; ++b) {
+                        double x = lo[0] - 0.1 + (hi[0] - lo[0] + 0.2) * (a + 0.01234) / 40.5;
+                        double y = lo[1] - 0.1 + (hi[1] - lo[1] + 0.2) * (b + 0.02345) / 40.5;
+                        if (cover_count(m, x, y) != in_polygon((const double(*)[2])Q, n, x, y)) ++bad;
+                    }
+                px_mesh_destroy(m);
+            }
+        CHECK(bad == 0, "polygon %s: %d wrong counts or samples over its %d starts and 2 windings",
+              shapes[si].name, bad, n);
+    }
+    /* A pentagon turned out of the coordinate planes: n - 2 triangles of
+     * the polygon's area, all wound as the polygon. */
+    {
+        const double r[3][3] = {{0.36, 0.48, -0.8}, {-0.8, 0.6, 0}, {0.48, 0.64, 0.6}};
+        size_t len = (size_t)snprintf(text, sizeof text, "o turned\n");
+        for (int k = 0; k < 5; ++k) {
+            double x = notch[k][0] + 7, y = notch[k][1] - 3;
+            len += (size_t)snprintf(text + len, sizeof text - len, "v %.17g %.17g %.17g\n",
+                                    r[0][0] * x + r[0][1] * y, r[1][0] * x + r[1][1] * y,
+                                    r[2][0] * x + r[2][1] * y);
+        }
+        snprintf(text + len, sizeof text - len, "f 1 2 3 4 5\n");
+        px_mesh *m = load(write_file("turned.obj", text, (size_t)-1), 0);
+        if (m) {
+            const double *v = px_mesh_vertices(m);
+            const uint32_t *t = px_mesh_triangles(m);
+            double area = 0; /* along the plane's normal, r's third column */
+            int wrong = 0;
+            for (uint32_t i = 0; i < px_mesh_triangle_count(m); ++i) {
+                const double *a = v + 3 * t[3 * i], *b = v + 3 * t[3 * i + 1], *c = v + 3 * t[3 * i + 2];
+                double e[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+                       f[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+                double x[3] = {e[1] * f[2] - e[2] * f[1], e[2] * f[0] - e[0] * f[2],
+                               e[0] * f[1] - e[1] * f[0]};
+                double along = x[0] * r[0][2] + x[1] * r[1][2] + x[2] * r[2][2];
+                wrong += along < 0;
+                area += 0.5 * along;
+            }
+            CHECK(px_mesh_triangle_count(m) == 3 && wrong == 0 && fabs(area - 3.0) < 1e-12,
+                  "turned pentagon: %u triangles, %d wound backwards, area %.17g (3)",
+                  px_mesh_triangle_count(m), wrong, area);
+            px_mesh_destroy(m);
+        }
+    }
+    /* A pentagon that crosses itself. */
+    EXPECT_LOAD_ERROR(
+        write_file("crossing.obj", "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\nv 1 3 0\nf 1 2 3 4 5\n", (size_t)-1),
+        "crosses itself");
+}
+
 static void test_load_alloc_failures(void) {
     const char *files[5];
     char paths[5][512];
@@ -2098,6 +2257,7 @@ int main(void) {
     test_obj_full_precision();
     test_obj_number_forms();
     test_ply_full_precision();
+    test_polygons();
     test_load_alloc_failures();
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", g_dir);

@@ -69,7 +69,8 @@
 ///   it an element that takes the properties after it), a line break other
 ///   than "\n" or "\r\n" that makes it read past its buffer, a property
 ///   type it does not read or a property line without a name, several
-///   vertex elements or several face/tristrips elements, records that do
+///   vertex elements or several face/tristrips elements, any tristrips
+///   records (Assimp 5.2 keeps only each strip's last triangle), records that do
 ///   not fit in the file (binary) or on their line (ascii: one record per
 ///   line, every value a number of its property's type), a list declaring
 ///   more values than the bytes left (binary) or its line (ascii) can hold,
@@ -123,7 +124,9 @@
 ///   weights and vertices by <v> unchecked);
 /// - glTF sparse accessors (Assimp 5.2 reads them unchecked: a missing
 ///   "indices" crashes it, and it allocates count * element size for one
-///   without a buffer view);
+///   without a buffer view), and glTF files that use KHR_mesh_quantization
+///   or EXT_meshopt_compression (Assimp 5.2 takes their integer positions
+///   for float bits);
 /// - nesting deeper than Assimp 5.2's recursive readers can take on the
 ///   stack: more than 256 levels of AC3D objects (kids), FBX scopes (ASCII
 ///   or binary) or OpenGEX structures, and XML (X3D, XGL, AMF,
@@ -209,9 +212,11 @@ extern "C" {
 ///
 /// What a part holds: every vertex of its meshes, in Assimp's order (so STL
 /// parts have 3 vertices per triangle: nothing is welded; the closed test
-/// joins exactly equal positions itself), and the mesh's faces of three
-/// corners after Assimp's Triangulate (polygons become triangles; points
-/// and lines add no triangle, so a mesh of points or lines only is a
+/// joins exactly equal positions itself), and the mesh's faces as
+/// triangles (a polygon of n corners becomes n - 2 triangles of its
+/// corners by our ear clipping, not Assimp's, which filled the notches of
+/// concave polygons; a polygon whose edges cross is refused; points and
+/// lines add no triangle, so a mesh of points or lines only is a
 /// point-set part). Triangles under a mirroring node transform are
 /// reversed, so their winding keeps facing the same way. No other Assimp
 /// post-processing runs: joining vertices, removing degenerate triangles

@@ -739,6 +739,7 @@ typedef struct json {
     int bad_child;   /* a child that is not a node index */
     int v1_children; /* glTF 1.0 nodes with children */
     int sparse;      /* an accessor with a "sparse" member */
+    int quantized;   /* an extension that changes how positions are stored */
     g_graph g;
     u32 nodes; /* elements of "nodes" */
     int have_nodes, have_scenes, have_scene;
@@ -1158,8 +1159,25 @@ static u64 gltf_triangles(const json *j, unsigned char *reach, unsigned char *us
     return unknown ? ~0ull : total;
 }
 
+/* An element of "extensionsUsed" or "extensionsRequired": Assimp 5.2
+ * reads neither of these and takes the stored integers for float bits
+ * (review s30: a position of 0.248 came out as 2.3e-41). */
+static int extension_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index;
+    (void)ctx;
+    j_ws(j);
+    if (j->p >= j->end || *j->p != '"') return j_value(j, depth);
+    const unsigned char *k;
+    size_t n;
+    if (!j_string(j, &k, &n, NULL)) return 0;
+    if (key_is(k, n, "KHR_mesh_quantization") || key_is(k, n, "EXT_meshopt_compression")) j->quantized = 1;
+    return 1;
+}
+
 static int top_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     (void)ctx;
+    if (key_is(k, n, "extensionsUsed") || key_is(k, n, "extensionsRequired"))
+        return j_array(j, depth, extension_element, NULL);
     if (key_is(k, n, "nodes")) {
         if (j->have_nodes++) return j->dup = 1, 0;
         j_ws(j);
@@ -1264,6 +1282,15 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
                            h->path, (u64)PX_IO_MAX_NODES, MAX_EDGES);
         else
             st = pxi_error(err, PX_ERR_IO, "mesh file '%s' is not valid JSON (glTF)", h->path);
+        goto done;
+    }
+    if (j.quantized) {
+        st =
+            pxi_error(err, PX_ERR_IO,
+                      "mesh file '%s': its glTF uses KHR_mesh_quantization or EXT_meshopt_compression, which "
+                      "Assimp 5.2 does not read (integer positions would be taken for float bits); export "
+                      "it with float positions",
+                      h->path);
         goto done;
     }
     if (j.escaped_key) {

@@ -1,15 +1,15 @@
 /* px_mesh_load: a mesh file -> px_mesh (triangles and the part tree),
  * through the checked import of import.c.
  *
- * Post-processing (shared REFERENCES §6.2): only aiProcess_Triangulate, and
- * only after the raw scene was checked here (face indices below the mesh's
- * vertex count, finite coordinates, polygons small enough), because the
- * step reads mVertices by the face indices and its ear clipping costs the
- * square of a polygon's size. Triangulate rewrites faces only: it keeps
- * every vertex and drops no triangle (its zero-area filter is compiled out
- * in 5.2). Nothing else runs, because every other step that would help
- * can delete small parts outright: Assimp 5.2 stores positions as floats
- * and its thresholds are absolute, in file units.
+ * Post-processing: none. Polygons of four or more corners are cut into
+ * triangles here (polygon.c, on the full-precision coordinates), after the
+ * raw scene was checked (face indices below the mesh's vertex count,
+ * finite coordinates, polygons small enough: ear clipping costs up to the
+ * square of a polygon's size). Assimp's aiProcess_Triangulate, used until
+ * review s30, covers area outside concave polygons of five or more corners
+ * in 5.2 (shared REFERENCES §6.2 named it). Every other step that would
+ * help can delete small parts outright: Assimp 5.2 stores positions as
+ * floats and its thresholds are absolute, in file units.
  * - JoinIdenticalVertices welds positions within ~3e-6..1e-5 (a 3e-5
  *   tetrahedron at coordinate 1000 collapsed to a point); px_mesh_create
  *   joins exactly equal positions instead, for its closed test only.
@@ -55,10 +55,12 @@
 #include "core/core.h"
 #include "io/exact.h"
 #include "io/import.h"
+#include "io/polygon.h"
 
-/* Polygons are triangulated by ear clipping, about n^2 steps for n corners
- * (a 32,000-corner polygon took 5.5 s in Assimp 5.2.5): files whose
- * polygons of 5 or more corners sum to more than this in n^2 are refused. */
+/* Polygons are triangulated by ear clipping and checked for crossing edges,
+ * up to about n^2 steps for n corners (a 32,000-corner polygon took 5.5 s
+ * in Assimp 5.2.5): files whose polygons of 5 or more corners sum to more
+ * than this in n^2 are refused. */
 #define PXI_IO_MAX_POLYGON_WORK (1ull << 28)
 
 /* Longest node or mesh name kept (Assimp's aiString holds at most 1023). */
@@ -84,6 +86,10 @@ typedef struct load_ctx {
     size_t exact_count;
     size_t *mesh_first; /* where each scene mesh starts in `exact` */
     unsigned mesh_count;
+    /* polygons of 4 or more corners (polygon.c): the most corners of one,
+     * its corners' indices into xyz, the ear clipper's scratch */
+    uint32_t max_corners, *corners;
+    pxi_polygon_work poly;
 } load_ctx;
 
 typedef struct walk_entry {
@@ -105,7 +111,7 @@ static size_t ai_len(const struct aiString *s) {
 static px_status check_raw(const char *path, const pxi_file_id *id, const struct aiScene *scene, void *vctx,
                            px_error *err) {
     (void)id;
-    (void)vctx;
+    load_ctx *c = vctx;
     unsigned long long work = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const struct aiMesh *m = scene->mMeshes[i];
@@ -133,6 +139,7 @@ static px_status check_raw(const char *path, const pxi_file_id *id, const struct
                                      path, f, i, face->mIndices[k], m->mNumVertices);
             }
             unsigned long long n = face->mNumIndices;
+            if (n > c->max_corners) c->max_corners = (uint32_t)n;
             if (n >= 5) {
                 work += n * n;
                 if (work > PXI_IO_MAX_POLYGON_WORK)
@@ -186,7 +193,8 @@ static px_status visit(const char *path, const struct aiScene *scene, load_ctx *
         for (unsigned g = k; g < end; ++g) {
             const struct aiMesh *m = scene->mMeshes[node->mMeshes[g]];
             nv += m->mNumVertices;
-            for (unsigned f = 0; f < m->mNumFaces; ++f) nt += m->mFaces[f].mNumIndices == 3;
+            for (unsigned f = 0; f < m->mNumFaces; ++f)
+                if (m->mFaces[f].mNumIndices >= 3) nt += m->mFaces[f].mNumIndices - 2;
             if (nv > PX_IO_MAX_ELEMENTS || nt > PX_IO_MAX_ELEMENTS) break;
         }
         if (nv > PX_IO_MAX_ELEMENTS - c->nv || nt > PX_IO_MAX_ELEMENTS - c->nt || c->np >= PX_IO_MAX_ELEMENTS)
@@ -236,11 +244,25 @@ static px_status visit(const char *path, const struct aiScene *scene, load_ctx *
                 }
                 for (unsigned f = 0; f < m->mNumFaces; ++f) {
                     const struct aiFace *face = &m->mFaces[f];
-                    if (face->mNumIndices != 3) continue;
-                    t[0] = base + face->mIndices[0];
-                    t[1] = base + face->mIndices[mirror ? 2 : 1];
-                    t[2] = base + face->mIndices[mirror ? 1 : 2];
-                    t += 3;
+                    const uint32_t n = face->mNumIndices;
+                    if (n < 3) continue; /* points and lines: not triangles */
+                    if (n == 3) {
+                        for (int j = 0; j < 3; ++j) t[j] = base + face->mIndices[j];
+                    } else {
+                        for (uint32_t j = 0; j < n; ++j) c->corners[j] = base + face->mIndices[j];
+                        if (!pxi_polygon_triangulate(c->xyz, c->corners, n, &c->poly, t))
+                            return pxi_error(err, PX_ERR_IO,
+                                             "mesh file '%s': face %u of mesh %u, a polygon of %u corners, "
+                                             "crosses itself (seen across its normal), so its triangles are "
+                                             "not defined; split it into simple polygons or triangles",
+                                             path, f, gi, n);
+                    }
+                    for (uint32_t j = 0; j < n - 2; ++j, t += 3)
+                        if (mirror) {
+                            uint32_t x = t[1];
+                            t[1] = t[2];
+                            t[2] = x;
+                        }
                 }
                 base += m->mNumVertices;
             }
@@ -317,7 +339,31 @@ static double scene_unit(const struct aiScene *scene) {
     return 0.0;
 }
 
-/* pxi_io_scene_fn, after Triangulate: the desc's arrays. */
+/* The polygons' scratch, for max_corners corners. */
+static int poly_alloc(load_ctx *c) {
+    const uint32_t n = c->max_corners;
+    c->corners = pxi_alloc_array(c->alloc, n, sizeof *c->corners);
+    c->poly.prev = pxi_alloc_array(c->alloc, n, sizeof *c->poly.prev);
+    c->poly.next = pxi_alloc_array(c->alloc, n, sizeof *c->poly.next);
+    c->poly.state = pxi_alloc_array(c->alloc, n, 1);
+    c->poly.uv = pxi_alloc_array(c->alloc, n, 2 * sizeof(double));
+    c->poly.cap = n;
+    return c->corners && c->poly.prev && c->poly.next && c->poly.state && c->poly.uv;
+}
+
+static void poly_free(load_ctx *c) {
+    const uint32_t n = c->poly.cap;
+    pxi_free(c->alloc, c->corners, (size_t)n * sizeof *c->corners);
+    pxi_free(c->alloc, c->poly.prev, (size_t)n * sizeof *c->poly.prev);
+    pxi_free(c->alloc, c->poly.next, (size_t)n * sizeof *c->poly.next);
+    pxi_free(c->alloc, c->poly.state, n);
+    pxi_free(c->alloc, c->poly.uv, (size_t)n * 2 * sizeof(double));
+    c->corners = NULL;
+    memset(&c->poly, 0, sizeof c->poly);
+}
+
+/* pxi_io_scene_fn, on the raw scene: the desc's arrays, polygons cut into
+ * triangles by polygon.c. */
 static px_status build(const char *path, const pxi_file_id *id, const struct aiScene *scene, void *vctx,
                        px_error *err) {
     load_ctx *c = vctx;
@@ -337,6 +383,10 @@ static px_status build(const char *path, const pxi_file_id *id, const struct aiS
         c->parts = c->tri ? pxi_alloc_array(c->alloc, c->cap_p, sizeof(px_mesh_part_desc)) : NULL;
         c->nodes = c->parts ? pxi_alloc_array(c->alloc, c->cap_n, sizeof(px_mesh_node_desc)) : NULL;
         c->names = c->nodes ? pxi_alloc(c->alloc, c->cap_names) : NULL;
+        if (c->names && c->max_corners > 3 && !poly_alloc(c)) {
+            pxi_free(c->alloc, c->names, c->cap_names);
+            c->names = NULL;
+        }
         if (!c->names)
             st = pxi_error(err, PX_ERR_OUT_OF_MEMORY,
                            "out of memory reading mesh file '%s' (%zu vertices, %zu triangles)", path,
@@ -356,6 +406,7 @@ static px_status build(const char *path, const pxi_file_id *id, const struct aiS
     }
     if (st == PX_OK) st = walk(path, scene, c, stack, 1, err);
     pxi_free(c->alloc, stack, (PXI_IO_MAX_DEPTH + 1) * sizeof *stack);
+    poly_free(c);
     int exact = c->exact != NULL;
     free_exact(c);
     if (st != PX_OK) {
@@ -395,7 +446,7 @@ px_mesh *px_mesh_load(const char *path, const px_mesh_options *options, px_error
     load_ctx c;
     memset(&c, 0, sizeof c);
     c.alloc = &alloc;
-    if (pxi_io_import(path, &alloc, aiProcess_Triangulate, check_raw, build, &c, err) != PX_OK) return NULL;
+    if (pxi_io_import(path, &alloc, 0, check_raw, build, &c, err) != PX_OK) return NULL;
 
     px_mesh_desc d;
     memset(&d, 0, sizeof d);

@@ -682,6 +682,14 @@ static px_status ply_sizes(ply_state *s, int binary, u64 body, px_error *err) {
                          "mesh file '%s': the PLY header declares several %s elements (Assimp 5.2 writes the "
                          "later ones past the arrays it sized for the first)",
                          h->path, vertex > 1 ? "vertex" : "face or tristrips");
+    for (size_t k = 0; k < s->nelem; ++k)
+        if (s->elem[k].sem == E_TRISTRIP && s->elem[k].declared > 0)
+            return pxi_error(
+                err, PX_ERR_IO,
+                "mesh file '%s': its PLY tristrips element cannot be read: Assimp 5.2 keeps only "
+                "the last triangle of each strip (review s30: a strip of 6 corners gave 1 "
+                "triangle of 4); write the triangles as a face element",
+                h->path);
     return PX_OK;
 }
 

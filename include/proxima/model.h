@@ -132,7 +132,7 @@ typedef struct px_model_info {
     uint32_t solid;       ///< 1 when every leaf stands for a solid (closed parts, convex pieces)
     uint32_t solid_parts; ///< closed parts (triangle trees) whose inside counts in collisions
     uint32_t reserved;
-    double max_h;        ///< largest leaf bound h (0 for exact leaves)
+    double max_h; ///< largest leaf bound h_overlap, which is at least h (px_model_leaf; 0 for exact leaves)
     px_vec3 min, max;    ///< axis-aligned box of the model (body frame)
     size_t memory_bytes; ///< everything the model owns
 } px_model_info;

@@ -323,6 +323,13 @@ if [ -n "$A" ]; then
   # Errors: exit 2, naming the file and the problem.
   expect 2 "nonexistent.dae" -- "$B" check /nonexistent.dae
   expect 2 "empty'?: the folder holds no mesh file" -- "$B" check "$T/empty"
+  # A part that cannot be read (a broken link) is an error, not a part
+  # left out of a clean report (review s30); a sub-folder is not a part.
+  mkdir -p "$T/dangling/sub.stl" && cp "$T/stl/a_overlap.stl" "$T/dangling/"
+  ln -sf "$T/nowhere.stl" "$T/dangling/gone.stl"
+  expect 2 "gone.stl'?: cannot read this part" -- "$B" check "$T/dangling"
+  rm "$T/dangling/gone.stl"
+  expect 0 "" -- "$B" check "$T/dangling"
   # A binary STL that declares 5 triangles and holds 20 bytes of them.
   # (An ASCII STL with a bad number is refused too, but Assimp 5.2 leaks
   # 2.4 KB on that path, which LeakSanitizer fails under make test.)

@@ -564,7 +564,7 @@ static int load_folder(assembly *as, const check_opts *o) {
     }
     char **names = NULL;
     size_t n = 0, cap = 0;
-    int ok = 1;
+    int ok = 1, refused = 0;
     struct dirent *de;
     size_t dirlen = strlen(o->file);
     while (ok && (de = readdir(d)) != NULL) {
@@ -584,10 +584,22 @@ static int load_folder(assembly *as, const check_opts *o) {
             break;
         }
         sprintf(path, "%s/%s", o->file, de->d_name);
+        /* A sub-folder is not a part. A mesh name that cannot be read (a
+         * broken link, no permission) or is not a file is an error: skipped,
+         * its part would be missing from a clean report (review s30). */
         struct stat st;
-        if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) {
+        const int got = stat(path, &st) == 0, e = errno;
+        if (!got || !S_ISREG(st.st_mode)) {
+            const int dir = got && S_ISDIR(st.st_mode);
+            if (!got)
+                note("'%s': cannot read this part: %s", path, strerror(e));
+            else if (!dir)
+                note("'%s': this part is not a regular file", path);
             free(path);
-            continue; /* a sub-folder or a broken link is not a part */
+            if (dir) continue;
+            ok = 0;
+            refused = 1;
+            break;
         }
         free(path);
         names[n] = dup_string(de->d_name);
@@ -597,7 +609,7 @@ static int load_folder(assembly *as, const check_opts *o) {
             ++n;
     }
     closedir(d);
-    if (!ok) note("out of memory");
+    if (!ok && !refused) note("out of memory");
     if (ok && n == 0) {
         note("'%s': the folder holds no mesh file (.stl, .obj, .ply, .off, .dae, .gltf, .glb, ...)", o->file);
         ok = 0;

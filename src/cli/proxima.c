@@ -349,6 +349,10 @@ static int cmd_info(const opts *o) {
                in.scale != 1.0 ? ", then scaled by --scale" : "");
     else
         printf("units:       not stated by the file%s\n", in.scale != 1.0 ? " (scaled by --scale)" : "");
+    printf("coordinates: %s\n", in.float_coordinates
+                                    ? "32-bit floats, as Assimp reads this file (docs/io.md says which files "
+                                      "are read at full precision)"
+                                    : "the file's numbers at full precision (doubles)");
     for (uint32_t i = 0; i < np; ++i) {
         px_mesh_part p;
         px_mesh_get_part(m, i, &p);

@@ -2002,6 +2002,9 @@ static void test_polygons(void) {
     /* a square with a square hole, joined by a bridge walked both ways */
     static const double keyhole[][2] = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0},
                                         {1, 1}, {1, 3}, {3, 3}, {3, 1}, {1, 1}};
+    /* a spike out and back from the lowest corner (review s30: refused
+     * when the winding came from that corner's turn) */
+    static const double antenna[][2] = {{3, 1}, {3, 3}, {0, 2}, {1, 3}, {1, 3}, {0, 2}, {1, 0}, {1, 1}};
     double star[10][2];
     for (int i = 0; i < 10; ++i) {
         double r = i % 2 ? 1.0 : 2.5, a = 0.3 + i * 3.14159265358979 / 5;
@@ -2018,7 +2021,8 @@ static void test_polygons(void) {
                   {"notch", notch, 5},
                   {"flat", flat, 9},
                   {"keyhole", keyhole, 10},
-                  {"star", (const double(*)[2])star, 10}};
+                  {"star", (const double(*)[2])star, 10},
+                  {"antenna", antenna, 8}};
     char text[2048];
     double Q[16][2];
     for (size_t si = 0; si < sizeof shapes / sizeof shapes[0]; ++si) {

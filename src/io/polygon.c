@@ -16,9 +16,10 @@
  * rounding decides whether a corner is convex or a point is inside. A
  * corner on the line of its neighbours is cut first (its triangle has no
  * area: a straight-through corner or the tip of a spike, either way on the
- * polygon's boundary). Corners at the same point as a corner of the
- * candidate ear (a polygon with a hole joined by a bridge visits them
- * twice) do not block it.
+ * polygon's boundary). A corner at the same point as a corner of the
+ * candidate ear (a polygon with a hole joined by a bridge, or a spike,
+ * visits the point twice) blocks it only when one of its edges starts into
+ * the ear.
  */
 #include "io/polygon.h"
 
@@ -41,18 +42,44 @@ static int same(const double *uv, uint32_t a, uint32_t b) {
     return uv[2 * a] == uv[2 * b] && uv[2 * a + 1] == uv[2 * b + 1];
 }
 
+/* s times the orientation of (a, b, c): > 0 when c is left of a -> b in
+ * the polygon's winding. */
+static int left(const double *uv, uint32_t a, uint32_t b, uint32_t c, int s) {
+    return s *
+           pxi_orient2d_sign(uv[2 * a], uv[2 * a + 1], uv[2 * b], uv[2 * b + 1], uv[2 * c], uv[2 * c + 1]);
+}
+
+/* 1 when an edge from a corner at the same point as triangle corner c
+ * (its other end x) starts into the triangle: x strictly left of both
+ * triangle edges at c, (a -> c) and (c -> b). */
+static int enters(const double *uv, uint32_t a, uint32_t c, uint32_t b, uint32_t x, int s) {
+    return left(uv, a, c, x, s) > 0 && left(uv, c, b, x, s) > 0;
+}
+
 /* 1 when corner i (convex, neighbours p and q) is an ear: no remaining
- * reflex or flat corner lies in or on triangle (p, i, q), apart from those
- * at the same point as one of its corners. */
+ * reflex or flat corner lies in or on triangle (p, i, q), and no corner at
+ * the same point as one of the triangle's has an edge that starts into it
+ * (a polygon that visits a point twice: a bridge to a hole, the foot of a
+ * spike; review s30: a spike out of a corner and back let the triangle to
+ * its tip cover what the spike leaves outside). */
 static int is_ear(const pxi_polygon_work *w, uint32_t p, uint32_t i, uint32_t q, int s) {
     const double *uv = w->uv;
     for (uint32_t r = w->next[q]; r != p; r = w->next[r]) {
-        if (w->state[r] == CONVEX || same(uv, r, p) || same(uv, r, i) || same(uv, r, q)) continue;
-        const double ru = uv[2 * r], rv = uv[2 * r + 1];
-        if (s * pxi_orient2d_sign(uv[2 * p], uv[2 * p + 1], uv[2 * i], uv[2 * i + 1], ru, rv) >= 0 &&
-            s * pxi_orient2d_sign(uv[2 * i], uv[2 * i + 1], uv[2 * q], uv[2 * q + 1], ru, rv) >= 0 &&
-            s * pxi_orient2d_sign(uv[2 * q], uv[2 * q + 1], uv[2 * p], uv[2 * p + 1], ru, rv) >= 0)
-            return 0;
+        const uint32_t a = w->prev[r], b = w->next[r];
+        if (same(uv, r, p)) {
+            if (enters(uv, q, p, i, a, s) || enters(uv, q, p, i, b, s)) return 0;
+            continue;
+        }
+        if (same(uv, r, i)) {
+            if (enters(uv, p, i, q, a, s) || enters(uv, p, i, q, b, s)) return 0;
+            continue;
+        }
+        if (same(uv, r, q)) {
+            if (enters(uv, i, q, p, a, s) || enters(uv, i, q, p, b, s)) return 0;
+            continue;
+        }
+        if (w->state[r] == CONVEX) continue;
+        if (left(uv, p, i, r, s) >= 0 && left(uv, i, q, r, s) >= 0 && left(uv, q, p, r, s) >= 0) return 0;
     }
     return 1;
 }
@@ -82,49 +109,12 @@ static int crosses(const double *uv, uint32_t n) {
     return 0;
 }
 
-int pxi_polygon_triangulate(const double *xyz, const uint32_t *idx, uint32_t n, pxi_polygon_work *w,
-                            uint32_t *out) {
-    /* Newell's normal, about the first corner (smaller products). */
-    const double *o = xyz + 3 * (size_t)idx[0];
-    double nrm[3] = {0, 0, 0};
-    for (uint32_t k = 0; k < n; ++k) {
-        const double *a = xyz + 3 * (size_t)idx[k], *b = xyz + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
-        const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
-        const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
-        nrm[0] += ay * bz - az * by;
-        nrm[1] += az * bx - ax * bz;
-        nrm[2] += ax * by - ay * bx;
-    }
-    int drop = 2;
-    if (fabs(nrm[0]) > fabs(nrm[drop])) drop = 0;
-    if (fabs(nrm[1]) > fabs(nrm[drop])) drop = 1;
-    const int cu = (drop + 1) % 3, cv = (drop + 2) % 3; /* (u, v, drop) is right-handed */
-    double *uv = w->uv;
-    for (uint32_t k = 0; k < n; ++k) {
-        uv[2 * k] = xyz[3 * (size_t)idx[k] + cu];
-        uv[2 * k + 1] = xyz[3 * (size_t)idx[k] + cv];
-    }
-    /* The winding in (u, v), exactly: the turn at the lowest corner (of
-     * least u, then v), which is convex for a simple polygon; Newell's
-     * sign where that corner does not turn (a neighbour at the same point
-     * or in line); 0 when neither says: no area, a fan of flat triangles. */
-    uint32_t m = 0;
-    for (uint32_t k = 1; k < n; ++k)
-        if (uv[2 * k] < uv[2 * m] || (uv[2 * k] == uv[2 * m] && uv[2 * k + 1] < uv[2 * m + 1])) m = k;
-    const uint32_t mp = m ? m - 1 : n - 1, mq = m + 1 < n ? m + 1 : 0;
-    int s =
-        pxi_orient2d_sign(uv[2 * mp], uv[2 * mp + 1], uv[2 * m], uv[2 * m + 1], uv[2 * mq], uv[2 * mq + 1]);
-    if (s == 0) s = nrm[drop] > 0 ? 1 : nrm[drop] < 0 ? -1 : 0;
+/* Cuts ears off the polygon wound as s says (polygon.h's work arrays
+ * hold its projected corners). 1 when done; 0 when a whole turn finds no
+ * ear. */
+static int clip(pxi_polygon_work *w, const uint32_t *idx, uint32_t n, int s, uint32_t *out) {
+    const double *uv = w->uv;
     uint32_t t = 0;
-    if (s == 0) {
-        for (uint32_t k = 1; k + 1 < n; ++k, ++t) {
-            out[3 * t] = idx[0];
-            out[3 * t + 1] = idx[k];
-            out[3 * t + 2] = idx[k + 1];
-        }
-        return 1;
-    }
-    if (crosses(uv, n)) return 0;
     for (uint32_t k = 0; k < n; ++k) {
         w->prev[k] = k ? k - 1 : n - 1;
         w->next[k] = k + 1 < n ? k + 1 : 0;
@@ -158,4 +148,52 @@ int pxi_polygon_triangulate(const double *xyz, const uint32_t *idx, uint32_t n, 
     out[3 * t + 1] = idx[i];
     out[3 * t + 2] = idx[w->next[i]];
     return 1;
+}
+
+int pxi_polygon_triangulate(const double *xyz, const uint32_t *idx, uint32_t n, pxi_polygon_work *w,
+                            uint32_t *out) {
+    /* Newell's normal, about the first corner (smaller products). */
+    const double *o = xyz + 3 * (size_t)idx[0];
+    double nrm[3] = {0, 0, 0};
+    for (uint32_t k = 0; k < n; ++k) {
+        const double *a = xyz + 3 * (size_t)idx[k], *b = xyz + 3 * (size_t)idx[k + 1 < n ? k + 1 : 0];
+        const double ax = a[0] - o[0], ay = a[1] - o[1], az = a[2] - o[2];
+        const double bx = b[0] - o[0], by = b[1] - o[1], bz = b[2] - o[2];
+        nrm[0] += ay * bz - az * by;
+        nrm[1] += az * bx - ax * bz;
+        nrm[2] += ax * by - ay * bx;
+    }
+    int drop = 2;
+    if (fabs(nrm[0]) > fabs(nrm[drop])) drop = 0;
+    if (fabs(nrm[1]) > fabs(nrm[drop])) drop = 1;
+    const int cu = (drop + 1) % 3, cv = (drop + 2) % 3; /* (u, v, drop) is right-handed */
+    double *uv = w->uv;
+    for (uint32_t k = 0; k < n; ++k) {
+        uv[2 * k] = xyz[3 * (size_t)idx[k] + cu];
+        uv[2 * k + 1] = xyz[3 * (size_t)idx[k] + cv];
+    }
+    /* The winding in (u, v): the sign of Newell's normal across it, which
+     * rounding cannot turn unless the polygon's area is rounding itself;
+     * then the turn at the lowest corner (least u, then v), convex for a
+     * simple polygon that visits it once; if neither says, the polygon has
+     * no area: a fan of flat triangles. */
+    int s = nrm[drop] > 0 ? 1 : nrm[drop] < 0 ? -1 : 0;
+    if (s == 0) {
+        uint32_t m = 0;
+        for (uint32_t k = 1; k < n; ++k)
+            if (uv[2 * k] < uv[2 * m] || (uv[2 * k] == uv[2 * m] && uv[2 * k + 1] < uv[2 * m + 1])) m = k;
+        s = orient(uv, m ? m - 1 : n - 1, m, m + 1 < n ? m + 1 : 0);
+    }
+    if (s == 0) {
+        for (uint32_t k = 1; k + 1 < n; ++k) {
+            out[3 * (k - 1)] = idx[0];
+            out[3 * (k - 1) + 1] = idx[k];
+            out[3 * (k - 1) + 2] = idx[k + 1];
+        }
+        return 1;
+    }
+    if (crosses(uv, n)) return 0;
+    /* A polygon of rounding's area may have its winding wrong: the other
+     * one is tried before giving up. */
+    return clip(w, idx, n, s, out) || clip(w, idx, n, -s, out);
 }

@@ -2101,6 +2101,14 @@ static void test_polygons(void) {
     EXPECT_LOAD_ERROR(
         write_file("crossing.obj", "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\nv 1 3 0\nf 1 2 3 4 5\n", (size_t)-1),
         "crosses itself");
+    /* A bow tie with a spike: its lobes cancel, so it has no area, in the
+     * z = 0 plane and in the y = 0 one (helper-49: taken for a fan). */
+    EXPECT_LOAD_ERROR(
+        write_file("bowtie.obj", "v 0 0 0\nv 1 0 0\nv 3 2 0\nv 3 0 0\nv 1 2 0\nf 1 2 3 4 5 2\n", (size_t)-1),
+        "crosses itself");
+    EXPECT_LOAD_ERROR(write_file("bowtie_xz.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 3 0 2\nv 3 0 0\nv 1 0 2\nf 1 2 3 4 5 2\n", (size_t)-1),
+                      "crosses itself");
 }
 
 static void test_load_alloc_failures(void) {

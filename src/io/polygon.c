@@ -166,6 +166,22 @@ int pxi_polygon_triangulate(const double *xyz, const uint32_t *idx, uint32_t n, 
     int drop = 2;
     if (fabs(nrm[0]) > fabs(nrm[drop])) drop = 0;
     if (fabs(nrm[1]) > fabs(nrm[drop])) drop = 1;
+    if (nrm[0] == 0 && nrm[1] == 0 && nrm[2] == 0) {
+        /* No area (a bow tie's lobes cancel, or every corner on a line):
+         * the plane across the axis the corners spread least along, so
+         * that crossing edges still show. */
+        double lo[3], hi[3];
+        for (int c = 0; c < 3; ++c) lo[c] = hi[c] = o[c];
+        for (uint32_t k = 1; k < n; ++k)
+            for (int c = 0; c < 3; ++c) {
+                const double x = xyz[3 * (size_t)idx[k] + c];
+                lo[c] = x < lo[c] ? x : lo[c];
+                hi[c] = x > hi[c] ? x : hi[c];
+            }
+        drop = 0;
+        for (int c = 1; c < 3; ++c)
+            if (hi[c] - lo[c] < hi[drop] - lo[drop]) drop = c;
+    }
     const int cu = (drop + 1) % 3, cv = (drop + 2) % 3; /* (u, v, drop) is right-handed */
     double *uv = w->uv;
     for (uint32_t k = 0; k < n; ++k) {
@@ -184,6 +200,9 @@ int pxi_polygon_triangulate(const double *xyz, const uint32_t *idx, uint32_t n, 
             if (uv[2 * k] < uv[2 * m] || (uv[2 * k] == uv[2 * m] && uv[2 * k + 1] < uv[2 * m + 1])) m = k;
         s = orient(uv, m ? m - 1 : n - 1, m, m + 1 < n ? m + 1 : 0);
     }
+    /* Crossing edges first: a bow tie's lobes cancel, so it may have no
+     * area (helper-49) and would pass for a fan. */
+    if (crosses(uv, n)) return 0;
     if (s == 0) {
         for (uint32_t k = 1; k + 1 < n; ++k) {
             out[3 * (k - 1)] = idx[0];
@@ -192,7 +211,6 @@ int pxi_polygon_triangulate(const double *xyz, const uint32_t *idx, uint32_t n, 
         }
         return 1;
     }
-    if (crosses(uv, n)) return 0;
     /* A polygon of rounding's area may have its winding wrong: the other
      * one is tried before giving up. */
     return clip(w, idx, n, s, out) || clip(w, idx, n, -s, out);

@@ -2005,6 +2005,9 @@ static void test_polygons(void) {
     /* a spike out and back from the lowest corner (review s30: refused
      * when the winding came from that corner's turn) */
     static const double antenna[][2] = {{3, 1}, {3, 3}, {0, 2}, {1, 3}, {1, 3}, {0, 2}, {1, 0}, {1, 1}};
+    /* two triangles touching at a point, one face visiting it twice
+     * (helper-49: an ear spanned the gap between them) */
+    static const double touching[][2] = {{71, -46}, {0, 0}, {41, -113}, {17, -34}, {0, 0}, {62, -80}};
     double star[10][2];
     for (int i = 0; i < 10; ++i) {
         double r = i % 2 ? 1.0 : 2.5, a = 0.3 + i * 3.14159265358979 / 5;
@@ -2022,7 +2025,8 @@ static void test_polygons(void) {
                   {"flat", flat, 9},
                   {"keyhole", keyhole, 10},
                   {"star", (const double(*)[2])star, 10},
-                  {"antenna", antenna, 8}};
+                  {"antenna", antenna, 8},
+                  {"touching", touching, 6}};
     char text[2048];
     double Q[16][2];
     for (size_t si = 0; si < sizeof shapes / sizeof shapes[0]; ++si) {
@@ -2101,6 +2105,23 @@ static void test_polygons(void) {
     EXPECT_LOAD_ERROR(
         write_file("crossing.obj", "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\nv 1 3 0\nf 1 2 3 4 5\n", (size_t)-1),
         "crosses itself");
+    /* A cube with a corner on an edge, in both faces at that edge: no
+     * flat triangle, so the part stays closed (helper-49: it came out
+     * open, and a body inside it was missed). */
+    {
+        px_mesh *m =
+            load(write_file("cube_edge_vertex.obj",
+                            "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nv 0 0 2\nv 2 0 2\nv 2 2 2\nv 0 2 2\nv 1 0 "
+                            "0\nf 1 4 3 2 9\nf 5 6 7 8\nf 1 9 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n",
+                            (size_t)-1),
+                 0);
+        if (m) {
+            CHECK(part0_closed(m) && px_mesh_triangle_count(m) == 14,
+                  "cube with an edge corner: closed %u, %u triangles", part0_closed(m),
+                  px_mesh_triangle_count(m));
+            px_mesh_destroy(m);
+        }
+    }
     /* A bow tie with a spike: its lobes cancel, so it has no area, in the
      * z = 0 plane and in the y = 0 one (helper-49: taken for a fan). */
     EXPECT_LOAD_ERROR(

@@ -14,9 +14,10 @@
  * decision is an exact orientation sign (Shewchuk's orient2d, math/orient.h)
  * of projected corners, which are the file's coordinates themselves: no
  * rounding decides whether a corner is convex or a point is inside. A
- * corner on the line of its neighbours is cut first (its triangle has no
- * area: a straight-through corner or the tip of a spike, either way on the
- * polygon's boundary). A corner at the same point as a corner of the
+ * corner on the line of its neighbours is cut only when no convex ear is
+ * left (its triangle has no area, which would leave a closed part open; it
+ * lies on the polygon's boundary: a straight-through corner or the tip of
+ * a spike). A corner at the same point as a corner of the
  * candidate ear (a polygon with a hole joined by a bridge, or a spike,
  * visits the point twice) blocks it only when one of its edges starts into
  * the ear.
@@ -81,7 +82,23 @@ static int is_ear(const pxi_polygon_work *w, uint32_t p, uint32_t i, uint32_t q,
         if (w->state[r] == CONVEX) continue;
         if (left(uv, p, i, r, s) >= 0 && left(uv, i, q, r, s) >= 0 && left(uv, q, p, r, s) >= 0) return 0;
     }
-    return 1;
+    /* Last, the ear must lie inside what is left: its centre's winding
+     * number about the remaining corners is not 0. Only a polygon that
+     * visits a point twice can fail here (what is left of an antenna and
+     * its foot has no inside; helper-49). */
+    const double cu = (uv[2 * p] + uv[2 * i] + uv[2 * q]) / 3.0,
+                 cv = (uv[2 * p + 1] + uv[2 * i + 1] + uv[2 * q + 1]) / 3.0;
+    int wn = 0;
+    uint32_t a = p;
+    do {
+        const uint32_t b = w->next[a];
+        const double au = uv[2 * a], av = uv[2 * a + 1], bu = uv[2 * b], bv = uv[2 * b + 1];
+        const int o = pxi_orient2d_sign(au, av, bu, bv, cu, cv);
+        if (av <= cv && bv > cv && o > 0) ++wn;
+        if (av > cv && bv <= cv && o < 0) --wn;
+        a = b;
+    } while (a != p);
+    return wn != 0;
 }
 
 /* Sign of orient2d(uv[a], uv[b], uv[c]). */
@@ -120,13 +137,23 @@ static int clip(pxi_polygon_work *w, const uint32_t *idx, uint32_t n, int s, uin
         w->next[k] = k + 1 < n ? k + 1 : 0;
     }
     for (uint32_t k = 0; k < n; ++k) w->state[k] = turn(uv, w->prev[k], k, w->next[k], s);
-    /* From corner 1: a convex quad is cut along 0-2, as Assimp cuts it. */
+    /* From corner 1: a convex quad is cut along 0-2, as Assimp cuts it.
+     * Convex ears first: a corner in line with its neighbours is cut only
+     * when a whole turn finds no convex ear, because its triangle has no
+     * area, and a part with such a triangle is not closed (helper-49: a
+     * cube with a corner on an edge, shared by both faces, lost its
+     * inside). */
     uint32_t left = n, i = 1, misses = 0;
+    int flat_ok = 0;
     while (left > 3) {
         const uint32_t p = w->prev[i], q = w->next[i];
-        const int ear = w->state[i] == FLAT || (w->state[i] == CONVEX && is_ear(w, p, i, q, s));
+        const int ear = (flat_ok && w->state[i] == FLAT) || (w->state[i] == CONVEX && is_ear(w, p, i, q, s));
         if (!ear) {
-            if (++misses >= left) return 0; /* a whole turn without an ear */
+            if (++misses >= left) {
+                if (flat_ok) return 0; /* a whole turn without an ear */
+                flat_ok = 1;
+                misses = 0;
+            }
             i = q;
             continue;
         }
@@ -141,8 +168,8 @@ static int clip(pxi_polygon_work *w, const uint32_t *idx, uint32_t n, int s, uin
         w->state[p] = turn(uv, w->prev[p], p, q, s);
         w->state[q] = turn(uv, p, q, w->next[q], s);
         misses = 0;
-        /* p's triangle changed: it may be an ear now (a flat one first). */
-        i = w->state[p] == FLAT ? p : q;
+        flat_ok = 0;
+        i = p; /* p's triangle changed: it may be an ear now */
     }
     out[3 * t] = idx[w->prev[i]];
     out[3 * t + 1] = idx[i];

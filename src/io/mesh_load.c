@@ -110,8 +110,13 @@ static size_t ai_len(const struct aiString *s) {
  * range, coordinates finite, polygon work bounded. */
 static px_status check_raw(const char *path, const pxi_file_id *id, const struct aiScene *scene, void *vctx,
                            px_error *err) {
-    (void)id;
     load_ctx *c = vctx;
+    if (id->off_dropped_faces)
+        return pxi_error(
+            err, PX_ERR_IO,
+            "mesh file '%s': %llu of its faces have 10 or more vertices; Assimp 5.2 reads OFF faces "
+            "of at most 9 and drops larger ones, whose triangles would be missing: split them",
+            path, id->off_dropped_faces);
     unsigned long long work = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
         const struct aiMesh *m = scene->mMeshes[i];

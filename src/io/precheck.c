@@ -229,6 +229,7 @@ static px_status off_walk(const io_head *h, const off_text *t, u64 start, unsign
                                h->path, lineno, q == p ? "no count of" : "0");
                 goto done;
             }
+            if (h->off_dropped_faces) ++*h->off_dropped_faces;
             if (++skipped > nf) {
                 st = pxi_error(err, PX_ERR_IO,
                                "mesh file '%s': more face lines of 10 or more vertices than its %u faces "
@@ -631,6 +632,8 @@ static px_status precheck(const char *path, const px_allocator *alloc, pxi_file_
     memset(&h, 0, sizeof h);
     id->gltf_triangles = ~0ull;
     h.gltf_triangles = &id->gltf_triangles;
+    id->off_dropped_faces = 0;
+    h.off_dropped_faces = &id->off_dropped_faces;
     h.path = path;
     h.size = (u64)fsb.st_size;
     h.alloc = alloc;

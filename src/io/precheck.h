@@ -13,6 +13,10 @@ typedef struct pxi_file_id {
      * triangle lists of known counts (~0: not known, or not glTF). Fewer
      * mean it dropped some: their indices were out of range. */
     unsigned long long gltf_triangles;
+    /* OFF: the face lines of 10 or more vertices, which Assimp 5.2 drops
+     * (their vertices stay): harmless for a hull of the points, a loss for
+     * a mesh (px_mesh_load refuses them). */
+    unsigned long long off_dropped_faces;
 } pxi_file_id;
 
 /* Checks the file at `path` (non-NULL, non-empty) before it is imported:

@@ -37,6 +37,7 @@ typedef struct io_head {
     io_reader *rd;             /* the whole file, for the checks that stream over it */
     const px_allocator *alloc; /* for the checks' own buffers */
     u64 *gltf_triangles;       /* out (pxi_check_gltf): the triangles Assimp must return, ~0: unknown */
+    u64 *off_dropped_faces;    /* out (OFF): face lines Assimp drops (10 or more vertices) */
 } io_head;
 
 /* a + b and a * b saturated at ULLONG_MAX: declared counts are untrusted. */

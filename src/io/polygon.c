@@ -31,23 +31,26 @@
 
 enum { CONVEX = 1, FLAT = 2, REFLEX = 3, GONE = 0 };
 
-/* The corner's turn: CONVEX, FLAT or REFLEX, for a polygon turning counter-
- * clockwise in (u, v) when s = 1 (clockwise when s = -1). */
-static unsigned char turn(const double *uv, uint32_t p, uint32_t i, uint32_t q, int s) {
-    int o =
-        pxi_orient2d_sign(uv[2 * p], uv[2 * p + 1], uv[2 * i], uv[2 * i + 1], uv[2 * q], uv[2 * q + 1]) * s;
-    return o > 0 ? CONVEX : o < 0 ? REFLEX : FLAT;
-}
-
-static int same(const double *uv, uint32_t a, uint32_t b) {
-    return uv[2 * a] == uv[2 * b] && uv[2 * a + 1] == uv[2 * b + 1];
+/* Sign of orient2d(uv[a], uv[b], uv[c]). */
+static int orient(const double *uv, uint32_t a, uint32_t b, uint32_t c) {
+    return pxi_orient2d_sign(uv[2 * a], uv[2 * a + 1], uv[2 * b], uv[2 * b + 1], uv[2 * c], uv[2 * c + 1]);
 }
 
 /* s times the orientation of (a, b, c): > 0 when c is left of a -> b in
  * the polygon's winding. */
 static int left(const double *uv, uint32_t a, uint32_t b, uint32_t c, int s) {
-    return s *
-           pxi_orient2d_sign(uv[2 * a], uv[2 * a + 1], uv[2 * b], uv[2 * b + 1], uv[2 * c], uv[2 * c + 1]);
+    return s * orient(uv, a, b, c);
+}
+
+/* The corner's turn: CONVEX, FLAT or REFLEX, for a polygon turning counter-
+ * clockwise in (u, v) when s = 1 (clockwise when s = -1). */
+static unsigned char turn(const double *uv, uint32_t p, uint32_t i, uint32_t q, int s) {
+    const int o = left(uv, p, i, q, s);
+    return o > 0 ? CONVEX : o < 0 ? REFLEX : FLAT;
+}
+
+static int same(const double *uv, uint32_t a, uint32_t b) {
+    return uv[2 * a] == uv[2 * b] && uv[2 * a + 1] == uv[2 * b + 1];
 }
 
 /* 1 when an edge from a corner at the same point as triangle corner c
@@ -101,11 +104,6 @@ static int is_ear(const pxi_polygon_work *w, uint32_t p, uint32_t i, uint32_t q,
     return wn != 0;
 }
 
-/* Sign of orient2d(uv[a], uv[b], uv[c]). */
-static int orient(const double *uv, uint32_t a, uint32_t b, uint32_t c) {
-    return pxi_orient2d_sign(uv[2 * a], uv[2 * a + 1], uv[2 * b], uv[2 * b + 1], uv[2 * c], uv[2 * c + 1]);
-}
-
 /* 1 when two edges of the polygon that share no corner cross properly
  * (each edge's ends strictly on both sides of the other's line): the
  * polygon is not simple, and an ear clipping, which may still find ears,
@@ -143,13 +141,13 @@ static int clip(pxi_polygon_work *w, const uint32_t *idx, uint32_t n, int s, uin
      * area, and a part with such a triangle is not closed (helper-49: a
      * cube with a corner on an edge, shared by both faces, lost its
      * inside). */
-    uint32_t left = n, i = 1, misses = 0;
+    uint32_t remaining = n, i = 1, misses = 0;
     int flat_ok = 0;
-    while (left > 3) {
+    while (remaining > 3) {
         const uint32_t p = w->prev[i], q = w->next[i];
         const int ear = (flat_ok && w->state[i] == FLAT) || (w->state[i] == CONVEX && is_ear(w, p, i, q, s));
         if (!ear) {
-            if (++misses >= left) {
+            if (++misses >= remaining) {
                 if (flat_ok) return 0; /* a whole turn without an ear */
                 flat_ok = 1;
                 misses = 0;
@@ -164,7 +162,7 @@ static int clip(pxi_polygon_work *w, const uint32_t *idx, uint32_t n, int s, uin
         w->next[p] = q;
         w->prev[q] = p;
         w->state[i] = GONE;
-        --left;
+        --remaining;
         w->state[p] = turn(uv, w->prev[p], p, q, s);
         w->state[q] = turn(uv, p, q, w->next[q], s);
         misses = 0;

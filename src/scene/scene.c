@@ -686,14 +686,18 @@ static int overlap_others(const px_scene *s, uint32_t a, uint32_t b, int k) {
     return overlap_on(s, a, b, (k + 1) % 3) && overlap_on(s, a, b, (k + 2) % 3);
 }
 
+/* 1 when the boxes of pair q overlap on every axis (in the arrays). */
+static int pair_overlaps(const px_scene *s, const spair *q) {
+    return overlap_on(s, q->a, q->b, 0) && overlap_others(s, q->a, q->b, 0);
+}
+
 /* Frees the marked pairs whose boxes no longer overlap. */
 static void settle_doomed(px_scene *s) {
     for (uint32_t i = 0; i < s->n_doomed; ++i) {
         uint32_t p = s->doomed[i];
         spair *q = &s->pair[p];
         q->doomed = 0;
-        if (!overlap_on(s, q->a, q->b, 0) || !overlap_on(s, q->a, q->b, 1) || !overlap_on(s, q->a, q->b, 2))
-            free_pair(s, p, 0);
+        if (!pair_overlaps(s, q)) free_pair(s, p, 0);
     }
     s->n_doomed = 0;
 }
@@ -1029,8 +1033,7 @@ static void drop_stale(px_scene *s) {
     for (uint32_t p = 0; p < s->n_pair; ++p) {
         const spair *q = &s->pair[p];
         if (q->a == S_NONE || q->doomed) continue;
-        if (!overlap_on(s, q->a, q->b, 0) || !overlap_on(s, q->a, q->b, 1) || !overlap_on(s, q->a, q->b, 2))
-            remove_pair(s, q->a, q->b);
+        if (!pair_overlaps(s, q)) remove_pair(s, q->a, q->b);
     }
 }
 
@@ -1040,8 +1043,7 @@ static void drop_stale_of(px_scene *s, uint32_t id) {
         nx = next_of(s, p, id);
         const spair *q = &s->pair[p];
         if (q->doomed) continue;
-        if (!overlap_on(s, q->a, q->b, 0) || !overlap_on(s, q->a, q->b, 1) || !overlap_on(s, q->a, q->b, 2))
-            remove_pair(s, q->a, q->b);
+        if (!pair_overlaps(s, q)) remove_pair(s, q->a, q->b);
     }
 }
 
@@ -1100,9 +1102,9 @@ static void take_out(px_scene *s, const uint32_t *ids, uint32_t k) {
     compact(s);
 }
 
-/* Endpoints body b's box passes on axis 0 to reach [lo, hi] from where it
- * is (b in the arrays) or from +inf (b not in them), by binary search: the
- * cost of sifting it, one axis of three. */
+/* Endpoints body b's box minimum passes on axis 0 to reach its new value
+ * from where it is (b in the arrays) or from +inf (b not in them), by
+ * binary search: an estimate of sifting it, one endpoint of six. */
 static uint32_t passes(const px_scene *s, uint32_t b, int in_arrays) {
     const sep *e = s->axis[0];
     const double v = s->body[b].fat[0];
@@ -1116,6 +1118,13 @@ static uint32_t passes(const px_scene *s, uint32_t b, int in_arrays) {
     }
     uint32_t from = in_arrays ? EP(s, b, 0, 0) : s->n_ep;
     return from > lo ? from - lo : lo - from;
+}
+
+/* Whether merging bodies in (merge_in) is cheaper than sifting them, from
+ * the sum of their passes: six endpoints each against S_MERGE_PASSES
+ * passes over the arrays. */
+static int merge_pays(const px_scene *s, uint64_t passes_sum) {
+    return 6 * passes_sum > S_MERGE_PASSES * (uint64_t)s->n_ep;
 }
 
 /* ---- motion ------------------------------------------------------------ */
@@ -2119,7 +2128,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
      * (drop_stale_of) once every body is in place. */
     uint64_t cost = 0;
     for (uint32_t i = 0; i < far; ++i) cost += passes(s, s->act[i], 1);
-    const int merge = far && 6 * cost > S_MERGE_PASSES * (uint64_t)s->n_ep;
+    const int merge = far && merge_pays(s, cost);
     if (merge) {
         s->stats.box_updates += far;
         take_out(s, s->act, far);
@@ -2161,7 +2170,7 @@ px_status px_scene_step(px_scene *s, double time, px_error *err) {
                 s->act[k++] = id;
                 cost += passes(s, id, 0);
             }
-        if (k > 16 || 6 * cost > S_MERGE_PASSES * (uint64_t)s->n_ep) {
+        if (k > 16 || merge_pays(s, cost)) {
             for (uint32_t i = 0; i < k; ++i) s->body[s->act[i]].added = 0;
             if (!merge_in(s, s->act, k)) s->resync = 1;
         } else {

@@ -65,25 +65,25 @@ void px_convex_destroy(px_convex *c) {
     pxi_free(&a, c, sizeof *c);
 }
 
-/* Newell's method on coordinates relative to the first vertex: a robust
- * normal for a planar polygon (exact coplanarity came from CGAL). */
+/* The area vector of a planar polygon (exact coplanarity came from CGAL):
+ * the sum of its fan triangles' cross products from the first vertex, each
+ * component an orient2d of the projected corners evaluated to full
+ * relative precision (pxi_orient2d_value). Plain double products (Newell's
+ * sum) lose a factor of the triangle's aspect: a sliver 1e-3 wide and 1
+ * long got a normal tilted by ~1e-13 and Lin-Canny distances 200 eps off
+ * beside it. The fan's terms have one sign for a convex polygon, so the
+ * sum keeps that precision. Coordinates are first brought near unit scale
+ * by a power of two (exact). */
 static px_vec3 polygon_normal(const px_vec3 *v, const uint32_t *ids, uint32_t n) {
-    px_vec3 o = v[ids[0]], s = {0, 0, 0};
-    /* The sums are products of two coordinate differences: outside the safe
-     * range (faces below 1e-150 or above 1e150) they would underflow or
-     * overflow, so they are formed at unit scale there (a power of two: the
-     * direction is exact, and unit() below removes the length). */
-    double m = 0.0;
-    for (uint32_t k = 1; k < n; ++k) {
-        double q = pxi_max_abs(pxi_sub(v[ids[k]], o));
-        if (q > m) m = q;
-    }
-    int e = pxi_len_ok(m) || !(m > 0.0) || !isfinite(m) ? 0 : -ilogb(m);
-    for (uint32_t k = 0; k < n; ++k) {
-        px_vec3 a = pxi_ldexp3(pxi_sub(v[ids[k]], o), e), b = pxi_ldexp3(pxi_sub(v[ids[(k + 1) % n]], o), e);
-        s.x += (a.y - b.y) * (a.z + b.z);
-        s.y += (a.z - b.z) * (a.x + b.x);
-        s.z += (a.x - b.x) * (a.y + b.y);
+    double big = 0.0;
+    for (uint32_t k = 0; k < n; ++k) big = pxi_max2(big, pxi_max_abs(v[ids[k]]));
+    const double sc = pxi_unit_scale(big);
+    const px_vec3 o = pxi_scale(v[ids[0]], sc);
+    px_vec3 s = {0, 0, 0}, a = pxi_scale(v[ids[1]], sc);
+    for (uint32_t k = 2; k < n; ++k) {
+        px_vec3 b = pxi_scale(v[ids[k]], sc);
+        s = pxi_add(s, pxi_tri_cross(o, a, b));
+        a = b;
     }
     return s;
 }
@@ -381,8 +381,8 @@ static double depth_at(const px_convex *c, px_vec3 w, uint32_t *nearest) {
 
 /* A lower bound on the depth of interior point w in the hull of the
  * vertices. A stored face plane is off the true facet's (through the
- * face's exactly coplanar vertices): a sliver's Newell normal tilts by up to
- * 1e-11 rad, far more than rounding suggests. But the nearest facet F of w
+ * face's exactly coplanar vertices) by its rounding (before polygon_normal
+ * was accurate, a sliver's tilted by up to 1e-11 rad). The nearest facet F of w
  * holds the foot p of w on its plane (were p outside F, the segment from w
  * to p would leave the hull through a nearer facet), and the difference
  * between the stored and the true plane function, affine, is at most its

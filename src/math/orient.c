@@ -73,6 +73,29 @@ int pxi_orient2d_sign(double px, double py, double qx, double qy, double rx, dou
     return e[n - 1] > 0 ? 1 : -1;
 }
 
+double pxi_orient2d_value(double px, double py, double qx, double qy, double rx, double ry) {
+    /* The differences exactly (a = a0 + a1, ...), the products of their
+     * leading terms exactly, and their difference exactly (s + se): what is
+     * left, the error terms and the products with a trailing term, is
+     * about eps times smaller, and its rounding is about eps^2 of |l| + |r|. */
+    double a0, a1, b0, b1, c0, c1, d0, d1, l, le, r, re, s, se;
+    two_sum(px, -rx, &a0, &a1);
+    two_sum(qy, -ry, &b0, &b1);
+    two_sum(py, -ry, &c0, &c1);
+    two_sum(qx, -rx, &d0, &d1);
+    two_prod(a0, b0, &l, &le);
+    two_prod(c0, d0, &r, &re);
+    two_sum(l, -r, &s, &se);
+    double t = (se + (le - re)) + ((a0 * b1 + a1 * b0) - (c0 * d1 + c1 * d0)) + (a1 * b1 - c1 * d1);
+    return s + t;
+}
+
+px_vec3 pxi_tri_cross(px_vec3 a, px_vec3 b, px_vec3 c) {
+    return pxi_v(pxi_orient2d_value(b.y, b.z, c.y, c.z, a.y, a.z),
+                 pxi_orient2d_value(b.z, b.x, c.z, c.x, a.z, a.x),
+                 pxi_orient2d_value(b.x, b.y, c.x, c.y, a.x, a.y));
+}
+
 double pxi_unit_scale(double big) {
     if (!(big > 0x1p-100 && big < 0x1p100) && big > 0.0 && isfinite(big)) {
         /* Subnormal magnitudes would need more than 2^1023 (infinite). */

@@ -7,6 +7,8 @@
 #ifndef PXI_MATH_ORIENT_H
 #define PXI_MATH_ORIENT_H
 
+#include "math/vec3.h"
+
 /* The sign of (px - rx)(qy - ry) - (py - ry)(qx - rx) when the
  * double-precision determinant decides it (Shewchuk's first stage: |det| >
  * (3 + 16 eps) eps (|l| + |r|), eps = 2^-53), else 0. Only products in the
@@ -21,6 +23,19 @@ int pxi_orient2d_filter(double px, double py, double qx, double qy, double rx, d
  * a normal number (fma computes it exactly). Far below that (coordinates
  * near 2^-489) a review found nonzero determinants taken for 0. */
 int pxi_orient2d_sign(double px, double py, double qx, double qy, double rx, double ry);
+
+/* The determinant itself, (px - rx)(qy - ry) - (py - ry)(qx - rx), to
+ * within about eps of its value plus a few eps^2 of |l| + |r| (the two
+ * products' sizes): full relative precision however much the products
+ * cancel, down to triangles whose height is eps of their length (a
+ * sliver's normal; plain double loses a factor |l| / |det|). Coordinates
+ * should be near unit scale (pxi_unit_scale): the error terms underflow
+ * below about 2^-900. */
+double pxi_orient2d_value(double px, double py, double qx, double qy, double rx, double ry);
+
+/* (b - a) x (c - a), each component a pxi_orient2d_value: the normal of
+ * a sliver triangle to full relative precision (near unit scale). */
+px_vec3 pxi_tri_cross(px_vec3 a, px_vec3 b, px_vec3 c);
 
 /* A power of two that brings magnitudes up to `big` near 1, so that
  * products and cubes of coordinates neither overflow nor underflow (1 in

@@ -49,6 +49,7 @@
 #include <string.h>
 
 #include "convex/convex.h"
+#include "math/orient.h"
 #include "math/vec3.h"
 #include "narrow/feature.h"
 #include "narrow/narrow.h"
@@ -65,6 +66,9 @@
 /* Triangles with |e0 x e1|^2 <= TAU_TRI2 |e0|^2 |e1|^2 are treated as their
  * edges (their plane is noise). */
 #define TAU_TRI2 1e-24
+/* Below this |e0 x e1|^2 / (|e0|^2 |e1|^2), a triangle's point query uses
+ * accurate cross products (pt_tri). */
+#define SLIVER2 0x1p-16
 /* Angular noise of v, in units of eps span / |v| (see explore). */
 #define EXPLORE_C 8.0
 /* Margin factor of the sign tests that prove intersection. */
@@ -127,7 +131,17 @@ static px_vec3 pt_tri(px_vec3 p, const px_vec3 *q, double *w, double *d2) {
     px_vec3 n;
     if (tri_normal(q, &n)) {
         double lam[3];
-        tri_lambdas(p, q, n, lam);
+        px_vec3 e0 = pxi_sub(q[1], q[0]), e1 = pxi_sub(q[2], q[0]);
+        if (pxi_dot(n, n) < SLIVER2 * pxi_dot(e0, e0) * pxi_dot(e1, e1)) {
+            /* A sliver: the normal and the weights from cross products to
+             * full relative precision (pxi_tri_cross). In plain double both
+             * lose a factor of the aspect (beside a 1 x 1e-8 side of a
+             * turned plate, distances 500 eps of the span off). */
+            n = pxi_tri_cross(q[0], q[1], q[2]);
+            for (int i = 0; i < 3; ++i) lam[i] = pxi_dot(pxi_tri_cross(q[(i + 1) % 3], q[(i + 2) % 3], p), n);
+        } else {
+            tri_lambdas(p, q, n, lam);
+        }
         double sum = lam[0] + lam[1] + lam[2]; /* |n|^2 up to rounding */
         if (lam[0] >= 0.0 && lam[1] >= 0.0 && lam[2] >= 0.0 && sum > 0.0) {
             for (int i = 0; i < 3; ++i) w[i] = lam[i] / sum;

@@ -5,6 +5,8 @@
  * cast and GJK's final polish. */
 #include "narrow/simplex.h"
 
+#include "math/orient.h"
+
 #include <float.h>
 #include <math.h>
 
@@ -36,9 +38,54 @@ void pxi_sx_segment(sx_simplex *s) {
     sx_keep(s, use, lam);
 }
 
+/* Below this sin^2 of the angle at a, a triangle is solved by sx_sliver:
+ * Ericson's region tests and weights (products of dot products) cancel by
+ * the triangle's aspect. */
+#define SX_SLIVER 0x1p-16
+
+/* A sliver triangle. Ericson's region tests and weights lose a factor of
+ * the aspect (beside a 1 x 1e-6 side of a turned plate, GJK's distances
+ * were 1e5 eps of the size off); here the normal N and the three sub-triangles' areas
+ * against the origin's foot q are cross products to full relative
+ * precision (pxi_tri_cross), whose dots with N do not cancel (each is
+ * nearly parallel to N). When the foot falls outside after all, the
+ * closest point is on an edge: the best of the three. */
+static void sx_sliver(sx_simplex *s) {
+    px_vec3 a = s->p[0].w, b = s->p[1].w, c = s->p[2].w, n = pxi_tri_cross(a, b, c);
+    double nn = pxi_dot(n, n), h = (pxi_dot(n, a) + pxi_dot(n, b) + pxi_dot(n, c)) / 3.0;
+    if (nn > 0.0 && isfinite(nn)) {
+        px_vec3 q = pxi_scale(n, h / nn);
+        double lam[3] = {pxi_dot(pxi_tri_cross(q, b, c), n), pxi_dot(pxi_tri_cross(a, q, c), n),
+                         pxi_dot(pxi_tri_cross(a, b, q), n)};
+        double sum = lam[0] + lam[1] + lam[2];
+        if (lam[0] >= 0.0 && lam[1] >= 0.0 && lam[2] >= 0.0 && sum > 0.0) {
+            int use[3] = {1, 1, 1};
+            for (int k = 0; k < 3; ++k) lam[k] /= sum;
+            sx_keep(s, use, lam);
+            return;
+        }
+    }
+    sx_simplex best = *s;
+    double d2 = INFINITY;
+    for (int e = 0; e < 3; ++e) {
+        sx_simplex t = *s;
+        t.n = 2;
+        t.p[0] = s->p[e];
+        t.p[1] = s->p[(e + 1) % 3];
+        pxi_sx_segment(&t);
+        double d = pxi_len2(sx_point_of(&t));
+        if (d < d2) d2 = d, best = t;
+    }
+    *s = best;
+}
+
 void pxi_sx_triangle(sx_simplex *s) {
     px_vec3 a = s->p[0].w, b = s->p[1].w, c = s->p[2].w;
     px_vec3 ab = pxi_sub(b, a), ac = pxi_sub(c, a);
+    if (pxi_len2(pxi_cross(ab, ac)) < SX_SLIVER * pxi_dot(ab, ab) * pxi_dot(ac, ac)) {
+        sx_sliver(s); /* the region tests below cancel too */
+        return;
+    }
     double d1 = -pxi_dot(ab, a), d2 = -pxi_dot(ac, a);
     int use[3] = {0, 0, 0};
     double lam[3] = {0, 0, 0};

@@ -518,6 +518,106 @@ static void test_bracket(void) {
     }
 }
 
+/* A box 1 x 1 x t turned into place (its coordinates rounded once): a
+ * part whose side faces are slivers of aspect t. As a wedge: the square and
+ * one point t above a corner, whose faces along the two far edges are
+ * slivers nearly parallel to the square (the shape of review s30's plate
+ * read through floats). */
+static void turned_slab(tri_mesh *m, double t, int wedge, pg_rng *rng) {
+    static const uint32_t box[36] = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                     2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    static const uint32_t pyramid[18] = {0, 2, 1, 1, 2, 3, 0, 1, 4, 0, 4, 2, 1, 3, 4, 2, 4, 3};
+    double r[9];
+    pg_rot_random(rng, r);
+    m->nv = wedge ? 5 : 8, m->nt = wedge ? 6 : 12;
+    m->xyz = malloc(3 * m->nv * sizeof(double));
+    m->tri = malloc(3 * m->nt * sizeof(uint32_t));
+    memcpy(m->tri, wedge ? pyramid : box, 3 * m->nt * sizeof(uint32_t));
+    for (uint32_t i = 0; i < m->nv; ++i) {
+        px_vec3 p = wedge ? pxi_v(i == 4  ? -0.5
+                                  : i & 1 ? 0.5
+                                          : -0.5,
+                                  i == 4  ? -0.5
+                                  : i & 2 ? 0.5
+                                          : -0.5,
+                                  i == 4 ? t : 0)
+                          : pxi_v(i & 1 ? 0.5 : -0.5, i & 2 ? 0.5 : -0.5, i & 4 ? 0.5 * t : -0.5 * t);
+        p = pg_rot_apply(r, p);
+        m->xyz[3 * i] = p.x, m->xyz[3 * i + 1] = p.y, m->xyz[3 * i + 2] = p.z;
+    }
+}
+
+/* Thin plates as parts (review s30): a turned slab's hull was refused or
+ * its bound was certified from face planes tilted by the slivers (a
+ * distance's lower end above the exact one by 4e-11), and the cells of
+ * h_overlap beside its rim could not be told apart from the plate by face
+ * planes alone (h 0.31 at tolerance 0.02 for a wedge). Each slab and wedge,
+ * as a part hull and as
+ * approximate pieces, must be accepted with h and h_overlap within a tenth
+ * of its diagonal, and bracket the exact (triangle) distance to a probe
+ * tetrahedron at random poses near it. */
+static void test_thin_parts(void) {
+    pg_rng rng;
+    pg_seed(&rng, 0x7a1e);
+    static const double thick[4] = {1e-3, 1e-5, 1e-7, 1e-9};
+    const double tet[12] = {0, 0, 0, 0.2, 0, 0, 0, 0.2, 0, 0, 0, 0.2};
+    px_model *probe = px_model_create_from_points(tet, (uint32_t[]){4}, 1, NULL, NULL);
+    CHECK(probe != NULL, "probe model");
+    int poses = 0, in = 0;
+    double worst_h = 0, worst_lo = 0;
+    for (int it = 0; probe && it < 16; ++it) {
+        tri_mesh slab;
+        turned_slab(&slab, thick[it % 4], it % 8 >= 4, &rng);
+        px_mesh *mesh = make_mesh(&slab, 1);
+        px_model_options ho, ao, to;
+        memset(&ho, 0, sizeof ho);
+        memset(&to, 0, sizeof to);
+        to.pieces = PX_PIECES_TRIANGLES;
+        ao = ho;
+        ao.pieces = PX_PIECES_APPROXIMATE;
+        ao.tolerance = 0.02;
+        px_error e;
+        px_model *models[2] = {px_model_create_from_mesh(mesh, &ho, &e), NULL};
+        CHECK(models[0] != NULL, "slab %d (t %g) as a part hull: %s", it, thick[it % 4], e.message);
+        models[1] = px_model_create_from_mesh(mesh, &ao, &e);
+        CHECK(models[1] != NULL, "slab %d (t %g) approximate: %s", it, thick[it % 4], e.message);
+        px_model *exact = px_model_create_from_mesh(mesh, &to, &e);
+        for (int k = 0; k < 2 && exact; ++k) {
+            if (!models[k]) continue;
+            px_model_info info;
+            px_model_get_info(models[k], &info);
+            for (uint32_t l = 0; l < info.leaves; ++l) {
+                px_model_leaf leaf;
+                px_model_get_leaf(models[k], l, &leaf);
+                worst_h = fmax(worst_h, fmax(leaf.h, leaf.h_overlap));
+            }
+            for (int i = 0; i < 40; ++i) {
+                px_pose pa = px_pose_identity(), pb = random_pose(&rng, 0.8);
+                px_model_distance_result rh, rt;
+                CHECK(px_model_distance(models[k], &pa, probe, &pb, NULL, &rh) == PX_OK, "hull distance");
+                CHECK(px_model_distance(exact, &pa, probe, &pb, NULL, &rt) == PX_OK, "triangle distance");
+                const double slack = 4 * DBL_EPSILON * 2.0;
+                int ok = rh.distance <= rt.distance + slack && rt.distance <= rh.upper_bound + slack;
+                CHECK(ok, "slab %d (%s), pose %d: exact %.17g outside [%.17g, %.17g]", it,
+                      k ? "approximate" : "hull", i, rt.distance, rh.distance, rh.upper_bound);
+                worst_lo = fmax(worst_lo, rh.distance - rt.distance);
+                poses++, in += ok;
+            }
+            px_model_destroy(models[k]);
+        }
+        px_model_destroy(exact);
+        px_mesh_destroy(mesh);
+        mesh_free(&slab);
+    }
+    printf("thin slabs and wedges (1e-3 .. 1e-9 thick): %d of %d poses bracketed, lower end above the exact "
+           "by up to %.3g, "
+           "largest h %.4g\n",
+           in, poses, worst_lo, worst_h);
+    CHECK(worst_h <= 0.1 * sqrt(2.0), "a thin slab's bound h %.4g (a tenth of its diagonal: %.4g)", worst_h,
+          0.1 * sqrt(2.0));
+    px_model_destroy(probe);
+}
+
 /* ---- Arguments ---------------------------------------------------------- */
 
 static void test_arguments(void) {
@@ -2557,6 +2657,7 @@ int main(void) {
     test_triangles();
     test_containment();
     test_bracket();
+    test_thin_parts();
     test_approximate();
     test_pxm();
     test_mixed();

@@ -204,14 +204,14 @@ static px_status certify_pieces(px_model *m, const px_model *tree, px_convex *co
     enum { MAX_THREADS = 64 };
     unsigned nt = threads < 1 ? 1 : threads > MAX_THREADS ? MAX_THREADS : threads;
     if (nt > n) nt = n;
-    uint32_t faces = 0;
+    uint32_t planes = 0;
     for (uint32_t i = 0; i < n; ++i) {
-        uint32_t f = px_convex_face_count(hulls[i]);
-        faces = f > faces ? f : faces;
+        uint32_t f = pxi_part_reach_planes(hulls[i]);
+        planes = f > planes ? f : planes;
         m->leaves[m->n_leaves + i] = (pxi_mleaf){p, PXI_NONE, 0.0, 0.0};
     }
     if (n == 0) return PX_OK;
-    const size_t bytes = pxi_part_reach_scratch_bytes(faces);
+    const size_t bytes = pxi_part_reach_scratch_bytes(planes);
     worker w[MAX_THREADS];
     thrd_t helper[MAX_THREADS];
     certify c = {tree, hulls, m->leaves + m->n_leaves, NULL, n, solid, floor, 0, 0, 0, 0, pr};

@@ -97,12 +97,14 @@ px_status pxi_part_reach(const px_allocator *alloc, const px_convex *hull, const
                          double floor, double *h, double *h_overlap, px_error *err);
 
 /* The same in a caller's scratch of at least
- * pxi_part_reach_scratch_bytes(faces of the hull) bytes, calling no
+ * pxi_part_reach_scratch_bytes(pxi_part_reach_planes(hull)) bytes (the
+ * largest over the hulls it serves), calling no
  * allocator (safe on a worker thread, one scratch per thread). `stop` (may
  * be NULL) is called with `stop_user` every thousand or so evaluations, on
  * the thread that computes; a nonzero return ends the computation with
  * PX_ERR_CANCELLED. The bounds do not depend on the thread. */
-size_t pxi_part_reach_scratch_bytes(uint32_t max_faces);
+uint32_t pxi_part_reach_planes(const px_convex *hull);
+size_t pxi_part_reach_scratch_bytes(uint32_t max_planes);
 px_status pxi_part_reach_in(void *scratch, size_t scratch_bytes, const px_convex *hull, const px_model *tree,
                             int solid, double floor, int (*stop)(void *), void *stop_user, double *h,
                             double *h_overlap, px_error *err);

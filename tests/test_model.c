@@ -616,6 +616,29 @@ static void test_thin_parts(void) {
     CHECK(worst_h <= 0.1 * sqrt(2.0), "a thin slab's bound h %.4g (a tenth of its diagonal: %.4g)", worst_h,
           0.1 * sqrt(2.0));
     px_model_destroy(probe);
+    /* A part whose triangles lie on a line: its hull is a segment, whose
+     * edge has no faces (review s31: the edge planes read face UINT32_MAX
+     * and crashed). Its bound is 0 up to rounding, as parts and as pieces. */
+    const double line[12] = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3};
+    const uint32_t tri[6] = {0, 1, 2, 1, 2, 3};
+    px_mesh_desc d;
+    memset(&d, 0, sizeof d);
+    d.xyz = line, d.vertex_count = 4, d.triangles = tri, d.triangle_count = 2;
+    px_error e;
+    px_mesh *mesh = px_mesh_create(&d, NULL, &e);
+    CHECK(mesh != NULL, "a mesh on a line: %s", e.message);
+    for (int k = 0; mesh && k < 2; ++k) {
+        px_model_options o;
+        memset(&o, 0, sizeof o);
+        o.pieces = k ? PX_PIECES_APPROXIMATE : PX_PIECES_PARTS;
+        px_model *m = px_model_create_from_mesh(mesh, &o, &e);
+        px_model_leaf leaf = {0};
+        CHECK(m && px_model_get_leaf(m, 0, &leaf) == PX_OK && leaf.h < 1e-12 && leaf.h_overlap < 1e-12,
+              "a part on a line (%s): %s, h %g", k ? "approximate" : "parts", m ? "built" : e.message,
+              leaf.h);
+        px_model_destroy(m);
+    }
+    px_mesh_destroy(mesh);
 }
 
 /* ---- Arguments ---------------------------------------------------------- */

@@ -185,14 +185,20 @@ static px_status build_from_hull(px_convex *c, const pxcd_hull *h, int dim, px_e
      * would overflow at 1e139 and underflow at 1e-23. */
     double inv = pxi_pow2_unit(big);
     for (uint32_t i = 0; i < c->nv; ++i) mid = pxi_add(mid, pxi_scale(c->v[i], inv / c->nv));
+    /* Three times the volume as the sum over faces of the area vector
+     * (accurate cross products, pxi_tri_cross) dotted with a vertex's offset
+     * from the interior point: terms of one sign, so a needle 1e-10 wide
+     * keeps its sign (the fans' triple products in plain double were noise
+     * there, and every loop of half the needles came out reversed). */
     double vol = 0.0;
     for (uint32_t f = 0; f < c->nf; ++f) {
         const uint32_t *ids = c->f_verts + h->face_offsets[f];
         uint32_t n = (uint32_t)(h->face_offsets[f + 1] - h->face_offsets[f]);
-        px_vec3 a = pxi_sub(pxi_scale(c->v[ids[0]], inv), mid);
+        px_vec3 o = pxi_scale(c->v[ids[0]], inv), area = {0, 0, 0};
         for (uint32_t k = 1; k + 1 < n; ++k)
-            vol += pxi_dot(a, pxi_cross(pxi_sub(pxi_scale(c->v[ids[k]], inv), mid),
-                                        pxi_sub(pxi_scale(c->v[ids[k + 1]], inv), mid)));
+            area = pxi_add(area,
+                           pxi_tri_cross(o, pxi_scale(c->v[ids[k]], inv), pxi_scale(c->v[ids[k + 1]], inv)));
+        vol += pxi_dot(area, pxi_sub(o, mid));
     }
     if (vol < 0.0 && dim == 3) {
         for (uint32_t f = 0; f < c->nf; ++f) {

@@ -409,6 +409,7 @@ static uint32_t supporting_planes(const px_convex *hull, rplane *planes) {
     for (uint32_t f = 0; f < hull->nf; ++f, ++k) px_convex_face(hull, f, &planes[k].n, &planes[k].off, NULL);
     for (uint32_t e = 0; e < hull->ne; ++e) {
         const pxi_edge *E = &hull->e[e];
+        if (E->left >= hull->nf || E->right >= hull->nf) continue; /* a segment's edge has no faces */
         px_vec3 u = pxi_add(hull->f[E->left].n, hull->f[E->right].n);
         double m = pxi_max_abs(u);
         if (!(m > 0x1p-500)) continue;

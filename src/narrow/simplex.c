@@ -140,6 +140,16 @@ void pxi_sx_triangle(sx_simplex *s) {
     sx_keep(s, use, lam);
 }
 
+/* (b - a) x (c - a); for a sliver face from accurate cross products
+ * (pxi_tri_cross): with plain products the side of the origin against the
+ * 1 x 1e-7 side face of a plate was noise, and a tetrahedron held the
+ * origin 1.7e-12 outside it (a ray cast's hit 1.5e4 eps early). */
+static px_vec3 sx_face_normal(px_vec3 a, px_vec3 b, px_vec3 c) {
+    px_vec3 ab = pxi_sub(b, a), ac = pxi_sub(c, a), n = pxi_cross(ab, ac);
+    if (pxi_len2(n) < SX_SLIVER * pxi_dot(ab, ab) * pxi_dot(ac, ac)) n = pxi_tri_cross(a, b, c);
+    return n;
+}
+
 /* Returns 1 when the origin is inside (or on) the tetrahedron. */
 int pxi_sx_tetra(sx_simplex *s) {
     static const int faces[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
@@ -148,8 +158,7 @@ int pxi_sx_tetra(sx_simplex *s) {
     int any = 0;
     for (int k = 0; k < 4; ++k) {
         px_vec3 a = s->p[faces[k][0]].w, b = s->p[faces[k][1]].w, c = s->p[faces[k][2]].w;
-        px_vec3 d = s->p[faces[k][3]].w;
-        px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
+        px_vec3 d = s->p[faces[k][3]].w, n = sx_face_normal(a, b, c);
         double so = -pxi_dot(a, n), sd = pxi_dot(pxi_sub(d, a), n);
         if (!(so * sd < 0.0) && sd != 0.0) continue; /* origin on d's side of this face */
         sx_simplex t;
@@ -181,7 +190,7 @@ int pxi_sx_tetra(sx_simplex *s) {
         s->margin = fat ? INFINITY : 0.0;
         for (int f = 0; f < 4; ++f) {
             px_vec3 a = s->p[faces[f][0]].w, b = s->p[faces[f][1]].w, c = s->p[faces[f][2]].w;
-            px_vec3 n = pxi_cross(pxi_sub(b, a), pxi_sub(c, a));
+            px_vec3 n = sx_face_normal(a, b, c);
             double len = pxi_len(n), dist = len > 0.0 ? fabs(pxi_dot(a, n)) / len : 0.0;
             if (fat && dist < s->margin) s->margin = dist;
         }

@@ -1259,6 +1259,16 @@ static void test_bad_files(void) {
                    "1 2 3 4 5\n",
                    (size_t)-1),
         "tristrips");
+    /* A run of 20 digits, which Assimp 5.2 reads as 0 (review s30): the
+     * full-precision re-read sees it and refuses the file. */
+    EXPECT_LOAD_ERROR(write_file("bigint.obj",
+                                 "v 0 0 0\nv 18446744073709551617 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\n",
+                                 (size_t)-1),
+                      "more than 19 digits");
+    EXPECT_LOAD_ERROR(write_file("bigint.off",
+                                 "OFF\n4 1 0\n0 0 0\n123456789012345678901 0 0\n0 1 0\n0 0 1\n3 0 2 1\n",
+                                 (size_t)-1),
+                      "more than 19 digits");
     EXPECT_LOAD_ERROR(write_file("quantized.gltf",
                                  "{\"asset\": {\"version\": \"2.0\"}, \"extensionsUsed\": "
                                  "[\"KHR_mesh_quantization\"], \"extensionsRequired\": "

@@ -1193,6 +1193,23 @@ static const double needle_pairs[2][2][24] = {
       0x1.94aec1014d388p-5, 0x1.4dfac62f4b2bdp-2, -0x1.3793a0c3f6baap-1, -0x1.d34a678a26ce4p-4}},
 };
 
+/* Review s31's two needles 1e-9 wide, 2.36e-10 apart (CGAL): the hybrid's
+ * segment-through-triangle test took them for crossing (a sliver's plain
+ * normal). */
+static const double needles_apart[2][24] = {
+    {-0x1.2f7f76001c0eep-4, 0x1.f9e16de2ece68p-2,  0x1.5b9278f44e80bp-6,  -0x1.2f7f7611ea829p-4,
+     0x1.f9e16de18c327p-2,  0x1.5b9279fce1295p-6,  -0x1.2f7f7641b233bp-4, 0x1.f9e16de0a9edfp-2,
+     0x1.5b9278aaaa56bp-6,  -0x1.2f7f765380a76p-4, 0x1.f9e16ddf4939ep-2,  0x1.5b9279b33cff5p-6,
+     0x1.2f7f765380a76p-4,  -0x1.f9e16ddf4939ep-2, -0x1.5b9279b33cff5p-6, 0x1.2f7f7641b233bp-4,
+     -0x1.f9e16de0a9edfp-2, -0x1.5b9278aaaa56bp-6, 0x1.2f7f7611ea829p-4,  -0x1.f9e16de18c327p-2,
+     -0x1.5b9279fce1295p-6, 0x1.2f7f76001c0eep-4,  -0x1.f9e16de2ece68p-2, -0x1.5b9278f44e80bp-6},
+    {0x1.3793a2d7e5b3p-3,   -0x1.9435bbe38992ap-2, -0x1.b01ac7dcef006p-6, 0x1.3793a2d064a12p-3,
+     -0x1.9435bbe6b267p-2,  -0x1.b01ac8087ccfbp-6, 0x1.3793a2d47d80dp-3,  -0x1.9435bbe5b7f28p-2,
+     -0x1.b01ac78edbe2bp-6, 0x1.3793a2ccfc6eep-3,  -0x1.9435bbe8e0c7p-2,  -0x1.b01ac7ba69b21p-6,
+     -0x1.1c6aac1f5c364p-4, -0x1.40d0df315f9dap-3, 0x1.6168f1bc5a2a4p-9,  -0x1.1c6aac2e5e5a2p-4,
+     -0x1.40d0df37b1468p-3, 0x1.6168f05febafcp-9,  -0x1.1c6aac262c9adp-4, -0x1.40d0df35bc5d7p-3,
+     0x1.6168f42cf3174p-9,  -0x1.1c6aac352ebeap-4, -0x1.40d0df3c0e066p-3, 0x1.6168f2d0849bcp-9}};
+
 static void test_needle_translations(void) {
     double worst = 0;
     for (int c = 0; c < 2; ++c) {
@@ -1220,6 +1237,30 @@ static void test_needle_translations(void) {
         px_convex_destroy(a);
         px_convex_destroy(b);
     }
+    px_convex *a = px_convex_create(needles_apart[0], 8, NULL, NULL),
+              *b = px_convex_create(needles_apart[1], 8, NULL, NULL);
+    double exact;
+    int zero;
+    char msg[200];
+    CHECK(a && b &&
+              pxcd_exact_distance(needles_apart[0], 8, needles_apart[1], 8, &exact, NULL, &zero, NULL, NULL,
+                                  msg, sizeof msg) == PXCD_OK,
+          "needles apart");
+    for (int m = 0; a && b && m < 3; ++m) {
+        const px_pose id = px_pose_identity();
+        px_query_options o = {0};
+        o.method = (uint32_t)m;
+        px_distance_result d;
+        px_intersect_result x;
+        CHECK(px_distance(a, &id, b, &id, &o, NULL, &d) == PX_OK && !d.intersecting &&
+                  fabs(d.distance - exact) <= 8 * DBL_EPSILON,
+              "needles apart, method %d: distance %.17g (exact %.17g), intersecting %d", m, d.distance, exact,
+              d.intersecting);
+        CHECK(px_intersect(a, &id, b, &id, &o, NULL, &x) == PX_OK && !x.intersecting,
+              "needles apart, method %d: px_intersect says they meet", m);
+    }
+    px_convex_destroy(a);
+    px_convex_destroy(b);
     printf("review s31's needles: time of impact off the distance by up to %.3g eps\n", worst);
     CHECK(worst <= 16, "a needle's time of impact off the exact distance by %.3g eps", worst);
 }

@@ -116,6 +116,17 @@ static void tri_lambdas(px_vec3 p, const px_vec3 *q, px_vec3 n, double *lam) {
     }
 }
 
+/* tri_lambdas from cross products to full relative precision. */
+static void tri_lambdas_accurate(px_vec3 p, const px_vec3 *q, px_vec3 n, double *lam) {
+    for (int i = 0; i < 3; ++i) lam[i] = pxi_dot(pxi_tri_cross(q[(i + 1) % 3], q[(i + 2) % 3], p), n);
+}
+
+/* Whether triangle (q0, q0 + e0, q0 + e1) of plain normal n is a sliver,
+ * whose plain normal and weights lose a factor of its aspect. */
+static int tri_sliver(px_vec3 n, px_vec3 e0, px_vec3 e1) {
+    return pxi_dot(n, n) < SLIVER2 * pxi_dot(e0, e0) * pxi_dot(e1, e1);
+}
+
 /* The plane of a triangle is trusted only when its normal is not noise. */
 static int tri_normal(const px_vec3 *q, px_vec3 *n) {
     px_vec3 e0 = pxi_sub(q[1], q[0]), e1 = pxi_sub(q[2], q[0]);
@@ -132,13 +143,13 @@ static px_vec3 pt_tri(px_vec3 p, const px_vec3 *q, double *w, double *d2) {
     if (tri_normal(q, &n)) {
         double lam[3];
         px_vec3 e0 = pxi_sub(q[1], q[0]), e1 = pxi_sub(q[2], q[0]);
-        if (pxi_dot(n, n) < SLIVER2 * pxi_dot(e0, e0) * pxi_dot(e1, e1)) {
+        if (tri_sliver(n, e0, e1)) {
             /* A sliver: the normal and the weights from cross products to
              * full relative precision (pxi_tri_cross). In plain double both
              * lose a factor of the aspect (beside a 1 x 1e-8 side of a
              * turned plate, distances 500 eps of the span off). */
             n = pxi_tri_cross(q[0], q[1], q[2]);
-            for (int i = 0; i < 3; ++i) lam[i] = pxi_dot(pxi_tri_cross(q[(i + 1) % 3], q[(i + 2) % 3], p), n);
+            tri_lambdas_accurate(p, q, n, lam);
         } else {
             tri_lambdas(p, q, n, lam);
         }
@@ -214,6 +225,12 @@ static int seg_through_tri(const px_vec3 *p, const px_vec3 *q, hy_local *r) {
     px_vec3 n;
     if (!tri_normal(q, &n)) return 0;
     px_vec3 e0 = pxi_sub(q[1], q[0]), e1 = pxi_sub(q[2], q[0]);
+    /* A sliver's plain normal tilts by eps over its aspect, and the plane
+     * through q[0] then misses its other corners by far more than the
+     * sliver is wide (review s31: two needles 2.4e-10 apart were taken for
+     * crossing): the accurate one. */
+    const int sliver = tri_sliver(n, e0, e1);
+    if (sliver) n = pxi_tri_cross(q[0], q[1], q[2]);
     px_vec3 r0 = pxi_sub(p[0], q[0]), r1 = pxi_sub(p[1], q[0]);
     double s0 = pxi_dot(n, r0), s1 = pxi_dot(n, r1), ee = pxi_max_abs(e0) * pxi_max_abs(e1);
     if (!(fabs(s0) > triple_noise(ee, pxi_max_abs(r0), 1.0)) ||
@@ -222,7 +239,10 @@ static int seg_through_tri(const px_vec3 *p, const px_vec3 *q, hy_local *r) {
     double u = s0 / (s0 - s1); /* opposite signs: the denominator is not 0 */
     px_vec3 x = pxi_madd(p[0], pxi_sub(p[1], p[0]), u);
     double lam[3], len = pxi_max_abs(e0) > pxi_max_abs(e1) ? pxi_max_abs(e0) : pxi_max_abs(e1);
-    tri_lambdas(x, q, n, lam);
+    if (sliver)
+        tri_lambdas_accurate(x, q, n, lam);
+    else
+        tri_lambdas(x, q, n, lam);
     double noise = triple_noise(len, len + pxi_max_abs(pxi_sub(x, q[0])), pxi_max_abs(n));
     if (!(lam[0] > noise && lam[1] > noise && lam[2] > noise)) return 0;
     double sum = lam[0] + lam[1] + lam[2];

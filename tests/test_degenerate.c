@@ -1210,6 +1210,26 @@ static const double needles_apart[2][24] = {
      -0x1.40d0df37b1468p-3, 0x1.6168f05febafcp-9,  -0x1.1c6aac262c9adp-4, -0x1.40d0df35bc5d7p-3,
      0x1.6168f42cf3174p-9,  -0x1.1c6aac352ebeap-4, -0x1.40d0df3c0e066p-3, 0x1.6168f2d0849bcp-9}};
 
+/* Review s31's needles 1e-9 wide and a direction along which, both ways,
+ * the ray cast stopped at its rounding floor and its refined plane put the
+ * entry 2.9e-7 late (0.8 of the width along the normal); CGAL's touching
+ * interval starts at -1.8487188653253122e-06. */
+static const double needles_both[2][24] = {
+    {-0x1.46a9ed3b1f005p-5, 0x1.4e0a5d751ab0ep-2,  -0x1.81de0b61829c8p-2, -0x1.46a9edadbb0fep-5,
+     0x1.4e0a5d7b786c1p-2,  -0x1.81de0b5a7bac6p-2, -0x1.46a9ed862e48ep-5, 0x1.4e0a5d69bf373p-2,
+     -0x1.81de0b6a59672p-2, -0x1.46a9edf8ca587p-5, 0x1.4e0a5d701cf26p-2,  -0x1.81de0b635277p-2,
+     0x1.46a9edf8ca587p-5,  -0x1.4e0a5d701cf26p-2, 0x1.81de0b635277p-2,   0x1.46a9ed862e48ep-5,
+     -0x1.4e0a5d69bf373p-2, 0x1.81de0b6a59672p-2,  0x1.46a9edadbb0fep-5,  -0x1.4e0a5d7b786c1p-2,
+     0x1.81de0b5a7bac6p-2,  0x1.46a9ed3b1f005p-5,  -0x1.4e0a5d751ab0ep-2, 0x1.81de0b61829c8p-2},
+    {-0x1.8efb958eeef1ep-3, 0x1.490a043579c89p-3,  -0x1.671ca47a3b00ep-3, -0x1.8efb958d0ba5ap-3,
+     0x1.490a042bd444p-3,   -0x1.671ca4732ceefp-3, -0x1.8efb958fd3d67p-3, 0x1.490a042e3d41ep-3,
+     -0x1.671ca483e2caep-3, -0x1.8efb958df08a3p-3, 0x1.490a042497bd5p-3,  -0x1.671ca47cd4b8ep-3,
+     0x1.375c7867138a2p-3,  0x1.83c3318670317p-3,  -0x1.d4e70c423cb61p-3, 0x1.375c7868f6d67p-3,
+     0x1.83c3317ccaacdp-3,  -0x1.d4e70c3b2ea42p-3, 0x1.375c78662ea59p-3,  0x1.83c3317f33aacp-3,
+     -0x1.d4e70c4be4801p-3, 0x1.375c786811f1dp-3,  0x1.83c331758e262p-3,  -0x1.d4e70c44d66e2p-3}};
+static const double needles_both_dir[3] = {-0x1.fddb1a874d92fp-3, 0x1.389398cc012bbp+0,
+                                           -0x1.67fb1d40aa7c2p+0};
+
 static void test_needle_translations(void) {
     double worst = 0;
     for (int c = 0; c < 2; ++c) {
@@ -1258,6 +1278,32 @@ static void test_needle_translations(void) {
               d.intersecting);
         CHECK(px_intersect(a, &id, b, &id, &o, NULL, &x) == PX_OK && !x.intersecting,
               "needles apart, method %d: px_intersect says they meet", m);
+    }
+    px_convex_destroy(a);
+    px_convex_destroy(b);
+    a = px_convex_create(needles_both[0], 8, NULL, NULL),
+    b = px_convex_create(needles_both[1], 8, NULL, NULL);
+    const px_vec3 dir = {needles_both_dir[0], needles_both_dir[1], needles_both_dir[2]};
+    for (int m = 0; a && b && m < 3; ++m) {
+        const px_pose id = px_pose_identity();
+        px_query_options o = {0};
+        o.method = (uint32_t)m;
+        o.flags = PX_QUERY_BOTH_WAYS;
+        px_translate_result tr;
+        CHECK(px_translate(a, &id, b, &id, dir, &o, NULL, &tr) == PX_OK && tr.hit, "needles both ways");
+        double moved[24];
+        for (int i = 0; i < 8; ++i) {
+            moved[3 * i] = needles_both[0][3 * i] + tr.tau * dir.x;
+            moved[3 * i + 1] = needles_both[0][3 * i + 1] + tr.tau * dir.y;
+            moved[3 * i + 2] = needles_both[0][3 * i + 2] + tr.tau * dir.z;
+        }
+        CHECK(
+            pxcd_exact_distance(moved, 8, needles_both[1], 8, &exact, NULL, &zero, NULL, NULL, msg,
+                                sizeof msg) == PXCD_OK &&
+                exact <= 256 * DBL_EPSILON && tr.tau <= -1.8487188653253122e-06 + 1e-9,
+            "needles both ways, method %d: tau %.17g (the interval starts at -1.8487188653253122e-06), %.3g "
+            "apart there",
+            m, tr.tau, exact);
     }
     px_convex_destroy(a);
     px_convex_destroy(b);

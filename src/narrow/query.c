@@ -356,16 +356,45 @@ static void refine_miss(const px_convex *a, const px_convex *b, const px_pose *t
 /* A hit the ray cast reached at its rounding floor, which advancement could
  * not confirm (thin bodies: slabs of 1e-6, needles of 1e-5, where the ray
  * cast's planes are nearly parallel to the line): is A + tau d really
- * within the contact band of B? If not, the line may miss B altogether
- * (the projection of B - A along d keeps a gap): then that is the answer;
- * otherwise the hit stands, flagged unproven. */
+ * within the contact band of B? If it is, tau is a contact but maybe not
+ * the first (review s31: two needles 1e-9 wide, both ways, entered late by
+ * 0.8 of their width): the set of taus within the band is an interval (the
+ * distance is convex along the line), so bisection between the ray's
+ * proved lower bound and tau finds its start, the contact points taken
+ * there. If not, the line may miss B altogether (the projection of B - A
+ * along d keeps a gap): then that is the answer; otherwise the hit stands,
+ * flagged unproven. */
 static void check_floor_hit(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
-                            pxi_translation *out) {
+                            double lower, pxi_translation *out) {
     double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
     px_pose tt;
     pxi_answer ans;
     lin_canny_moved(a, b, t_ab, dir, out->tau, out, &tt, &ans);
-    if (ans.outcome == PXI_DONE && (ans.intersecting || ans.distance <= band)) return;
+    if (ans.outcome == PXI_DONE && (ans.intersecting || ans.distance <= band)) {
+        double lo = lower, hi = out->tau;
+        pxi_answer at_hi = ans;
+        for (int k = 0; k < 80 && lo < hi; ++k) {
+            double mid = lo + 0.5 * (hi - lo);
+            if (!(mid > lo && mid < hi)) break;
+            lin_canny_moved(a, b, t_ab, dir, mid, out, &tt, &ans);
+            if (ans.outcome != PXI_DONE) {
+                out->quality |= PX_QUALITY_UNPROVEN;
+                break;
+            }
+            if (ans.intersecting || ans.distance <= band)
+                hi = mid, at_hi = ans;
+            else
+                lo = mid;
+        }
+        if (hi < out->tau) {
+            out->tau = hi;
+            out->pa = at_hi.pa;
+            out->pb = at_hi.pb;
+            out->fa = at_hi.fa;
+            out->fb = at_hi.fb;
+        }
+        return;
+    }
     pxi_translation miss;
     pxi_ray_miss(a, b, t_ab, dir, &miss);
     if (miss.quality & PX_QUALITY_UNPROVEN) refine_miss(a, b, t_ab, dir, &miss);
@@ -408,7 +437,7 @@ void pxi_translation_query(const px_convex *a, const px_convex *b, const px_pose
     pxi_translation adv;
     if (!walk ||
         pxi_advance(a, b, t_ab, dir, bound.tau, bound.normal, bound.fa, bound.fb, &adv) != PXI_DONE) {
-        check_floor_hit(a, b, t_ab, dir, out);
+        check_floor_hit(a, b, t_ab, dir, bound.tau, out);
         return;
     }
     adv.iterations += out->iterations;

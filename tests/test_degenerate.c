@@ -1284,26 +1284,35 @@ static void test_needle_translations(void) {
     a = px_convex_create(needles_both[0], 8, NULL, NULL),
     b = px_convex_create(needles_both[1], 8, NULL, NULL);
     const px_vec3 dir = {needles_both_dir[0], needles_both_dir[1], needles_both_dir[2]};
-    for (int m = 0; a && b && m < 3; ++m) {
+    /* from where it starts, and from 1e3 back along the line (review s31:
+     * the band of the start pose, which counts the distance, put the entry
+     * 2e3 bands early) */
+    for (int k = 0; a && b && k < 6; ++k) {
+        const int m = k % 3;
+        const double back = k < 3 ? 0.0 : 1e3;
         const px_pose id = px_pose_identity();
+        px_pose pa = id;
+        pa.t = pxi_scale(dir, -back);
         px_query_options o = {0};
         o.method = (uint32_t)m;
         o.flags = PX_QUERY_BOTH_WAYS;
         px_translate_result tr;
-        CHECK(px_translate(a, &id, b, &id, dir, &o, NULL, &tr) == PX_OK && tr.hit, "needles both ways");
+        CHECK(px_translate(a, &pa, b, &id, dir, &o, NULL, &tr) == PX_OK && tr.hit, "needles both ways");
+        /* (1e3 back, the moved points carry rounding of 1e-13: 32 eps of the
+         * shift is the allowance; the bug was 2.7e-11) */
+        const double tau = tr.tau - back, allow = back > 0.0 ? 32 * DBL_EPSILON * back : 256 * DBL_EPSILON;
         double moved[24];
         for (int i = 0; i < 8; ++i) {
-            moved[3 * i] = needles_both[0][3 * i] + tr.tau * dir.x;
-            moved[3 * i + 1] = needles_both[0][3 * i + 1] + tr.tau * dir.y;
-            moved[3 * i + 2] = needles_both[0][3 * i + 2] + tr.tau * dir.z;
+            moved[3 * i] = needles_both[0][3 * i] + tau * dir.x;
+            moved[3 * i + 1] = needles_both[0][3 * i + 1] + tau * dir.y;
+            moved[3 * i + 2] = needles_both[0][3 * i + 2] + tau * dir.z;
         }
-        CHECK(
-            pxcd_exact_distance(moved, 8, needles_both[1], 8, &exact, NULL, &zero, NULL, NULL, msg,
-                                sizeof msg) == PXCD_OK &&
-                exact <= 256 * DBL_EPSILON && tr.tau <= -1.8487188653253122e-06 + 1e-9,
-            "needles both ways, method %d: tau %.17g (the interval starts at -1.8487188653253122e-06), %.3g "
-            "apart there",
-            m, tr.tau, exact);
+        CHECK(pxcd_exact_distance(moved, 8, needles_both[1], 8, &exact, NULL, &zero, NULL, NULL, msg,
+                                  sizeof msg) == PXCD_OK &&
+                  exact <= allow && tau <= -1.8487188653253122e-06 + 1e-9,
+              "needles both ways, method %d, from %g back: tau %.17g (the interval starts at "
+              "-1.8487188653253122e-06), %.3g apart there",
+              m, back, tau, exact);
     }
     px_convex_destroy(a);
     px_convex_destroy(b);

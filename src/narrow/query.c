@@ -366,32 +366,43 @@ static void refine_miss(const px_convex *a, const px_convex *b, const px_pose *t
  * flagged unproven. */
 static void check_floor_hit(const px_convex *a, const px_convex *b, const px_pose *t_ab, px_vec3 dir,
                             double lower, pxi_translation *out) {
-    double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, t_ab);
     px_pose tt;
     pxi_answer ans;
     lin_canny_moved(a, b, t_ab, dir, out->tau, out, &tt, &ans);
+    double band = PXI_CONTACT_BAND * pxi_pair_size(a, b, &tt);
     if (ans.outcome == PXI_DONE && (ans.intersecting || ans.distance <= band)) {
-        double lo = lower, hi = out->tau;
+        /* The band of each pose is the pair's size there (at tau = 0 it
+         * counts the starting distance: from 1e3 away, a review found the
+         * first in-band point 2e3 bands early). Bisection stops once tau's
+         * step moves A by less than a band. */
+        double lo = lower, hi = out->tau, len = sqrt(pxi_dot(dir, dir));
         pxi_answer at_hi = ans;
+        px_pose th = tt;
         for (int k = 0; k < 80 && lo < hi; ++k) {
             double mid = lo + 0.5 * (hi - lo);
             if (!(mid > lo && mid < hi)) break;
             lin_canny_moved(a, b, t_ab, dir, mid, out, &tt, &ans);
+            const double band_mid = PXI_CONTACT_BAND * pxi_pair_size(a, b, &tt);
             if (ans.outcome != PXI_DONE) {
                 out->quality |= PX_QUALITY_UNPROVEN;
                 break;
             }
-            if (ans.intersecting || ans.distance <= band)
-                hi = mid, at_hi = ans;
+            if (ans.intersecting || ans.distance <= band_mid)
+                hi = mid, at_hi = ans, th = tt;
             else
                 lo = mid;
+            if ((hi - lo) * len <= band_mid) break;
         }
         if (hi < out->tau) {
+            /* decided by the band: the contact points and the normal there */
             out->tau = hi;
             out->pa = at_hi.pa;
             out->pb = at_hi.pb;
             out->fa = at_hi.fa;
             out->fb = at_hi.fb;
+            px_vec3 g = pxi_sub(at_hi.pb, pxi_xform(&th, at_hi.pa));
+            if (!at_hi.intersecting && pxi_max_abs(g) > 0.0) out->normal = pxi_unit_safe(g);
+            out->quality |= PX_QUALITY_CONTACT_BAND;
         }
         return;
     }

@@ -66,9 +66,6 @@
 /* Triangles with |e0 x e1|^2 <= TAU_TRI2 |e0|^2 |e1|^2 are treated as their
  * edges (their plane is noise). */
 #define TAU_TRI2 1e-24
-/* Below this |e0 x e1|^2 / (|e0|^2 |e1|^2), a triangle's point query uses
- * accurate cross products (pt_tri). */
-#define SLIVER2 0x1p-16
 /* Angular noise of v, in units of eps span / |v| (see explore). */
 #define EXPLORE_C 8.0
 /* Margin factor of the sign tests that prove intersection. */
@@ -121,12 +118,6 @@ static void tri_lambdas_accurate(px_vec3 p, const px_vec3 *q, px_vec3 n, double 
     for (int i = 0; i < 3; ++i) lam[i] = pxi_dot(pxi_tri_cross(q[(i + 1) % 3], q[(i + 2) % 3], p), n);
 }
 
-/* Whether triangle (q0, q0 + e0, q0 + e1) of plain normal n is a sliver,
- * whose plain normal and weights lose a factor of its aspect. */
-static int tri_sliver(px_vec3 n, px_vec3 e0, px_vec3 e1) {
-    return pxi_dot(n, n) < SLIVER2 * pxi_dot(e0, e0) * pxi_dot(e1, e1);
-}
-
 /* The plane of a triangle is trusted only when its normal is not noise. */
 static int tri_normal(const px_vec3 *q, px_vec3 *n) {
     px_vec3 e0 = pxi_sub(q[1], q[0]), e1 = pxi_sub(q[2], q[0]);
@@ -143,7 +134,7 @@ static px_vec3 pt_tri(px_vec3 p, const px_vec3 *q, double *w, double *d2) {
     if (tri_normal(q, &n)) {
         double lam[3];
         px_vec3 e0 = pxi_sub(q[1], q[0]), e1 = pxi_sub(q[2], q[0]);
-        if (tri_sliver(n, e0, e1)) {
+        if (pxi_is_sliver(n, e0, e1)) {
             /* A sliver: the normal and the weights from cross products to
              * full relative precision (pxi_tri_cross). In plain double both
              * lose a factor of the aspect (beside a 1 x 1e-8 side of a
@@ -229,7 +220,7 @@ static int seg_through_tri(const px_vec3 *p, const px_vec3 *q, hy_local *r) {
      * through q[0] then misses its other corners by far more than the
      * sliver is wide (review s31: two needles 2.4e-10 apart were taken for
      * crossing): the accurate one. */
-    const int sliver = tri_sliver(n, e0, e1);
+    const int sliver = pxi_is_sliver(n, e0, e1);
     if (sliver) n = pxi_tri_cross(q[0], q[1], q[2]);
     px_vec3 r0 = pxi_sub(p[0], q[0]), r1 = pxi_sub(p[1], q[0]);
     double s0 = pxi_dot(n, r0), s1 = pxi_dot(n, r1), ee = pxi_max_abs(e0) * pxi_max_abs(e1);

@@ -196,9 +196,7 @@ static double tr_refine(const px_vec3 *m, int n, px_vec3 d, double tau) {
         /* accurate for slivers (the simplex solver keeps a sliver triangle
          * whose plane holds x: plain products tilted its normal by eps over
          * the aspect, and tau by 1e-11 on a 1e-6 needle) */
-        px_vec3 e1 = pxi_sub(m[1], m[0]), e2 = pxi_sub(m[2], m[0]), nn = pxi_cross(e1, e2);
-        if (pxi_dot(nn, nn) < 0x1p-16 * pxi_dot(e1, e1) * pxi_dot(e2, e2))
-            nn = pxi_tri_cross(m[0], m[1], m[2]);
+        px_vec3 nn = pxi_tri_normal(m[0], m[1], m[2]);
         double nd = pxi_dot(nn, d);
         if (fabs(nd) > 1e-6 * pxi_len(nn) * sqrt(dd)) return pxi_dot(nn, m[0]) / nd;
         return tau;

@@ -10,19 +10,6 @@
 #include <float.h>
 #include <math.h>
 
-/* The sliver paths are rare: kept out of line, behind a cold branch, so
- * that the common path stays as it was (review s31: a non-inlined helper
- * called eight times a tetrahedron step cost 12 % of a cold ray cast). */
-#if defined(__GNUC__)
-#define SX_INLINE static inline __attribute__((always_inline))
-#define SX_NOINLINE static __attribute__((noinline))
-#define SX_RARE(x) __builtin_expect(!!(x), 0)
-#else
-#define SX_INLINE static inline
-#define SX_NOINLINE static
-#define SX_RARE(x) (x)
-#endif
-
 /* Keep the points whose flag is set, with their weights. */
 static inline void sx_keep(sx_simplex *s, const int *use, const double *lam) {
     sx_simplex out;
@@ -51,19 +38,15 @@ void pxi_sx_segment(sx_simplex *s) {
     sx_keep(s, use, lam);
 }
 
-/* Below this sin^2 of the angle at a, a triangle is solved by sx_sliver:
- * Ericson's region tests and weights (products of dot products) cancel by
- * the triangle's aspect. */
-#define SX_SLIVER 0x1p-16
-
 /* A sliver triangle. Ericson's region tests and weights lose a factor of
  * the aspect (beside a 1 x 1e-6 side of a turned plate, GJK's distances
- * were 1e5 eps of the size off); here the normal N and the three sub-triangles' areas
- * against the origin's foot q are cross products to full relative
- * precision (pxi_tri_cross), whose dots with N do not cancel (each is
- * nearly parallel to N). When the foot falls outside after all, the
- * closest point is on an edge: the best of the three. */
-SX_NOINLINE void sx_sliver(sx_simplex *s) {
+ * were 1e5 eps of the size off); here the normal N and the three
+ * sub-triangles' areas against the origin's foot q are cross products to
+ * full relative precision (pxi_tri_cross), whose dots with N do not cancel
+ * (each is nearly parallel to N). When the foot falls outside after all,
+ * the closest point is on an edge: the best of the three. Out of line: its
+ * caller is GJK's hot triangle solve. */
+PXI_COLD void sx_sliver(sx_simplex *s) {
     px_vec3 a = s->p[0].w, b = s->p[1].w, c = s->p[2].w, n = pxi_tri_cross(a, b, c);
     double nn = pxi_dot(n, n), h = (pxi_dot(n, a) + pxi_dot(n, b) + pxi_dot(n, c)) / 3.0;
     if (nn > 0.0 && isfinite(nn)) {
@@ -95,7 +78,7 @@ SX_NOINLINE void sx_sliver(sx_simplex *s) {
 void pxi_sx_triangle(sx_simplex *s) {
     px_vec3 a = s->p[0].w, b = s->p[1].w, c = s->p[2].w;
     px_vec3 ab = pxi_sub(b, a), ac = pxi_sub(c, a);
-    if (SX_RARE(pxi_len2(pxi_cross(ab, ac)) < SX_SLIVER * pxi_dot(ab, ab) * pxi_dot(ac, ac))) {
+    if (PXI_RARE(pxi_is_sliver(pxi_cross(ab, ac), ab, ac))) {
         sx_sliver(s); /* the region tests below cancel too */
         return;
     }
@@ -153,21 +136,6 @@ void pxi_sx_triangle(sx_simplex *s) {
     sx_keep(s, use, lam);
 }
 
-/* (b - a) x (c - a); for a sliver face from accurate cross products
- * (pxi_tri_cross): with plain products the side of the origin against the
- * 1 x 1e-7 side face of a plate was noise, and a tetrahedron held the
- * origin 1.7e-12 outside it (a ray cast's hit 1.5e4 eps early). */
-SX_NOINLINE px_vec3 sx_face_normal_accurate(px_vec3 a, px_vec3 b, px_vec3 c) {
-    return pxi_tri_cross(a, b, c);
-}
-
-SX_INLINE px_vec3 sx_face_normal(px_vec3 a, px_vec3 b, px_vec3 c) {
-    px_vec3 ab = pxi_sub(b, a), ac = pxi_sub(c, a), n = pxi_cross(ab, ac);
-    if (SX_RARE(pxi_len2(n) < SX_SLIVER * pxi_dot(ab, ab) * pxi_dot(ac, ac)))
-        n = sx_face_normal_accurate(a, b, c);
-    return n;
-}
-
 /* Returns 1 when the origin is inside (or on) the tetrahedron. */
 int pxi_sx_tetra(sx_simplex *s) {
     static const int faces[4][4] = {{0, 1, 2, 3}, {0, 3, 1, 2}, {0, 2, 3, 1}, {1, 3, 2, 0}};
@@ -176,7 +144,11 @@ int pxi_sx_tetra(sx_simplex *s) {
     int any = 0;
     for (int k = 0; k < 4; ++k) {
         px_vec3 a = s->p[faces[k][0]].w, b = s->p[faces[k][1]].w, c = s->p[faces[k][2]].w;
-        px_vec3 d = s->p[faces[k][3]].w, n = sx_face_normal(a, b, c);
+        /* pxi_tri_normal: with plain products the side of the origin
+         * against the 1 x 1e-7 side face of a plate was noise, and a
+         * tetrahedron held the origin 1.7e-12 outside it (a ray cast's hit
+         * 1.5e4 eps early) */
+        px_vec3 d = s->p[faces[k][3]].w, n = pxi_tri_normal(a, b, c);
         double so = -pxi_dot(a, n), sd = pxi_dot(pxi_sub(d, a), n);
         if (!(so * sd < 0.0) && sd != 0.0) continue; /* origin on d's side of this face */
         sx_simplex t;
@@ -208,7 +180,7 @@ int pxi_sx_tetra(sx_simplex *s) {
         s->margin = fat ? INFINITY : 0.0;
         for (int f = 0; f < 4; ++f) {
             px_vec3 a = s->p[faces[f][0]].w, b = s->p[faces[f][1]].w, c = s->p[faces[f][2]].w;
-            px_vec3 n = sx_face_normal(a, b, c);
+            px_vec3 n = pxi_tri_normal(a, b, c);
             double len = pxi_len(n), dist = len > 0.0 ? fabs(pxi_dot(a, n)) / len : 0.0;
             if (fat && dist < s->margin) s->margin = dist;
         }

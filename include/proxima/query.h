@@ -227,7 +227,9 @@ typedef struct px_translate_result {
     /// vertex along the normal, so the plane's claim holds by construction.
     px_vec3 point_a, point_b;
     /// hit: the unit contact normal at tau, from A to B (normal . direction
-    /// > 0 unless the contact is grazing).
+    /// > 0 unless the contact is grazing): the plane through point_b with
+    /// this normal has A (moved by tau) below it and B above it, to within
+    /// the contact band.
     /// No hit: a unit normal with normal . direction <= 0 (= 0 when the line
     /// misses B entirely), normal . x <= normal . point_a for all x in A,
     /// normal . y >= normal . point_b for all y in B, and

@@ -122,11 +122,17 @@ pxi_outcome pxi_advance(const px_convex *a, const px_convex *b, const px_pose *t
         px_vec3 gap = pxi_sub(ans.pb, pxi_xform(&tt, ans.pa));
         double gl = pxi_len_safe(gap);
         if (!(gl > 0.0)) break;
-        n = pxi_len_ok(gl) ? pxi_scale(gap, 1.0 / gl) : pxi_unit_safe(gap);
-        double nd = pxi_dot(n, d);
+        px_vec3 ng = pxi_len_ok(gl) ? pxi_scale(gap, 1.0 / gl) : pxi_unit_safe(gap);
+        double nd = pxi_dot(ng, d);
         if (!(nd > 1e-3 * sqrt(pxi_dot(d, d)))) return PXI_UNPROVEN; /* may miss: the ray cast decides */
         tau += ans.distance / nd;
-        if (!(ans.distance > tol)) break; /* within rounding: that last step closes it */
+        /* Within rounding: that last step closes it. The gap's direction is
+         * then noise (1e-13 apart, it turned a cube's contact normal by
+         * 1e-3): the last normal stands (the separating plane of the step
+         * that brought A here, or the ray cast's), refined by the features
+         * below. */
+        if (!(ans.distance > tol)) break;
+        n = ng;
         /* The same features touching at the new tau settle it without
          * another walk (exact for the facet pairs of M). */
         tt.t = pxi_madd(t_ab->t, d, tau);
@@ -141,7 +147,9 @@ pxi_outcome pxi_advance(const px_convex *a, const px_convex *b, const px_pose *t
     out->tau = tau;
     out->pa = ans.pa;
     out->pb = ans.pb;
-    out->normal = n;
+    /* A facet of M (vertex-face, edge-edge) in contact has its own normal,
+     * exact; other contacts keep the separating plane's. */
+    out->normal = ans.intersecting ? n : pxi_feature_normal(a, b, t_ab, ans.fa, ans.fb, n);
     out->fa = ans.fa;
     out->fb = ans.fb;
     out->iterations = steps;

@@ -766,6 +766,60 @@ static void regression_near_coplanar(void) {
     px_convex_destroy(B);
 }
 
+/* Review s32: a vertex of the exact hull on a straight stretch of a face's
+ * boundary (a Puma link's hull: a point 1e-19 off the line of its two
+ * neighbours, the top face's angle there 180 degrees within rounding, the
+ * slope's two faces coplanar within rounding). Below a face of B parallel to
+ * that line, its two edges along the line are level and its third climbs,
+ * while the top face descends from it along no edge: Lin-Canny started at
+ * (that vertex, B's face) stopped at once with the distance 16 % too large.
+ * Started there against every feature of B, tilted both ways about the
+ * line. */
+static void regression_flat_vertex(void) {
+    const double x0 = 0x1p-62; /* v20, just outside the segment (0,-1,1)-(0,1,1) */
+    const double pts[] = {0,   -1, 1, 0, 1, 1,  -1, 0, 1, x0, -0.3, 1, 0.3, 0,
+                          0.9, -1, 0, 0, 0, -1, 0,  0, 1, 0,  0.3,  0, 0};
+    px_convex *A = build(pts, 9, "flat vertex");
+    double box[24];
+    pg_box(0.5, 0.5, 0.5, box);
+    px_convex *B = build(box, 8, "box");
+    if (!A || !B) return;
+    uint32_t flat = UINT32_MAX;
+    for (uint32_t k = 0; k < px_convex_vertex_count(A); ++k) {
+        px_vec3 v;
+        px_convex_vertex(A, k, &v);
+        if (v.x == x0 && v.y == -0.3) flat = k;
+    }
+    CHECK(flat != UINT32_MAX, "flat vertex: the point 2^-62 off the line is not a hull vertex");
+    if (flat == UINT32_MAX) return;
+    long idx = 0;
+    for (int side = -1; side <= 1; side += 2)
+        for (int t = 0; t < 16; ++t) {
+            double phi = side * (0.02 + 0.03 * t),
+                   r[9] = {cos(phi), 0, sin(phi), 0, 1, 0, -sin(phi), 0, cos(phi)};
+            px_pose pa = px_pose_identity(),
+                    pb = pose_rt(r, pxi_v(-0.4 * side, 0.1, 1.0 + 0.5 / cos(phi) + 0.3));
+            for (uint32_t type = PX_FEATURE_VERTEX; type <= PX_FEATURE_FACE; ++type) {
+                uint32_t n = type == PX_FEATURE_VERTEX ? px_convex_vertex_count(B)
+                             : type == PX_FEATURE_EDGE ? px_convex_edge_count(B)
+                                                       : px_convex_face_count(B);
+                for (uint32_t f = 0; f < n; ++f, ++idx) {
+                    px_pair_cache cache;
+                    memset(&cache, 0, sizeof cache);
+                    cache.feature_a.type = PX_FEATURE_VERTEX;
+                    cache.feature_a.index = flat;
+                    cache.feature_b.type = type;
+                    cache.feature_b.index = f;
+                    tc_report rep;
+                    hard_query(A, &pa, B, &pb, &cache, 0, "flat vertex", idx, &rep);
+                }
+            }
+        }
+    printf("  flat vertex on a face's straight boundary: %ld warm starts\n", idx);
+    px_convex_destroy(A);
+    px_convex_destroy(B);
+}
+
 int main(void) {
     tu_init("test_hard");
     printf("  method %s\n", tc_method_from_env());
@@ -774,6 +828,7 @@ int main(void) {
     regression_touching_faces_fallback_features();
     regression_gjk_degenerate_triangle();
     regression_cubes_scale_1e9_misclassified();
+    regression_flat_vertex();
     /* ~100 rotational velocities (issue 3 §4); a quarter under sanitizers,
      * where the exact reference is 10-20x slower (the Release run has all). */
     int vel = tu_scaled(tu_sanitized() ? 25 : 100);

@@ -335,6 +335,62 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     return x->dist > 0.0 ? LC_DONE : LC_PENETRATION;
 }
 
+/* Height changes along the edges at v of body c, the height growing along
+ * unit n (c's frame; signs only: h * (n.u) would underflow to 0 at tiny
+ * scales): the edge that descends most steeply, or NONE; *tied is set when
+ * an edge is level within rounding (an edge parallel to F within rounding
+ * is no closer). */
+static uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3 n, int *tied) {
+    double worst = -4.0 * DBL_EPSILON;
+    uint32_t best = NONE;
+    for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
+        const pxi_edge *E = &c->e[c->v_edges[k]];
+        double g = pxi_dot(n, E->u);
+        if (E->tail != v) g = -g;
+        if (g < worst) {
+            worst = g;
+            best = c->v_edges[k];
+        }
+        if (!(fabs(g) > 4.0 * DBL_EPSILON)) *tied = 1;
+    }
+    return best;
+}
+
+#define LC_PLATEAU_CAP 64
+#define LC_PLATEAU_UNKNOWN (NONE - 1)
+
+/* Vertex v has no edge that descends, but some that are level within
+ * rounding. A vertex of the exact hull can sit on a straight stretch of a
+ * face's boundary (an input point 1e-19 off the line of its neighbours: a
+ * face angle of 180 degrees to within rounding). Then the descent into that
+ * face's interior is along no edge of v, and v's own edges, nearly
+ * opposite, each look level: Lin-Canny stopped there with the distance 16 %
+ * too large on a Puma link's hull (review s32). So the vertices reachable
+ * from v over level edges are searched for one that has a descending edge;
+ * on a genuine plateau (a face parallel to F) there is none. Returns that
+ * edge, NONE, or LC_PLATEAU_UNKNOWN when the plateau is too large to
+ * search (the caller then leaves the answer to another method). */
+static uint32_t plateau_descent(const px_convex *c, uint32_t v, px_vec3 n) {
+    uint32_t seen[LC_PLATEAU_CAP], ns = 0;
+    seen[ns++] = v;
+    for (uint32_t q = 0; q < ns; ++q) {
+        uint32_t w = seen[q];
+        for (uint32_t k = c->v_first[w]; k < c->v_first[w + 1]; ++k) {
+            const pxi_edge *E = &c->e[c->v_edges[k]];
+            double g = pxi_dot(n, E->u);
+            if (E->tail != w) g = -g;
+            if (g < -4.0 * DBL_EPSILON) return c->v_edges[k];
+            if (g > 4.0 * DBL_EPSILON) continue;
+            uint32_t o = c->v_adj[k], m = 0;
+            while (m < ns && seen[m] != o) ++m;
+            if (m < ns) continue;
+            if (ns == LC_PLATEAU_CAP) return LC_PLATEAU_UNKNOWN;
+            seen[ns++] = o;
+        }
+    }
+    return NONE;
+}
+
 static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     int j = 1 - i;
     const px_convex *ci = x->c[i], *cj = x->c[j];
@@ -360,18 +416,15 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     /* Is the foot of the perpendicular in VR(v)? An edge at v along which
      * |height| decreases (h * n.u_out < 0) is closer to F (Mirtich §4). */
     px_vec3 n_i = dir_to_other(x, j, F->n);
-    double worst = -4.0 * DBL_EPSILON; /* an edge parallel to F within rounding is no closer */
-    uint32_t best_e = NONE;
-    for (uint32_t k = ci->v_first[v]; k < ci->v_first[v + 1]; ++k) {
-        const pxi_edge *E = &ci->e[ci->v_edges[k]];
-        /* Signs only: h * (n.u) would underflow to 0 at tiny scales. */
-        double g = pxi_dot(n_i, E->u);
-        if (E->tail != v) g = -g;
-        if (h < 0.0) g = -g;
-        if (g < worst) {
-            worst = g;
-            best_e = ci->v_edges[k];
-        }
+    if (h < 0.0) n_i = pxi_neg(n_i);
+    int tied = 0;
+    uint32_t best_e = steepest_descent(ci, v, n_i, &tied);
+    /* Edges level with F within rounding: v may sit on a straight stretch
+     * of a face's boundary, whose descent runs inside the face, along no
+     * edge of v (see plateau_descent). */
+    if (best_e == NONE && tied) {
+        best_e = plateau_descent(ci, v, n_i);
+        if (best_e == LC_PLATEAU_UNKNOWN) return LC_OUT_OF_STEPS;
     }
     if (best_e != NONE) {
         x->f[i] = feat(PX_FEATURE_EDGE, best_e);

@@ -1050,6 +1050,92 @@ static const char *write_gltf_prim(const char *name, int mode, const char *mode_
     return write_file(name, json, (size_t)-1);
 }
 
+/* COLLADA <p> indices that are negative or beyond 2^31 (review s32):
+ * Assimp's strtol10 wrapped them (-1 read as 0, 4294967297 as 1) and the
+ * file loaded with PX_OK; a '+' sign (xs:unsignedLong allows it) still
+ * loads. */
+static void test_dae_indices(void) {
+    static const struct {
+        const char *name, *p;
+        int ok;
+    } cases[] = {{"p_neg.dae", "<p>0 2 -1 ", 0},
+                 {"p_wrap.dae", "<p>0 2 4294967297 ", 0},
+                 {"p_big.dae", "<p>0 2 2147483648 ", 0},
+                 {"p_plus.dae", "<p>0 2 +1 ", 1},
+                 {"p_plus2.dae", "<p>0 2 ++1 ", 0}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        char text[4096];
+        const char *at = strstr(k_dae, "<p>0 2 1 ");
+        snprintf(text, sizeof text, "%.*s%s%s", (int)(at - k_dae), k_dae, cases[c].p,
+                 at + strlen("<p>0 2 1 "));
+        const char *path = write_file(cases[c].name, text, (size_t)-1);
+        if (!cases[c].ok) {
+            EXPECT_LOAD_ERROR(path,
+                              "a COLLADA <p> index list holds something other than integers from 0 to 2^31");
+            continue;
+        }
+        px_mesh *m = load(path, 0);
+        CHECK(m && px_mesh_triangle_count(m) == 12, "%s: %u triangles", cases[c].name,
+              m ? px_mesh_triangle_count(m) : 0);
+        px_mesh_destroy(m);
+    }
+}
+
+/* write_gltf_prim's triangle list of 6 positions with `from` replaced by
+ * `to` in its JSON. */
+static const char *write_gltf_patched(const char *name, const char *from, const char *to) {
+    const char *path = write_gltf_prim(name, 4, NULL, NULL, 0, 6);
+    static char text[4096], out[4096];
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[n] = '\0';
+    const char *at = strstr(text, from);
+    CHECK(at != NULL, "%s: '%s' not in the generated glTF", name, from);
+    if (!at) return path;
+    snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
+    return write_file(name, out, (size_t)-1);
+}
+
+/* glTF accessors that read outside their buffer view (review s32). Assimp
+ * 5.2 checks only count times the component size against the view: an
+ * accessor byteOffset or a byteStride past its end read the heap (a
+ * segfault at 100,000 positions; at 8, a coordinate of 4.6e-44 loaded with
+ * PX_OK), as did a view past its buffer; 16-bit or 2-component POSITIONs
+ * were read as float bits or with z = 0. */
+static void test_gltf_accessors(void) {
+    const char *acc = "{\"bufferView\": 0, \"componentType\": 5126";
+    EXPECT_LOAD_ERROR(write_gltf_patched("acc_offset.gltf", acc,
+                                         "{\"bufferView\": 0, \"byteOffset\": 8, \"componentType\": 5126"),
+                      "glTF accessor 0 (of meshes[0].primitives[0]) reads past the end of its buffer view");
+    EXPECT_LOAD_ERROR(write_gltf_patched("acc_stride.gltf", "\"byteOffset\": 0, \"byteLength\": 72}",
+                                         "\"byteOffset\": 0, \"byteLength\": 72, \"byteStride\": 16}"),
+                      "reads past the end of its buffer view");
+    EXPECT_LOAD_ERROR(write_gltf_patched("acc_stride8.gltf", "\"byteOffset\": 0, \"byteLength\": 72}",
+                                         "\"byteOffset\": 0, \"byteLength\": 72, \"byteStride\": 8}"),
+                      "whose byteStride is smaller than one element");
+    EXPECT_LOAD_ERROR(write_gltf_patched("view_past.gltf", "\"byteOffset\": 0, \"byteLength\": 72}",
+                                         "\"byteOffset\": 4, \"byteLength\": 72}"),
+                      "reads a buffer view that runs past the end of its buffer");
+    EXPECT_LOAD_ERROR(
+        write_gltf_patched("view_none.gltf", acc, "{\"bufferView\": 3, \"componentType\": 5126"),
+        "names a buffer view that does not exist");
+    EXPECT_LOAD_ERROR(write_gltf_patched("pos_vec2.gltf", "\"type\": \"VEC3\"", "\"type\": \"VEC2\""),
+                      "is not VEC3 of floats (5126), as glTF 2.0 requires of POSITION");
+    EXPECT_LOAD_ERROR(write_gltf_patched("pos_u16.gltf", acc, "{\"bufferView\": 0, \"componentType\": 5123"),
+                      "is not VEC3 of floats");
+    EXPECT_LOAD_ERROR(
+        write_gltf_patched("pos_ctype.gltf", acc, "{\"bufferView\": 0, \"componentType\": 5127"),
+        "has a componentType that is not a glTF one");
+    /* The same file with a byteStride of 12 (the element: allowed) loads. */
+    px_mesh *m = load(write_gltf_patched("acc_stride12.gltf", "\"byteOffset\": 0, \"byteLength\": 72}",
+                                         "\"byteOffset\": 0, \"byteLength\": 72, \"byteStride\": 12}"),
+                      0);
+    CHECK(m && px_mesh_vertex_count(m) == 6 && px_mesh_triangle_count(m) == 2,
+          "acc_stride12.gltf: %u vertices", m ? px_mesh_vertex_count(m) : 0);
+    px_mesh_destroy(m);
+}
+
 /* glTF triangle strips and fans (modes 5 and 6), points and lines (0-3).
  * Assimp 5.2 drops a triangle with an index out of range with a warning
  * only; for strips and fans this went unchecked (only mode-4 primitives
@@ -2303,6 +2389,8 @@ int main(void) {
     test_bad_files();
     test_stl_walk();
     test_gltf_modes();
+    test_gltf_accessors();
+    test_dae_indices();
     test_float_cost();
     test_obj_full_precision();
     test_obj_number_forms();

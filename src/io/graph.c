@@ -339,8 +339,24 @@ static int p_content_ok(const dae_scan *s, size_t i) {
         i = j + 9;
         end = find(s, i, "]]>");
     }
-    for (j = i; j < end && !(d[j] == '<' && end == s->size); ++j)
-        if (!(d[j] >= '0' && d[j] <= '9') && d[j] != '-' && d[j] != '+' && !is_xml_space(d[j])) return 0;
+    /* Indices are non-negative and below 2^31 (every array count is): a
+     * sign or a larger number was wrapped by strtol10 (review s32: -1 read
+     * as 0, 4294967297 as 1, with PX_OK). */
+    u64 v = 0;
+    int in_token = 0; /* a '+' may open a token (xs:unsignedLong allows it) */
+    for (j = i; j < end && !(d[j] == '<' && end == s->size); ++j) {
+        if (d[j] >= '0' && d[j] <= '9') {
+            v = 10 * v + (u64)(d[j] - '0');
+            if (v > 0x7FFFFFFFull) return 0;
+            in_token = 1;
+        } else if (is_xml_space(d[j])) {
+            v = 0, in_token = 0;
+        } else if (d[j] == '+' && !in_token && j + 1 < end && d[j + 1] >= '0' && d[j + 1] <= '9') {
+            in_token = 1;
+        } else {
+            return 0;
+        }
+    }
     return 1;
 }
 
@@ -674,8 +690,9 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
                 h->path);
         else if (s.bad_p)
             st = pxi_error(err, PX_ERR_IO,
-                           "mesh file '%s': a COLLADA <p> index list holds something other than integers and "
-                           "blanks (Assimp 5.2 would push 0 indices for ever)",
+                           "mesh file '%s': a COLLADA <p> index list holds something other than integers "
+                           "from 0 to 2^31 - 1 and blanks (Assimp 5.2 would push 0 indices for ever, or wrap "
+                           "the index)",
                            h->path);
         else if (s.bad_attr)
             st = pxi_error(err, PX_ERR_IO,
@@ -752,6 +769,14 @@ typedef struct json {
      * mesh primitive's indices accessor, POSITION accessor and mode (~0u:
      * absent), three entries a primitive. */
     u32 *acc_count, nacc, acc_cap;
+    /* Where each accessor reads (accessor_info, four a accessor: bufferView,
+     * byteOffset, componentType, components), each buffer view (four a view:
+     * buffer, byteOffset, byteLength, byteStride) and each buffer's
+     * byteLength; J_ABSENT or J_UNREAD where the member is missing or not a
+     * plain 32-bit count. */
+    u32 *acc_info, nacc_info, acc_info_cap;
+    u32 *views, nviews, views_cap;
+    u32 *bufs, nbufs, bufs_cap;
     u32 *prim, nprim, prim_cap;
     u32 *mesh_end, nmesh, mesh_cap;     /* each mesh's end in prim, in primitives */
     u32 *node_mesh, nnode_mesh, nm_cap; /* (node, mesh) pairs of the nodes' "mesh" members */
@@ -1029,16 +1054,153 @@ static int scene_element(json *j, u32 index, int depth, void *ctx) {
  * against their buffer views, and allocates count * element size bytes for
  * an accessor without a buffer view (the review's gltf_sparse.gltf: 1.8 GB
  * before std::bad_alloc). */
+#define J_ABSENT (~0u)
+#define J_UNREAD (~0u - 1)
+
+/* Member `want` as a plain 32-bit count into *out; J_UNREAD when it is
+ * there but something else (negative, fractional, too large, a string). */
+static int j_count_member(json *j, const unsigned char *k, size_t n, const char *want, int depth, u32 *out,
+                          int *matched) {
+    if (!key_is(k, n, want)) return 1;
+    *matched = 1;
+    j_ws(j);
+    if (j->p < j->end && *j->p >= '0' && *j->p <= '9') {
+        u64 v;
+        if (!j_number(j, &v)) return 0;
+        *out = v >= J_UNREAD ? J_UNREAD : (u32)v;
+        return 1;
+    }
+    *out = J_UNREAD;
+    return j_value(j, depth);
+}
+
+/* An accessor's "type": its number of components (J_UNREAD if unknown). */
+static u32 accessor_components(const unsigned char *t, size_t n) {
+    static const struct {
+        const char *name;
+        u32 count;
+    } types[] = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4},
+                 {"MAT2", 4},   {"MAT3", 9}, {"MAT4", 16}};
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; ++i)
+        if (key_is(t, n, types[i].name)) return types[i].count;
+    return J_UNREAD;
+}
+
+typedef struct j_accessor {
+    u32 count, view, offset, ctype, ncomp;
+} j_accessor;
+
 static int accessor_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    j_accessor *a = ctx;
     if (key_is(k, n, "sparse")) return j->sparse = 1, 0;
-    return j_plain_u32(j, k, n, "count", depth, ctx);
+    if (key_is(k, n, "type")) {
+        const unsigned char *t;
+        size_t tn;
+        int esc;
+        j_ws(j);
+        if (j->p >= j->end || *j->p != '"') return a->ncomp = J_UNREAD, j_value(j, depth);
+        if (!j_string(j, &t, &tn, &esc)) return 0;
+        a->ncomp = esc ? J_UNREAD : accessor_components(t, tn);
+        return 1;
+    }
+    int m = 0;
+    if (!j_count_member(j, k, n, "count", depth, &a->count, &m) ||
+        !j_count_member(j, k, n, "bufferView", depth, &a->view, &m) ||
+        !j_count_member(j, k, n, "byteOffset", depth, &a->offset, &m) ||
+        !j_count_member(j, k, n, "componentType", depth, &a->ctype, &m))
+        return 0;
+    return m ? 1 : j_value(j, depth);
 }
 
 static int accessor_element(json *j, u32 index, int depth, void *ctx) {
     (void)index, (void)ctx;
-    u32 count = ~0u;
-    if (!j_object(j, depth, accessor_member, &count)) return 0;
-    return push_u32(j, &j->acc_count, &j->nacc, &j->acc_cap, count);
+    j_accessor a = {J_ABSENT, J_ABSENT, 0, J_ABSENT, J_ABSENT};
+    if (!j_object(j, depth, accessor_member, &a)) return 0;
+    /* count: as before, ~0u when it is not a plain 32-bit count */
+    return push_u32(j, &j->acc_count, &j->nacc, &j->acc_cap, a.count == J_UNREAD ? ~0u : a.count) &&
+           push_u32(j, &j->acc_info, &j->nacc_info, &j->acc_info_cap, a.view) &&
+           push_u32(j, &j->acc_info, &j->nacc_info, &j->acc_info_cap, a.offset) &&
+           push_u32(j, &j->acc_info, &j->nacc_info, &j->acc_info_cap, a.ctype) &&
+           push_u32(j, &j->acc_info, &j->nacc_info, &j->acc_info_cap, a.ncomp);
+}
+
+static int view_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    u32 *v = ctx;
+    int m = 0;
+    if (!j_count_member(j, k, n, "buffer", depth, &v[0], &m) ||
+        !j_count_member(j, k, n, "byteOffset", depth, &v[1], &m) ||
+        !j_count_member(j, k, n, "byteLength", depth, &v[2], &m) ||
+        !j_count_member(j, k, n, "byteStride", depth, &v[3], &m))
+        return 0;
+    return m ? 1 : j_value(j, depth);
+}
+
+static int view_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index, (void)ctx;
+    u32 v[4] = {J_ABSENT, 0, J_ABSENT, 0};
+    if (!j_object(j, depth, view_member, v)) return 0;
+    for (int i = 0; i < 4; ++i)
+        if (!push_u32(j, &j->views, &j->nviews, &j->views_cap, v[i])) return 0;
+    return 1;
+}
+
+static int buffer_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    int m = 0;
+    if (!j_count_member(j, k, n, "byteLength", depth, ctx, &m)) return 0;
+    return m ? 1 : j_value(j, depth);
+}
+
+static int buffer_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index, (void)ctx;
+    u32 len = J_ABSENT;
+    if (!j_object(j, depth, buffer_member, &len)) return 0;
+    return push_u32(j, &j->bufs, &j->nbufs, &j->bufs_cap, len);
+}
+
+/* Checks that accessor `a` (the mesh primitives' indices or POSITION) reads
+ * within its buffer view, and the view within its buffer, by the sizes the
+ * file declares. Assimp 5.2 checks only count times the component size
+ * against the view: a byteOffset or byteStride past its end was read out of
+ * the heap (review s32: 100,000 positions at byteOffset 800,000 crashed it;
+ * 8 of them at byteOffset 8 loaded a coordinate of 4.6e-44 from stray
+ * memory). `position` asks for VEC3 floats (what glTF 2.0 requires and
+ * Assimp assumes: 16-bit positions were read as float bits), otherwise
+ * unsigned integer scalars. Returns NULL when it does, else what is wrong. */
+static const char *gltf_accessor_problem(const json *j, u32 a, int position) {
+    if (a >= j->nacc || 4 * (u64)a + 3 >= j->nacc_info) return "names an accessor that does not exist";
+    const u32 *ai = &j->acc_info[4 * (size_t)a];
+    const u32 view = ai[0], offset = ai[1], ctype = ai[2], ncomp = ai[3], count = j->acc_count[a];
+    u32 csize;
+    switch (ctype) {
+    case 5120:
+    case 5121: csize = 1; break;
+    case 5122:
+    case 5123: csize = 2; break;
+    case 5125:
+    case 5126: csize = 4; break;
+    default: return "has a componentType that is not a glTF one";
+    }
+    if (ncomp == J_ABSENT || ncomp == J_UNREAD) return "has no valid \"type\"";
+    if (position ? ctype != 5126 || ncomp != 3
+                 : (ctype == 5126 || ctype == 5120 || ctype == 5122 || ncomp != 1))
+        return position ? "is not VEC3 of floats (5126), as glTF 2.0 requires of POSITION"
+                        : "is not a SCALAR of unsigned integers, as glTF 2.0 requires of indices";
+    if (count == ~0u) return "has no valid \"count\"";
+    if (view == J_ABSENT) return NULL; /* no data: zeros (sparse accessors are refused) */
+    if (view == J_UNREAD || offset == J_UNREAD || view >= j->nviews / 4)
+        return "names a buffer view that does not exist";
+    const u32 *v = &j->views[4 * (size_t)view];
+    if (v[0] == J_ABSENT || v[0] == J_UNREAD || v[0] >= j->nbufs || v[1] == J_UNREAD || v[2] == J_ABSENT ||
+        v[2] == J_UNREAD || v[3] == J_UNREAD)
+        return "reads a buffer view without a valid buffer, byteOffset, byteLength or byteStride";
+    const u32 buf = j->bufs[v[0]];
+    if (buf == J_ABSENT || buf == J_UNREAD || (u64)v[1] + v[2] > buf)
+        return "reads a buffer view that runs past the end of its buffer";
+    const u64 elem = (u64)csize * ncomp, stride = v[3] ? v[3] : elem;
+    if (stride < elem) return "reads a buffer view whose byteStride is smaller than one element";
+    if (count && (u64)offset + (count - 1) * stride + elem > v[2])
+        return "reads past the end of its buffer view (byteOffset + count * byteStride)";
+    return NULL;
 }
 
 /* A mesh primitive: "indices", "mode" and "attributes"."POSITION". A
@@ -1185,6 +1347,8 @@ static int top_member(json *j, const unsigned char *k, size_t n, int depth, void
         return j_array(j, depth, node_element, NULL);
     }
     if (key_is(k, n, "accessors")) return j_array(j, depth, accessor_element, NULL);
+    if (key_is(k, n, "bufferViews")) return j_array(j, depth, view_element, NULL);
+    if (key_is(k, n, "buffers")) return j_array(j, depth, buffer_element, NULL);
     if (key_is(k, n, "scene")) {
         if (j->have_scene++) return j->dup = 1, 0;
         return j_plain_u32(j, k, n, "scene", depth, &j->scene);
@@ -1350,8 +1514,26 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
         memset(used, 0, (size_t)j.nmesh + 1);
         tri = gltf_triangles(&j, reach, used, &bad, &why);
     }
+    /* The accessors Assimp will read: those of the meshes the scene uses. */
+    const char *problem = NULL;
+    u32 bad_acc = 0, bad_mesh = 0, bad_prim = 0;
+    for (u32 m = 0; reach && used && bad == ~0u && !problem && m < j.nmesh; ++m) {
+        if (!used[m]) continue;
+        for (u32 p = m ? j.mesh_end[m - 1] : 0; !problem && p < j.mesh_end[m]; ++p)
+            for (int k = 0; k < 2 && !problem; ++k) {
+                const u32 acc = j.prim[3 * p + (u32)k];
+                if (acc == ~0u) continue;
+                if ((problem = gltf_accessor_problem(&j, acc, k == 1)))
+                    bad_acc = acc, bad_mesh = m, bad_prim = p - (m ? j.mesh_end[m - 1] : 0);
+            }
+    }
     if (reach) pxi_free(h->alloc, reach, (size_t)j.nodes + 1);
     if (used) pxi_free(h->alloc, used, (size_t)j.nmesh + 1);
+    if (problem) {
+        st = pxi_error(err, PX_ERR_IO, "mesh file '%s': glTF accessor %u (of meshes[%u].primitives[%u]) %s",
+                       h->path, bad_acc, bad_mesh, bad_prim, problem);
+        goto done;
+    }
     if (!reach || !used) {
         st = pxi_error(err, PX_ERR_OUT_OF_MEMORY, "out of memory reading mesh file '%s'", h->path);
         goto done;
@@ -1398,6 +1580,9 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
 done:
     if (count) pxi_free(h->alloc, count, (size_t)(j.nodes ? j.nodes : 1) * sizeof(u64));
     if (j.acc_count) pxi_free(h->alloc, j.acc_count, (size_t)j.acc_cap * sizeof(u32));
+    if (j.acc_info) pxi_free(h->alloc, j.acc_info, (size_t)j.acc_info_cap * sizeof(u32));
+    if (j.views) pxi_free(h->alloc, j.views, (size_t)j.views_cap * sizeof(u32));
+    if (j.bufs) pxi_free(h->alloc, j.bufs, (size_t)j.bufs_cap * sizeof(u32));
     if (j.prim) pxi_free(h->alloc, j.prim, (size_t)j.prim_cap * sizeof(u32));
     if (j.mesh_end) pxi_free(h->alloc, j.mesh_end, (size_t)j.mesh_cap * sizeof(u32));
     if (j.node_mesh) pxi_free(h->alloc, j.node_mesh, (size_t)j.nm_cap * sizeof(u32));

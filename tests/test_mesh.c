@@ -1050,6 +1050,42 @@ static const char *write_gltf_prim(const char *name, int mode, const char *mode_
     return write_file(name, json, (size_t)-1);
 }
 
+/* COLLADA numbers past Assimp's readers (review s32): an integer part of
+ * 2^64 or more read as 0 (every vertex of a float_array, a <matrix>'s
+ * translation, <unit meter>), with PX_OK; 20 digits below 2^64 still load. */
+static void test_dae_numbers(void) {
+    static const struct {
+        const char *name, *from, *to;
+        int ok;
+    } cases[] = {
+        {"n_array.dae", "1 0 0 0 1 0 0 0 1</float_array>",
+         "10000000000000000000000 0 0 0 1 0 0 0 1</float_array>", 0},
+        {"n_matrix.dae", "1 0 0 10 0 1", "1 0 0 18446744073709551616 0 1", 0},
+        {"n_unit.dae", "meter=\"0.01\"", "meter=\"18446744073709551616\"", 0},
+        {"n_exp.dae", "1 0 0 0 1 0 0 0 1</float_array>", "1e4294967297 0 0 0 1 0 0 0 1</float_array>", 0},
+        {"n_20.dae", "1 0 0 0 1 0 0 0 1</float_array>", "12345678901234567890 0 0 0 1 0 0 0 1</float_array>",
+         1}};
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+        char text[4096];
+        const char *at = strstr(k_dae, cases[c].from);
+        CHECK(at != NULL, "%s: '%s' not in the COLLADA text", cases[c].name, cases[c].from);
+        if (!at) continue;
+        snprintf(text, sizeof text, "%.*s%s%s", (int)(at - k_dae), k_dae, cases[c].to,
+                 at + strlen(cases[c].from));
+        const char *path = write_file(cases[c].name, text, (size_t)-1);
+        if (!cases[c].ok) {
+            EXPECT_LOAD_ERROR(path, "a COLLADA number of 2^64 or more before its point");
+            continue;
+        }
+        px_mesh *m = load(path, 0);
+        double hi = 0;
+        for (uint32_t v = 0; m && v < px_mesh_vertex_count(m); ++v)
+            hi = fmax(hi, fabs(px_mesh_vertices(m)[3 * v]));
+        CHECK(m && hi > 1e17, "%s: largest |x| %g", cases[c].name, hi);
+        px_mesh_destroy(m);
+    }
+}
+
 /* COLLADA <p> indices that are negative or beyond 2^31 (review s32):
  * Assimp's strtol10 wrapped them (-1 read as 0, 4294967297 as 1) and the
  * file loaded with PX_OK; a '+' sign (xs:unsignedLong allows it) still
@@ -2391,6 +2427,7 @@ int main(void) {
     test_gltf_modes();
     test_gltf_accessors();
     test_dae_indices();
+    test_dae_numbers();
     test_float_cost();
     test_obj_full_precision();
     test_obj_number_forms();

@@ -242,7 +242,8 @@ typedef struct dae_scan {
     dae_ref *r;
     u32 nref, rcap;
     int bad_attr;
-    int bad_p; /* a <p> index list with a byte Assimp's reader never passes */
+    int bad_p;      /* a <p> index list with a byte Assimp's reader never passes */
+    int big_number; /* a number Assimp's fast_atof reads as 0 (numbers_ok) */
     /* Data arrays and accessors (dae_accessors). */
     dae_array *arr;
     u32 narr, arrcap;
@@ -360,6 +361,38 @@ static int p_content_ok(const dae_scan *s, size_t i) {
     return 1;
 }
 
+/* The numbers of a <float_array>, a transform element or a <unit meter>
+ * as Assimp's fast_atoreal_move reads them: the digits before the point
+ * through strtoul10_64, which returns 0 past 2^64 - 1, and the exponent's
+ * through a 32-bit strtoul10, which wraps (review s32:
+ * 10000000000000000000000 in a float_array made every vertex 0, in
+ * <translate> or <unit meter> it collapsed the mesh or left it where it
+ * was, with PX_OK). Such a number is refused. */
+static int numbers_ok(const unsigned char *d, size_t i, size_t end) {
+    u64 mant = 0, expo = 0;
+    int part = 0; /* 0 integer digits, 1 fraction, 2 exponent */
+    for (; i < end && d[i] != '<'; ++i) {
+        unsigned char c = d[i];
+        if (c >= '0' && c <= '9') {
+            const u64 k = (u64)(c - '0');
+            if (part == 0) {
+                if (mant > (~0ull - k) / 10) return 0;
+                mant = 10 * mant + k;
+            } else if (part == 2) {
+                expo = 10 * expo + k;
+                if (expo > 0xFFFFFFFFull) return 0;
+            }
+        } else if (c == '.' && part == 0) {
+            part = 1;
+        } else if (c == 'e' || c == 'E') {
+            part = 2;
+        } else if (c != '+' && c != '-') {
+            mant = expo = 0, part = 0;
+        }
+    }
+    return 1;
+}
+
 /* Grows a table of `size`-byte records to hold one more. */
 static void *dae_grow(dae_scan *s, void *a, u32 n, u32 *cap, size_t size) {
     if (n < *cap) return a;
@@ -450,9 +483,9 @@ static int dae_tags(dae_scan *s, int *too_deep) {
         while (j < s->size && !is_xml_space(d[j]) && d[j] != '/' && d[j] != '>') ++j;
         size_t name_len = j - name0;
         g_str id = {0, 0}, name = {0, 0}, url = {0, 0}, count = {0, 0}, offset = {0, 0}, stride = {0, 0},
-              source = {0, 0}, type = {0, 0};
+              source = {0, 0}, type = {0, 0}, meter = {0, 0};
         int has_url = 0, self_closing = 0, has_id = 0, has_count = 0, has_offset = 0, has_stride = 0,
-            has_source = 0, has_type = 0;
+            has_source = 0, has_type = 0, has_meter = 0;
         for (;;) {
             while (j < s->size && is_xml_space(d[j])) ++j;
             if (j >= s->size) break;
@@ -489,11 +522,19 @@ static int dae_tags(dae_scan *s, int *too_deep) {
             if (ATTR_IS("stride")) stride = val, has_stride = 1;
             if (ATTR_IS("source")) source = val, has_source = 1;
             if (ATTR_IS("type")) type = val, has_type = 1;
+            if (ATTR_IS("meter")) meter = val, has_meter = 1;
 #undef ATTR_IS
         }
         i = j;
         if (name_len == 1 && d[name0] == 'p' && !self_closing && !p_content_ok(s, i)) return s->bad_p = 1, 0;
 #define NAME_IS(s_) (name_len == sizeof(s_) - 1 && memcmp(d + name0, s_, name_len) == 0)
+        if (!self_closing &&
+            (NAME_IS("float_array") || NAME_IS("translate") || NAME_IS("rotate") || NAME_IS("scale") ||
+             NAME_IS("matrix") || NAME_IS("lookat") || NAME_IS("skew")) &&
+            !numbers_ok(d, i, s->size))
+            return s->big_number = 1, 0;
+        if (NAME_IS("unit") && has_meter && !numbers_ok(d, meter.off, (size_t)meter.off + meter.len))
+            return s->big_number = 1, 0;
         /* Controllers are refused: ColladaParser::ReadControllerWeights
          * resizes its weights to the sum of <vcount> (a 2 KB file took
          * 1.5 GB, instantiated or not), and ColladaLoader indexes bones,
@@ -688,6 +729,11 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
                 "is not a plain number below 2^31 (not accepted: what Assimp 5.2 reads could not be "
                 "checked)",
                 h->path);
+        else if (s.big_number)
+            st = pxi_error(err, PX_ERR_IO,
+                           "mesh file '%s': a COLLADA number of 2^64 or more before its point, or with an "
+                           "exponent of 2^32 or more (Assimp 5.2 would read it as 0, or wrap the exponent)",
+                           h->path);
         else if (s.bad_p)
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': a COLLADA <p> index list holds something other than integers "

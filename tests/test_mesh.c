@@ -1050,6 +1050,26 @@ static const char *write_gltf_prim(const char *name, int mode, const char *mode_
     return write_file(name, json, (size_t)-1);
 }
 
+/* ASCII STL: text after a solid that does not open another (review s32):
+ * Assimp 5.2 stops there, and a stray line between two solids dropped the
+ * second with PX_OK. Words after the last solid, with no facet after them,
+ * still load. */
+static void test_stl_trailing_text(void) {
+    char text[4096];
+    snprintf(text, sizeof text, "%sgarbage here 1 2 3\n%s", k_tet_stl, k_tet_stl);
+    EXPECT_LOAD_ERROR(write_file("stray.stl", text, (size_t)-1),
+                      "text after a solid that does not start another");
+    snprintf(text, sizeof text, "%s\n\n%s", k_tet_stl, k_tet_stl);
+    px_mesh *m = load(write_file("two.stl", text, (size_t)-1), 0);
+    CHECK(m && px_mesh_triangle_count(m) == 8, "two.stl: %u triangles", m ? px_mesh_triangle_count(m) : 0);
+    px_mesh_destroy(m);
+    snprintf(text, sizeof text, "%sexported by a tool\n", k_tet_stl);
+    m = load(write_file("trailer.stl", text, (size_t)-1), 0);
+    CHECK(m && px_mesh_triangle_count(m) == 4, "trailer.stl: %u triangles",
+          m ? px_mesh_triangle_count(m) : 0);
+    px_mesh_destroy(m);
+}
+
 /* COLLADA numbers past Assimp's readers (review s32): an integer part of
  * 2^64 or more read as 0 (every vertex of a float_array, a <matrix>'s
  * translation, <unit meter>), with PX_OK; 20 digits below 2^64 still load. */
@@ -2428,6 +2448,7 @@ int main(void) {
     test_gltf_accessors();
     test_dae_indices();
     test_dae_numbers();
+    test_stl_trailing_text();
     test_float_cost();
     test_obj_full_precision();
     test_obj_number_forms();

@@ -93,7 +93,9 @@
 ///   any facet or a fourth one in a facet (Assimp drops it), a facet of
 ///   fewer than three vertices, a number with more than 19 digits before
 ///   its point or in its exponent (Assimp reads one above 2^64 as 0), a
-///   NUL byte (Assimp stops there) and a solid name over 1023 bytes;
+///   NUL byte (Assimp stops there), text after a solid that does not start
+///   another when facets follow it (Assimp stops there too) and a solid
+///   name over 1023 bytes;
 /// - OBJ: a line that starts with blank space (not a continuation, blank or
 ///   comment line), which Assimp 5.2 skips whole, losing the vertex, face
 ///   or object it holds; a vertex line of other than 3 (x y z), 4 (x y z w;

@@ -244,6 +244,18 @@ px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
             break;
         }
     }
+    if (!why && p < end && *p) {
+        /* Assimp 5.2 stops at text after a solid that does not open
+         * another: the facets after it were lost without a word (review
+         * s32: a stray line between two solids dropped the second). */
+        for (const unsigned char *r = p; r + 5 <= end && *r; ++r)
+            if (starts(r, "facet") && is_blank(r[5])) {
+                at = p;
+                why = "text after a solid that does not start another (Assimp 5.2 would stop reading there, "
+                      "losing the facets after it)";
+                break;
+            }
+    }
     st = why ? refuse(h, t, at, why, err) : PX_OK;
     pxi_free(h->alloc, buf, (size_t)h->size + 1);
     return st;

@@ -885,12 +885,15 @@ static void put_name(const char *s, int pad) {
     free(e);
 }
 
-/* The shortest %g form of x that reads back as x (the clearance as given). */
+/* The shortest %g form of x that reads back as x (the clearance as given),
+ * without an exponent between 1e-4 and 1e15 (100 was shown as 1e+02). */
 static void shortest(char *buf, size_t size, double x) {
+    const int plain_ok = fabs(x) >= 1e-4 && fabs(x) < 1e15;
     for (int p = 1; p <= 17; ++p) {
         snprintf(buf, size, "%.*g", p, x);
-        if (strtod(buf, NULL) == x) return;
+        if (strtod(buf, NULL) == x && (!plain_ok || !strchr(buf, 'e'))) return;
     }
+    snprintf(buf, size, "%.17g", x);
 }
 
 static void print_table(const assembly *as, const check_opts *o, const findings *fs, const size_t counts[4],

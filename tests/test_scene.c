@@ -558,6 +558,22 @@ static void test_bad_inputs(void) {
     CHECK(px_scene_set_velocity(s, id, (px_vec3){5, 0, 0}, 0, &e) == PX_ERR_INVALID_ARGUMENT,
           "velocity above the bound refused");
     {
+        /* Review s32: a NaN centre was PX_ERR_INVALID_ARGUMENT (base.h: NaN
+         * input is PX_ERR_NON_FINITE), and a static body took a velocity. */
+        px_body_desc cd = d;
+        uint32_t cid;
+        cd.center = (px_vec3){NAN, 0, 0};
+        CHECK(px_scene_add_body(s, &cd, &cid, &e) == PX_ERR_NON_FINITE, "NaN centre: %s", e.message);
+        cd.center = (px_vec3){1e300, 0, 0};
+        CHECK(px_scene_add_body(s, &cd, &cid, &e) == PX_ERR_RANGE, "centre 1e300: %s", e.message);
+        cd.center = (px_vec3){0, 0, 0};
+        cd.flags = PX_BODY_STATIC;
+        CHECK(px_scene_add_body(s, &cd, &cid, &e) == PX_OK, "static body: %s", e.message);
+        CHECK(px_scene_set_velocity(s, cid, (px_vec3){0, 0, 0}, 0, &e) == PX_ERR_INVALID_ARGUMENT,
+              "velocity of a static body refused");
+        px_scene_remove_body(s, cid, &e);
+    }
+    {
         /* Speeds whose squares overflow are measured without overflow (a
          * review found 1e200 refused as infinite under a bound of 1e300). */
         px_body_desc f = d;

@@ -126,8 +126,8 @@ typedef enum px_body_flags {
 typedef struct px_body_desc {
     const px_model *model;
     const px_convex *convex;
-    px_pose pose; ///< initial pose (body -> world)
-    px_vec3 center;
+    px_pose pose;   ///< initial pose (body -> world)
+    px_vec3 center; ///< body frame; PX_ERR_NON_FINITE if not finite, PX_ERR_RANGE beyond 2^250
     double max_speed;
     double max_angular_speed;
     double max_accel;
@@ -171,7 +171,8 @@ PX_API px_status px_scene_set_pose(px_scene *scene, uint32_t id, const px_pose *
 /// speed (world units and radians per unit time), used with the
 /// acceleration bounds: a pair's gap then closes at most as fast as
 /// |v| + a t (never faster than the speed bounds allow). Values that break
-/// the speed bounds are refused (PX_ERR_INVALID_ARGUMENT). The velocity is
+/// the speed bounds are refused (PX_ERR_INVALID_ARGUMENT), as is a static
+/// body (which px_scene_set_pose refuses too). The velocity is
 /// forgotten at the next pose set without one.
 PX_API px_status px_scene_set_velocity(px_scene *scene, uint32_t id, px_vec3 velocity, double angular_speed,
                                        px_error *err);

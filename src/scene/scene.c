@@ -1795,9 +1795,10 @@ px_status px_scene_add_body(px_scene *s, const px_body_desc *d, uint32_t *id, px
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
                          "px_scene_add_body: motion bounds must be >= 0 (speeds may be INFINITY, "
                          "accelerations must be finite)");
-    if (!pxi_is_finite3(d->center) || !(pxi_max_abs(d->center) <= 0x1p250))
-        return pxi_error(err, PX_ERR_INVALID_ARGUMENT,
-                         "px_scene_add_body: desc.center is not finite or beyond 2^250");
+    if (!pxi_is_finite3(d->center))
+        return pxi_error(err, PX_ERR_NON_FINITE, "px_scene_add_body: desc.center is not finite");
+    if (!(pxi_max_abs(d->center) <= 0x1p250))
+        return pxi_error(err, PX_ERR_RANGE, "px_scene_add_body: desc.center is beyond 2^250");
     px_status st = check_pose(&d->pose, "px_scene_add_body", err);
     if (st != PX_OK) return st;
     /* Body-frame box. */
@@ -2021,6 +2022,8 @@ px_status px_scene_set_pose(px_scene *s, uint32_t id, const px_pose *pose, px_er
 px_status px_scene_set_velocity(px_scene *s, uint32_t id, px_vec3 v, double w, px_error *err) {
     if (!body_ok(s, id))
         return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_velocity: no body %u in the scene", id);
+    if (s->body[id].flags & PX_BODY_STATIC)
+        return pxi_error(err, PX_ERR_INVALID_ARGUMENT, "px_scene_set_velocity: body %u is static", id);
     sbody *b = &s->body[id];
     double lin = len_s(v);
     if (!pxi_is_finite3(v) || !isfinite(w) || w < 0.0 || lin > b->vmax || w > b->wmax)

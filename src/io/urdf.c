@@ -499,8 +499,9 @@ static px_status read_collision(ureader *r, const xmlNode *col, const char *link
     } else {
         char file[U_PATH];
         if (!resolve(r, filename, o->package_path, file, sizeof file)) {
-            st = U_FAIL(r, PX_ERR_IO, "URDF file '%s': link '%.80s': mesh file not found: '%.200s'", r->path,
-                        link, filename);
+            st = U_FAIL(r, PX_ERR_IO,
+                        "URDF file '%s': link '%.80s': mesh file not found (or not a regular file): '%.200s'",
+                        r->path, link, filename);
             free_str(r->alloc, filename);
             return st;
         }

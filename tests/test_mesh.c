@@ -1050,7 +1050,8 @@ static const char *write_gltf_prim(const char *name, int mode, const char *mode_
     return write_file(name, json, (size_t)-1);
 }
 
-/* ASCII STL: text after a solid that does not open another (review s32):
+/* Text Assimp stops before (review s32). ASCII STL: text after a solid
+ * that does not open another:
  * Assimp 5.2 stops there, and a stray line between two solids dropped the
  * second with PX_OK. Words after the last solid, with no facet after them,
  * still load. */
@@ -1066,6 +1067,17 @@ static void test_stl_trailing_text(void) {
     snprintf(text, sizeof text, "%sexported by a tool\n", k_tet_stl);
     m = load(write_file("trailer.stl", text, (size_t)-1), 0);
     CHECK(m && px_mesh_triangle_count(m) == 4, "trailer.stl: %u triangles",
+          m ? px_mesh_triangle_count(m) : 0);
+    px_mesh_destroy(m);
+    /* OFF: a face line after the declared faces (Assimp 5.2 drops it: "8 5
+     * 0" over 6 faces loaded open with PX_OK); comments and blank lines
+     * after them still load. */
+    snprintf(text, sizeof text, "%s3 0 1 2\n", k_tet_off);
+    EXPECT_LOAD_ERROR(write_file("extra_face.off", text, (size_t)-1),
+                      "has a face line after the 4 faces its header declares");
+    snprintf(text, sizeof text, "%s\n# end\n\n", k_tet_off);
+    m = load(write_file("comment_after.off", text, (size_t)-1), 0);
+    CHECK(m && px_mesh_triangle_count(m) == 4, "comment_after.off: %u triangles",
           m ? px_mesh_triangle_count(m) : 0);
     px_mesh_destroy(m);
 }

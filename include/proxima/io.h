@@ -82,7 +82,8 @@
 ///   4096 bytes or more, a face of fewer than 3 vertices, with an index that
 ///   is not a number below the vertex count or with fewer indices than its
 ///   count, more faces of 10 or more vertices (which Assimp drops) than the
-///   declared face count, and a UTF-16 byte-order mark; and, since review
+///   declared face count, a face line after the declared faces (Assimp
+///   drops it), and a UTF-16 byte-order mark; and, since review
 ///   s30, any face of 10 or more vertices (Assimp drops it, so the mesh
 ///   would lack its triangles; the points loaders, built on px_mesh_load,
 ///   refuse it too);

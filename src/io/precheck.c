@@ -263,6 +263,31 @@ static px_status off_walk(const io_head *h, const off_text *t, u64 start, unsign
         }
         ++faces;
     }
+    /* A face line after the declared faces: Assimp 5.2 stops at the count
+     * and drops it with the mesh it belongs to (review s32: "8 5 0" over 6
+     * faces loaded open, with PX_OK). */
+    for (;;) {
+        got = off_next_line(rd, line, &len);
+        if (got < 0) goto long_line;
+        if (rd->error) goto read_error;
+        if (!got) break;
+        size_t p = 0;
+        unsigned numbers = 0;
+        while (line[p]) {
+            while (line[p] == ' ' || line[p] == '\t' || line[p] == '\r') ++p;
+            if (!(line[p] >= '0' && line[p] <= '9')) break;
+            while (line[p] >= '0' && line[p] <= '9') ++p;
+            ++numbers;
+        }
+        if (numbers >= 4 && !line[p]) {
+            st =
+                pxi_error(err, PX_ERR_IO,
+                          "mesh file '%s' has a face line after the %u faces its header declares (Assimp 5.2 "
+                          "would drop it)",
+                          h->path, nf);
+            goto done;
+        }
+    }
     goto done;
 long_line:
     st = pxi_error(err, PX_ERR_IO,

@@ -83,7 +83,9 @@ typedef struct px_mesh_options {
 /// closed part whose signed volume is negative (inside out: its triangles
 /// wound clockwise seen from outside) has its triangles reversed (corners
 /// 1 and 2 swapped), so that every closed part's normals, by the
-/// right-hand rule, point out of the solid; open parts keep their winding.
+/// right-hand rule, point out of the solid (the part's total decides: of
+/// separate shells wound against each other, the smaller keeps facing in;
+/// docs/io.md); open parts keep their winding.
 /// Cost: O(n log n) in the vertices and triangles (sorts), plus temporary
 /// memory of about 36 bytes per vertex and 24 per triangle of the largest
 /// part, freed before returning.

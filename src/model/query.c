@@ -976,8 +976,9 @@ int pxi_model_point_inside(const px_model *m, px_vec3 p) {
     }
     /* Every ray grazed an edge or vertex (a point on a symmetry plane of a
      * finely tessellated part, say): the winding number by solid angles
-     * decides, which has no special directions. */
-    return winding_number(m, p) > 0.5;
+     * decides, which has no special directions (nonzero, as the rays':
+     * a shell wound against the rest of its part counts -1). */
+    return fabs(winding_number(m, p)) > 0.5;
 }
 
 /* A piece of `in` lying inside a solid of `out` (poses: world). */

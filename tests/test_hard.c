@@ -815,7 +815,52 @@ static void regression_flat_vertex(void) {
                 }
             }
         }
-    printf("  flat vertex on a face's straight boundary: %ld warm starts\n", idx);
+    /* The same kind of vertex facing an edge of B (review s32, helper-55:
+     * 380 times too far from (A edge 1, B edge 0)): every start feature of
+     * A against every edge of B. */
+    const double pts2[] = {0,
+                           0,
+                           0,
+                           2,
+                           0,
+                           2,
+                           0,
+                           2,
+                           2,
+                           0,
+                           0x1.5555555555555p-1,
+                           -0x1.d83c94fb6d2acp-64,
+                           0,
+                           0x1.5555555555555p-1,
+                           0x1.0000000000001p+1,
+                           -0x1.d83c94fb6d2acp-64,
+                           0x1.5555555555555p+0,
+                           2};
+    px_convex *A2 = build(pts2, 6, "flat vertex 2");
+    const double r2[9] = {0.97792663483693176, 0, -0.20894855078826061, 0, 1, 0,
+                          0.20894855078826061, 0, 0.97792663483693176};
+    px_pose pa2 = pose_rt(r2, pxi_v(-0.21890488559549551, -1.1352858468967588, -2.6995010454786259)),
+            pb2 = px_pose_identity();
+    long idx2 = 0;
+    for (uint32_t ta = PX_FEATURE_VERTEX; A2 && ta <= PX_FEATURE_FACE; ++ta) {
+        uint32_t na = ta == PX_FEATURE_VERTEX ? px_convex_vertex_count(A2)
+                      : ta == PX_FEATURE_EDGE ? px_convex_edge_count(A2)
+                                              : px_convex_face_count(A2);
+        for (uint32_t fa = 0; fa < na; ++fa)
+            for (uint32_t eb = 0; eb < px_convex_edge_count(B); ++eb, ++idx2) {
+                px_pair_cache cache;
+                memset(&cache, 0, sizeof cache);
+                cache.feature_a.type = ta;
+                cache.feature_a.index = fa;
+                cache.feature_b.type = PX_FEATURE_EDGE;
+                cache.feature_b.index = eb;
+                tc_report rep;
+                hard_query(A2, &pa2, B, &pb2, &cache, 0, "flat vertex facing an edge", idx2, &rep);
+            }
+    }
+    printf("  flat vertex on a face's straight boundary: %ld warm starts against faces, %ld against edges\n",
+           idx, idx2);
+    if (A2) px_convex_destroy(A2);
     px_convex_destroy(A);
     px_convex_destroy(B);
 }

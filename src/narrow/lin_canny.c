@@ -42,6 +42,7 @@
 
 #include "convex/convex.h"
 #include "core/core.h"
+#include "math/orient.h"
 #include "math/vec3.h"
 #include "narrow/closest.h"
 #include "narrow/feature.h"
@@ -90,20 +91,76 @@ static inline px_feature feat(uint32_t type, uint32_t index) {
  * and along nearly parallel edges (1e-9 rad) those add up to a visible error. */
 static inline double noise(double k, px_vec3 p, px_vec3 v) { return k * (pxi_max_abs(p) + pxi_max_abs(v)); }
 
-static int vertex_violation(double tie, const px_convex *c, uint32_t v, px_vec3 p, uint32_t *edge) {
+static inline px_vec3 face_side_normal(uint32_t f, const pxi_edge *E) { return E->left == f ? E->wl : E->wr; }
+
+/* Two edges at a vertex this close to opposite (1 + u1 . u2 below it: an
+ * angle within 4.5e-5 rad of 180 degrees) make it a point of a straight
+ * stretch. A polygon corner is that flat only past 140,000 sides. */
+#define LC_RIDGE_FLAT 0x1p-30
+
+/* Whether edges k1, k2 of w's list (positions in v_edges) continue a
+ * straight line through w. */
+static inline int straight_at(const px_convex *c, uint32_t w, uint32_t k1, uint32_t k2) {
+    const pxi_edge *Ea = &c->e[c->v_edges[k1]], *Eb = &c->e[c->v_edges[k2]];
+    double d = pxi_dot(Ea->u, Eb->u);
+    if ((Ea->tail == w) != (Eb->tail == w)) d = -d; /* both pointing away from w */
+    return d < -1.0 + LC_RIDGE_FLAT;
+}
+
+/* A vertex of the exact hull can sit on a straight stretch of a face's
+ * boundary (an input point 1e-19 off the line of its neighbours: the
+ * face's angle there is 180 degrees within rounding). Its region is then
+ * bounded, beside its edges' planes, by that face's side plane along the
+ * stretch: its edges along the stretch, nearly opposite, say nothing about
+ * a point p beyond that plane, on the face's side, which is closer to the
+ * face's interior than to v (review s32: warm Lin-Canny stopped at such a
+ * vertex facing an edge 380 times too far). `near` holds the positions of
+ * v's edges nearly perpendicular to p - v (the only ones a straight pair
+ * can be made of when no edge is violated). Returns the face, or NONE. */
+static uint32_t straight_face_violation(const px_convex *c, uint32_t v, px_vec3 dp, double worst,
+                                        const uint32_t *near, uint32_t nn) {
+    for (uint32_t a = 0; a < nn; ++a)
+        for (uint32_t b = a + 1; b < nn; ++b) {
+            if (!straight_at(c, v, near[a], near[b])) continue;
+            const pxi_edge *Ea = &c->e[c->v_edges[near[a]]], *Eb = &c->e[c->v_edges[near[b]]];
+            uint32_t f = Ea->left == Eb->left || Ea->left == Eb->right     ? Ea->left
+                         : Ea->right == Eb->left || Ea->right == Eb->right ? Ea->right
+                                                                           : NONE;
+            if (f == NONE || f >= c->nf) continue;
+            if (pxi_dot(dp, face_side_normal(f, Ea)) > worst) return f;
+        }
+    return NONE;
+}
+
+/* Is p outside vertex v's region: across one of its edge planes (*nbr that
+ * edge), or beyond the side plane of a face whose boundary runs straight
+ * through v (*nbr that face; straight_face_violation)? */
+static int vertex_violation(double tie, const px_convex *c, uint32_t v, px_vec3 p, px_feature *nbr) {
     px_vec3 dp = pxi_sub(p, c->v[v]);
     double worst = noise(tie, p, c->v[v]);
-    *edge = NONE;
+    /* |s| below 2^-14 |p - v|: nearly perpendicular (a straight pair's two
+     * edges both are when neither is violated) */
+    const double near2 = 0x1p-28 * pxi_len2(dp);
+    uint32_t edge = NONE, near[4], nn = 0;
     for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
         const pxi_edge *E = &c->e[c->v_edges[k]];
         double s = pxi_dot(dp, E->u);
         if (E->tail != v) s = -s; /* u_out points away from v */
         if (s > worst) {
             worst = s;
-            *edge = c->v_edges[k];
+            edge = c->v_edges[k];
         }
+        if (s * s <= near2 && nn < 4) near[nn++] = k;
     }
-    return *edge != NONE;
+    if (edge != NONE) {
+        *nbr = feat(PX_FEATURE_EDGE, edge);
+        return 1;
+    }
+    if (nn < 2) return 0;
+    uint32_t f = straight_face_violation(c, v, dp, worst, near, nn);
+    if (f == NONE) return 0;
+    *nbr = feat(PX_FEATURE_FACE, f);
+    return 1;
 }
 
 static int edge_violation(double tie, const px_convex *c, uint32_t e, px_vec3 p, px_feature *nbr) {
@@ -120,7 +177,6 @@ static int edge_violation(double tie, const px_convex *c, uint32_t e, px_vec3 p,
 }
 
 /* In-plane inward normal of face f along its boundary edge e. */
-static inline px_vec3 face_side_normal(uint32_t f, const pxi_edge *E) { return E->left == f ? E->wl : E->wr; }
 
 static int face_violation(double tie, const px_convex *c, uint32_t f, px_vec3 p, uint32_t *edge) {
     const pxi_face *F = &c->f[f];
@@ -199,15 +255,16 @@ static int beneath_faces(lc_ctx *x, int i, px_vec3 q, const uint32_t *fs,
 static int vertex_vertex(lc_ctx *x, int i) {
     int j = 1 - i;
     const px_convex *ci = x->c[i], *cj = x->c[j];
-    uint32_t vi = x->f[i].index, vj = x->f[j].index, e;
+    uint32_t vi = x->f[i].index, vj = x->f[j].index;
     px_vec3 q = to_other(x, i, ci->v[vi]); /* vi in j's frame */
-    if (vertex_violation(x->tie, cj, vj, q, &e)) {
-        x->f[j] = feat(PX_FEATURE_EDGE, e);
+    px_feature nbr;
+    if (vertex_violation(x->tie, cj, vj, q, &nbr)) {
+        x->f[j] = nbr;
         return LC_CONTINUE;
     }
     px_vec3 r = to_other(x, j, cj->v[vj]);
-    if (vertex_violation(x->tie, ci, vi, r, &e)) {
-        x->f[i] = feat(PX_FEATURE_EDGE, e);
+    if (vertex_violation(x->tie, ci, vi, r, &nbr)) {
+        x->f[i] = nbr;
         return LC_CONTINUE;
     }
     /* Beneath every face around the other's vertex (a flat vertex): inside. */
@@ -318,8 +375,24 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
         }
     }
     if (clip < 0 || x->tie != 0.0) { /* closest-point test: tie-breaking mode, compound exclusion */
-        if (vertex_violation(x->tie, ci, v, to_other(x, j, y), &ev)) {
-            x->f[i] = feat(PX_FEATURE_EDGE, ev);
+        if (vertex_violation(x->tie, ci, v, to_other(x, j, y), &nbr)) {
+            x->f[i] = nbr;
+            return LC_CONTINUE;
+        }
+    } else if (ci->v_first[v + 1] - ci->v_first[v] >= 3) {
+        /* E crosses v's edge planes' cone: the side plane of a face running
+         * straight through v may still cut it off (vertex_violation). */
+        px_vec3 dp = pxi_sub(to_other(x, j, y), ci->v[v]);
+        const double near2 = 0x1p-28 * pxi_len2(dp);
+        uint32_t near[4], nn = 0;
+        for (uint32_t k = ci->v_first[v]; k < ci->v_first[v + 1] && nn < 4; ++k) {
+            const pxi_edge *Ek = &ci->e[ci->v_edges[k]];
+            double s = pxi_dot(dp, Ek->u);
+            if (s * s <= near2) near[nn++] = k;
+        }
+        uint32_t f = nn >= 2 ? straight_face_violation(ci, v, dp, 0.0, near, nn) : NONE;
+        if (f != NONE) {
+            x->f[i] = feat(PX_FEATURE_FACE, f);
             return LC_CONTINUE;
         }
     }
@@ -337,12 +410,15 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
 
 /* Height changes along the edges at v of body c, the height growing along
  * unit n (c's frame; signs only: h * (n.u) would underflow to 0 at tiny
- * scales): the edge that descends most steeply, or NONE; *tied is set when
- * an edge is level within rounding (an edge parallel to F within rounding
- * is no closer). */
-static uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3 n, int *tied) {
+ * scales): the edge that descends most steeply, or NONE. The positions in
+ * v's edge list of up to four edges level within rounding (an edge
+ * parallel to F within rounding is no closer) go to level[], their number
+ * to *nl. */
+PXI_HOT_INLINE uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3 n, uint32_t level[4],
+                                         uint32_t *nl) {
     double worst = -4.0 * DBL_EPSILON;
     uint32_t best = NONE;
+    *nl = 0;
     for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
         const pxi_edge *E = &c->e[c->v_edges[k]];
         double g = pxi_dot(n, E->u);
@@ -351,42 +427,52 @@ static uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3 n, int 
             worst = g;
             best = c->v_edges[k];
         }
-        if (!(fabs(g) > 4.0 * DBL_EPSILON)) *tied = 1;
+        if (!(fabs(g) > 4.0 * DBL_EPSILON) && *nl < 4) level[(*nl)++] = k;
     }
     return best;
 }
 
-#define LC_PLATEAU_CAP 64
-#define LC_PLATEAU_UNKNOWN (NONE - 1)
+#define LC_RIDGE_CAP 64
+#define LC_RIDGE_UNKNOWN (NONE - 1)
+static int has_straight_pair(const px_convex *c, uint32_t w, const uint32_t *level, uint32_t nl) {
+    for (uint32_t a = 0; a < nl; ++a)
+        for (uint32_t b = a + 1; b < nl; ++b)
+            if (straight_at(c, w, level[a], level[b])) return 1;
+    return 0;
+}
 
-/* Vertex v has no edge that descends, but some that are level within
- * rounding. A vertex of the exact hull can sit on a straight stretch of a
+/* Vertex v has no edge that descends, but two level ones that continue a
+ * straight line: v is a vertex of the exact hull on a straight stretch of a
  * face's boundary (an input point 1e-19 off the line of its neighbours: a
- * face angle of 180 degrees to within rounding). Then the descent into that
- * face's interior is along no edge of v, and v's own edges, nearly
- * opposite, each look level: Lin-Canny stopped there with the distance 16 %
- * too large on a Puma link's hull (review s32). So the vertices reachable
- * from v over level edges are searched for one that has a descending edge;
- * on a genuine plateau (a face parallel to F) there is none. Returns that
- * edge, NONE, or LC_PLATEAU_UNKNOWN when the plateau is too large to
- * search (the caller then leaves the answer to another method). */
-static uint32_t plateau_descent(const px_convex *c, uint32_t v, px_vec3 n) {
-    uint32_t seen[LC_PLATEAU_CAP], ns = 0;
+ * face angle of 180 degrees within rounding). If that stretch is level,
+ * the descent into the face runs along no edge of v, and Lin-Canny stopped
+ * there with the distance 16 % too large on a Puma link's hull (review
+ * s32). The descent starts at the stretch's ends, corners of that face: so
+ * the walk follows level edges that continue a straight line and returns
+ * the first descending edge at a vertex it reaches. (A corner of a face
+ * parallel to F, a resting contact, has no straight pair, and the caller
+ * does not come here.) Returns that edge, NONE, or LC_RIDGE_UNKNOWN past
+ * 64 vertices (the caller leaves the answer to another method). */
+PXI_NOINLINE static uint32_t ridge_descent(const px_convex *c, uint32_t v, px_vec3 n) {
+    uint32_t seen[LC_RIDGE_CAP], ns = 0;
     seen[ns++] = v;
     for (uint32_t q = 0; q < ns; ++q) {
-        uint32_t w = seen[q];
-        for (uint32_t k = c->v_first[w]; k < c->v_first[w + 1]; ++k) {
-            const pxi_edge *E = &c->e[c->v_edges[k]];
-            double g = pxi_dot(n, E->u);
-            if (E->tail != w) g = -g;
-            if (g < -4.0 * DBL_EPSILON) return c->v_edges[k];
-            if (g > 4.0 * DBL_EPSILON) continue;
-            uint32_t o = c->v_adj[k], m = 0;
-            while (m < ns && seen[m] != o) ++m;
-            if (m < ns) continue;
-            if (ns == LC_PLATEAU_CAP) return LC_PLATEAU_UNKNOWN;
-            seen[ns++] = o;
-        }
+        const uint32_t w = seen[q];
+        uint32_t level[4], nl;
+        uint32_t e = steepest_descent(c, w, n, level, &nl);
+        if (e != NONE) return e;
+        for (uint32_t a = 0; a < nl; ++a)
+            for (uint32_t b = a + 1; b < nl; ++b) {
+                if (!straight_at(c, w, level[a], level[b])) continue;
+                const uint32_t ends[2] = {c->v_adj[level[a]], c->v_adj[level[b]]};
+                for (int t = 0; t < 2; ++t) {
+                    uint32_t m = 0;
+                    while (m < ns && seen[m] != ends[t]) ++m;
+                    if (m < ns) continue;
+                    if (ns == LC_RIDGE_CAP) return LC_RIDGE_UNKNOWN;
+                    seen[ns++] = ends[t];
+                }
+            }
     }
     return NONE;
 }
@@ -417,14 +503,14 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
      * |height| decreases (h * n.u_out < 0) is closer to F (Mirtich §4). */
     px_vec3 n_i = dir_to_other(x, j, F->n);
     if (h < 0.0) n_i = pxi_neg(n_i);
-    int tied = 0;
-    uint32_t best_e = steepest_descent(ci, v, n_i, &tied);
-    /* Edges level with F within rounding: v may sit on a straight stretch
-     * of a face's boundary, whose descent runs inside the face, along no
-     * edge of v (see plateau_descent). */
-    if (best_e == NONE && tied) {
-        best_e = plateau_descent(ci, v, n_i);
-        if (best_e == LC_PLATEAU_UNKNOWN) return LC_OUT_OF_STEPS;
+    uint32_t level[4], nl;
+    uint32_t best_e = steepest_descent(ci, v, n_i, level, &nl);
+    /* Two edges level with F within rounding that continue a straight line:
+     * v sits on a straight stretch of a face's boundary, whose descent may
+     * run inside the face, along no edge of v (see ridge_descent). */
+    if (best_e == NONE && nl >= 2 && has_straight_pair(ci, v, level, nl)) {
+        best_e = ridge_descent(ci, v, n_i);
+        if (best_e == LC_RIDGE_UNKNOWN) return LC_OUT_OF_STEPS;
     }
     if (best_e != NONE) {
         x->f[i] = feat(PX_FEATURE_EDGE, best_e);

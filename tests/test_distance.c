@@ -186,7 +186,7 @@ static void test_near_contact(int count) {
             /* The normal separates: the plane through point_a with it has
              * all of A below and all of B the distance above (brute force
              * over the vertices). A facet of A - B (a face, two edges)
-             * closer than about S/1024 gives its own normal, exact; other closest
+             * closer than about S/65536 gives its own normal, exact; other closest
              * pairs give the closest points' direction, known to about
              * eps S / d rad (it was used for all, and 1e-13 apart cubes'
              * normals were off by 1e-2 rad). */
@@ -201,7 +201,7 @@ static void test_near_contact(int count) {
             int facet = ta == PX_FEATURE_FACE || tb == PX_FEATURE_FACE ||
                         (ta == PX_FEATURE_EDGE && tb == PX_FEATURE_EDGE);
             double allowed = NEAR_EPS;
-            if (facet && rep.res.distance <= size / 8192) /* the library's S/1024 is of a smaller S */
+            if (facet && rep.res.distance <= size / 262144) /* the library's S/65536 is of a smaller S */
                 g_st.worst_normal_eps = fmax(g_st.worst_normal_eps, off);
             else
                 allowed += 4.0 * size / rep.res.distance;

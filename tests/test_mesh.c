@@ -1059,12 +1059,12 @@ static void test_stl_trailing_text(void) {
     char text[4096];
     snprintf(text, sizeof text, "%sgarbage here 1 2 3\n%s", k_tet_stl, k_tet_stl);
     EXPECT_LOAD_ERROR(write_file("stray.stl", text, (size_t)-1),
-                      "text after a solid that does not start another");
+                      "text after a solid that does not start another, with a solid or facet after it");
     snprintf(text, sizeof text, "%s\n\n%s", k_tet_stl, k_tet_stl);
     px_mesh *m = load(write_file("two.stl", text, (size_t)-1), 0);
     CHECK(m && px_mesh_triangle_count(m) == 8, "two.stl: %u triangles", m ? px_mesh_triangle_count(m) : 0);
     px_mesh_destroy(m);
-    snprintf(text, sizeof text, "%sexported by a tool\n", k_tet_stl);
+    snprintf(text, sizeof text, "%sexported by a tool: 4 facet triangles; surfacet = x\n", k_tet_stl);
     m = load(write_file("trailer.stl", text, (size_t)-1), 0);
     CHECK(m && px_mesh_triangle_count(m) == 4, "trailer.stl: %u triangles",
           m ? px_mesh_triangle_count(m) : 0);
@@ -1165,6 +1165,22 @@ static const char *write_gltf_patched(const char *name, const char *from, const 
     return write_file(name, out, (size_t)-1);
 }
 
+/* The same with a second replacement applied to the first's result. */
+static const char *write_gltf_patched2(const char *name, const char *from, const char *to, const char *from2,
+                                       const char *to2) {
+    const char *path = write_gltf_patched(name, from, to);
+    static char text[4096], out[4096];
+    FILE *f = fopen(path, "rb");
+    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[n] = '\0';
+    const char *at = strstr(text, from2);
+    CHECK(at != NULL, "%s: '%s' not in the generated glTF", name, from2);
+    if (!at) return path;
+    snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to2, at + strlen(from2));
+    return write_file(name, out, (size_t)-1);
+}
+
 /* glTF accessors that read outside their buffer view (review s32). Assimp
  * 5.2 checks only count times the component size against the view: an
  * accessor byteOffset or a byteStride past its end read the heap (a
@@ -1195,6 +1211,18 @@ static void test_gltf_accessors(void) {
     EXPECT_LOAD_ERROR(
         write_gltf_patched("pos_ctype.gltf", acc, "{\"bufferView\": 0, \"componentType\": 5127"),
         "has a componentType that is not a glTF one");
+    /* Other attributes and morph targets are read too (review s32: a NORMAL
+     * at byteOffset 32 of a 48-byte view read the heap, PX_OK). */
+    const char *attr = "\"POSITION\": 0}", *acc1 = "\"max\": [1, 2, 1]}",
+               *normal =
+                   "\"max\": [1, 2, 1]}, {\"bufferView\": 0, \"byteOffset\": 36, \"componentType\": 5126, "
+                   "\"count\": 6, \"type\": \"VEC3\"}";
+    EXPECT_LOAD_ERROR(
+        write_gltf_patched2("normal_past.gltf", attr, "\"POSITION\": 0, \"NORMAL\": 1}", acc1, normal),
+        "glTF accessor 1 (of meshes[0].primitives[0]) reads past the end of its buffer view");
+    EXPECT_LOAD_ERROR(write_gltf_patched2("morph_past.gltf", attr,
+                                          "\"POSITION\": 0}, \"targets\": [{\"POSITION\": 1}]", acc1, normal),
+                      "glTF accessor 1 (of meshes[0].primitives[0]) reads past the end of its buffer view");
     /* The same file with a byteStride of 12 (the element: allowed) loads. */
     px_mesh *m = load(write_gltf_patched("acc_stride12.gltf", "\"byteOffset\": 0, \"byteLength\": 72}",
                                          "\"byteOffset\": 0, \"byteLength\": 72, \"byteStride\": 12}"),

@@ -95,7 +95,8 @@
 ///   fewer than three vertices, a number with more than 19 digits before
 ///   its point or in its exponent (Assimp reads one above 2^64 as 0), a
 ///   NUL byte (Assimp stops there), text after a solid that does not start
-///   another when facets follow it (Assimp stops there too) and a solid
+///   another when a line starting with `solid` or `facet` follows it
+///   (Assimp stops there too) and a solid
 ///   name over 1023 bytes;
 /// - OBJ: a line that starts with blank space (not a continuation, blank or
 ///   comment line), which Assimp 5.2 skips whole, losing the vertex, face
@@ -137,14 +138,14 @@
 ///   without a buffer view), and glTF files that use KHR_mesh_quantization
 ///   or EXT_meshopt_compression (Assimp 5.2 takes their integer positions
 ///   for float bits);
-/// - glTF 2.0 accessors of the meshes a scene uses (indices and POSITION)
-///   that read past their buffer view (byteOffset + (count - 1) * stride +
-///   element size beyond its byteLength), whose view runs past its
-///   buffer's byteLength, whose byteStride is smaller than an element or
-///   whose view does not exist (Assimp 5.2 checks only count * component
-///   size and read the rest from the heap), POSITION accessors that are not
-///   VEC3 of 5126 floats and index accessors that are not unsigned integer
-///   SCALARs;
+/// - glTF 2.0 accessors of the meshes a scene uses (indices, POSITION, the
+///   other attributes and morph targets) that read past their buffer view
+///   (byteOffset + (count - 1) * stride + element size beyond its
+///   byteLength), whose view runs past its buffer's byteLength, whose
+///   byteStride is smaller than an element or whose view does not exist
+///   (Assimp 5.2 checks only count * component size and read the rest from
+///   the heap), POSITION accessors that are not VEC3 of 5126 floats and
+///   index accessors that are not unsigned integer SCALARs;
 /// - nesting deeper than Assimp 5.2's recursive readers can take on the
 ///   stack: more than 256 levels of AC3D objects (kids), FBX scopes (ASCII
 ///   or binary) or OpenGEX structures, and XML (X3D, XGL, AMF,

@@ -823,6 +823,10 @@ typedef struct json {
     u32 *acc_info, nacc_info, acc_info_cap;
     u32 *views, nviews, views_cap;
     u32 *bufs, nbufs, bufs_cap;
+    /* (primitive, accessor) of every other attribute and morph target a
+     * primitive names (NORMAL, TEXCOORD_0, COLOR_0, targets' POSITION...):
+     * Assimp reads them too. */
+    u32 *attrs, nattrs, attrs_cap;
     u32 *prim, nprim, prim_cap;
     u32 *mesh_end, nmesh, mesh_cap;     /* each mesh's end in prim, in primitives */
     u32 *node_mesh, nnode_mesh, nm_cap; /* (node, mesh) pairs of the nodes' "mesh" members */
@@ -1105,10 +1109,9 @@ static int scene_element(json *j, u32 index, int depth, void *ctx) {
 
 /* Member `want` as a plain 32-bit count into *out; J_UNREAD when it is
  * there but something else (negative, fractional, too large, a string). */
-static int j_count_member(json *j, const unsigned char *k, size_t n, const char *want, int depth, u32 *out,
-                          int *matched) {
-    if (!key_is(k, n, want)) return 1;
-    *matched = 1;
+/* A member's value as a plain 32-bit count; J_UNREAD when it is something
+ * else (negative, fractional, too large, a string). */
+static int j_count_value(json *j, int depth, u32 *out) {
     j_ws(j);
     if (j->p < j->end && *j->p >= '0' && *j->p <= '9') {
         u64 v;
@@ -1118,6 +1121,13 @@ static int j_count_member(json *j, const unsigned char *k, size_t n, const char 
     }
     *out = J_UNREAD;
     return j_value(j, depth);
+}
+
+static int j_count_member(json *j, const unsigned char *k, size_t n, const char *want, int depth, u32 *out,
+                          int *matched) {
+    if (!key_is(k, n, want)) return 1;
+    *matched = 1;
+    return j_count_value(j, depth, out);
 }
 
 /* An accessor's "type": its number of components (J_UNREAD if unknown). */
@@ -1212,7 +1222,8 @@ static int buffer_element(json *j, u32 index, int depth, void *ctx) {
  * memory). `position` asks for VEC3 floats (what glTF 2.0 requires and
  * Assimp assumes: 16-bit positions were read as float bits), otherwise
  * unsigned integer scalars. Returns NULL when it does, else what is wrong. */
-static const char *gltf_accessor_problem(const json *j, u32 a, int position) {
+static const char *gltf_accessor_problem(const json *j, u32 a, int kind) {
+    const int position = kind == 1;
     if (a >= j->nacc || 4 * (u64)a + 3 >= j->nacc_info) return "names an accessor that does not exist";
     const u32 *ai = &j->acc_info[4 * (size_t)a];
     const u32 view = ai[0], offset = ai[1], ctype = ai[2], ncomp = ai[3], count = j->acc_count[a];
@@ -1227,8 +1238,8 @@ static const char *gltf_accessor_problem(const json *j, u32 a, int position) {
     default: return "has a componentType that is not a glTF one";
     }
     if (ncomp == J_ABSENT || ncomp == J_UNREAD) return "has no valid \"type\"";
-    if (position ? ctype != 5126 || ncomp != 3
-                 : (ctype == 5126 || ctype == 5120 || ctype == 5122 || ncomp != 1))
+    if (kind != 2 && (position ? ctype != 5126 || ncomp != 3
+                               : (ctype == 5126 || ctype == 5120 || ctype == 5122 || ncomp != 1)))
         return position ? "is not VEC3 of floats (5126), as glTF 2.0 requires of POSITION"
                         : "is not a SCALAR of unsigned integers, as glTF 2.0 requires of indices";
     if (count == ~0u) return "has no valid \"count\"";
@@ -1254,13 +1265,34 @@ static const char *gltf_accessor_problem(const json *j, u32 a, int position) {
  * PRIM_MODE_UNREAD; without one the mode is ~0u (4, triangles). */
 #define PRIM_MODE_UNREAD (~0u - 1)
 
+/* Another attribute's accessor, recorded with the primitive being read
+ * (its index: the primitives pushed so far). */
+static int other_attribute(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    (void)ctx, (void)k, (void)n;
+    u32 acc = J_ABSENT;
+    if (!j_count_value(j, depth, &acc)) return 0;
+    return push_u32(j, &j->attrs, &j->nattrs, &j->attrs_cap, j->nprim / 3) &&
+           push_u32(j, &j->attrs, &j->nattrs, &j->attrs_cap, acc);
+}
+
 static int attribute_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    if (!key_is(k, n, "POSITION")) return other_attribute(j, k, n, depth, ctx);
     return j_plain_u32(j, k, n, "POSITION", depth, &((u32 *)ctx)[1]);
+}
+
+static int target_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
+    return other_attribute(j, k, n, depth, ctx);
+}
+
+static int target_element(json *j, u32 index, int depth, void *ctx) {
+    (void)index;
+    return j_object(j, depth, target_member, ctx);
 }
 
 static int primitive_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     u32 *pr = ctx;
     if (key_is(k, n, "attributes")) return j_object(j, depth, attribute_member, pr);
+    if (key_is(k, n, "targets")) return j_array(j, depth, target_element, pr);
     if (key_is(k, n, "mode")) {
         pr[2] = PRIM_MODE_UNREAD; /* stays so unless a plain count follows */
         if (!j_plain_u32(j, k, n, "mode", depth, &pr[2])) return 0;
@@ -1563,15 +1595,20 @@ px_status pxi_check_gltf(const io_head *h, px_error *err) {
     /* The accessors Assimp will read: those of the meshes the scene uses. */
     const char *problem = NULL;
     u32 bad_acc = 0, bad_mesh = 0, bad_prim = 0;
-    for (u32 m = 0; reach && used && bad == ~0u && !problem && m < j.nmesh; ++m) {
-        if (!used[m]) continue;
-        for (u32 p = m ? j.mesh_end[m - 1] : 0; !problem && p < j.mesh_end[m]; ++p)
-            for (int k = 0; k < 2 && !problem; ++k) {
-                const u32 acc = j.prim[3 * p + (u32)k];
+    /* kinds: 0 indices, 1 POSITION, 2 the other attributes and morph
+     * targets, whose (primitive, accessor) pairs `attrs` lists in order */
+    for (u32 m = 0, t = 0; reach && used && bad == ~0u && !problem && m < j.nmesh; ++m) {
+        for (u32 p = m ? j.mesh_end[m - 1] : 0; !problem && p < j.mesh_end[m]; ++p) {
+            const u32 t0 = t;
+            while (t + 1 < j.nattrs && j.attrs[t] == p) t += 2;
+            if (!used[m]) continue;
+            for (u32 k = 0; k < 2 + (t - t0) / 2 && !problem; ++k) {
+                const u32 acc = k < 2 ? j.prim[3 * p + k] : j.attrs[t0 + 2 * (k - 2) + 1];
                 if (acc == ~0u) continue;
-                if ((problem = gltf_accessor_problem(&j, acc, k == 1)))
+                if ((problem = gltf_accessor_problem(&j, acc, k < 2 ? (int)k : 2)))
                     bad_acc = acc, bad_mesh = m, bad_prim = p - (m ? j.mesh_end[m - 1] : 0);
             }
+        }
     }
     if (reach) pxi_free(h->alloc, reach, (size_t)j.nodes + 1);
     if (used) pxi_free(h->alloc, used, (size_t)j.nmesh + 1);
@@ -1629,6 +1666,7 @@ done:
     if (j.acc_info) pxi_free(h->alloc, j.acc_info, (size_t)j.acc_info_cap * sizeof(u32));
     if (j.views) pxi_free(h->alloc, j.views, (size_t)j.views_cap * sizeof(u32));
     if (j.bufs) pxi_free(h->alloc, j.bufs, (size_t)j.bufs_cap * sizeof(u32));
+    if (j.attrs) pxi_free(h->alloc, j.attrs, (size_t)j.attrs_cap * sizeof(u32));
     if (j.prim) pxi_free(h->alloc, j.prim, (size_t)j.prim_cap * sizeof(u32));
     if (j.mesh_end) pxi_free(h->alloc, j.mesh_end, (size_t)j.mesh_cap * sizeof(u32));
     if (j.node_mesh) pxi_free(h->alloc, j.node_mesh, (size_t)j.nm_cap * sizeof(u32));

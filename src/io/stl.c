@@ -247,14 +247,20 @@ px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
     if (!why && p < end && *p) {
         /* Assimp 5.2 stops at text after a solid that does not open
          * another: the facets after it were lost without a word (review
-         * s32: a stray line between two solids dropped the second). */
-        for (const unsigned char *r = p; r + 5 <= end && *r; ++r)
-            if (starts(r, "facet") && is_blank(r[5])) {
+         * s32: a stray line between two solids dropped the second). A line
+         * that starts with "solid" or "facet" after it says there was more;
+         * words elsewhere ("4 facet triangles") are a trailer. */
+        for (const unsigned char *r = p; r < end && *r;) {
+            const unsigned char *w = skip_spaces(r); /* a line's first word */
+            if ((starts(w, "facet") || starts(w, "solid")) && is_blank(w[5])) {
                 at = p;
-                why = "text after a solid that does not start another (Assimp 5.2 would stop reading there, "
-                      "losing the facets after it)";
+                why = "text after a solid that does not start another, with a solid or facet after it "
+                      "(Assimp 5.2 would stop reading there, losing them)";
                 break;
             }
+            while (r < end && *r && *r != '\n') ++r;
+            if (r < end && *r) ++r;
+        }
     }
     st = why ? refuse(h, t, at, why, err) : PX_OK;
     pxi_free(h->alloc, buf, (size_t)h->size + 1);

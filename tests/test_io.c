@@ -999,7 +999,7 @@ static void test_dae_index_list(void) {
     CHECK(p != NULL);
     if (!p) return;
     p[8] = 'x';
-    expect_refused(write_file("p_junk.dae", text), "<p> index list");
+    expect_refused(write_file("p_junk.dae", text), "<p> or <vcount> list");
     p[8] = ' ';
     expect_tetrahedron(write_file("p_ok.dae", text));
 }

@@ -1131,6 +1131,37 @@ static void test_dae_indices(void) {
                  {"p_big.dae", "<p>0 2 2147483648 ", 0},
                  {"p_plus.dae", "<p>0 2 +1 ", 1},
                  {"p_plus2.dae", "<p>0 2 ++1 ", 0}};
+    /* <vcount> too: 4294967299 was read as 3 (review s32); 3 loads. */
+    for (int wrap = 0; wrap < 2; ++wrap) {
+        char poly[2048];
+        snprintf(
+            poly, sizeof poly,
+            "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+            "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
+            "<library_geometries><geometry id=\"g\" name=\"g\"><mesh>\n"
+            "<source id=\"pos\"><float_array id=\"pos-a\" count=\"12\">0 0 0 1 0 0 0 1 0 0 0 "
+            "1</float_array>\n"
+            "<technique_common><accessor source=\"#pos-a\" count=\"4\" stride=\"3\"><param name=\"X\" "
+            "type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/>"
+            "</accessor></technique_common></source>\n"
+            "<vertices id=\"v\"><input semantic=\"POSITION\" source=\"#pos\"/></vertices>\n"
+            "<polylist count=\"4\"><input semantic=\"VERTEX\" source=\"#v\" offset=\"0\"/>"
+            "<vcount>%s 3 3 3</vcount><p>0 2 1 0 1 3 0 3 2 1 2 3</p></polylist>\n"
+            "</mesh></geometry></library_geometries>\n"
+            "<library_visual_scenes><visual_scene id=\"s\"><node id=\"n\"><instance_geometry url=\"#g\"/>"
+            "</node></visual_scene></library_visual_scenes>\n"
+            "<scene><instance_visual_scene url=\"#s\"/></scene></COLLADA>\n",
+            wrap ? "4294967299" : "3");
+        const char *path = write_file(wrap ? "vcount_wrap.dae" : "vcount.dae", poly, (size_t)-1);
+        if (wrap) {
+            EXPECT_LOAD_ERROR(path, "a COLLADA <p> or <vcount> list holds something other than integers");
+            continue;
+        }
+        px_mesh *m = load(path, 0);
+        CHECK(m && px_mesh_triangle_count(m) == 4, "vcount.dae: %u triangles",
+              m ? px_mesh_triangle_count(m) : 0);
+        px_mesh_destroy(m);
+    }
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
         char text[4096];
         const char *at = strstr(k_dae, "<p>0 2 1 ");
@@ -1138,8 +1169,8 @@ static void test_dae_indices(void) {
                  at + strlen("<p>0 2 1 "));
         const char *path = write_file(cases[c].name, text, (size_t)-1);
         if (!cases[c].ok) {
-            EXPECT_LOAD_ERROR(path,
-                              "a COLLADA <p> index list holds something other than integers from 0 to 2^31");
+            EXPECT_LOAD_ERROR(
+                path, "a COLLADA <p> or <vcount> list holds something other than integers from 0 to 2^31");
             continue;
         }
         px_mesh *m = load(path, 0);

@@ -126,7 +126,7 @@
 ///   values beyond the count attribute of the <float_array>, <Name_array> or
 ///   <IDREF_array> (none without it: Assimp reads that many values and then
 ///   indexes past them), and accessor or array counts, offsets and strides
-///   that are not plain numbers below 2^31; <p> indices that are negative
+///   that are not plain numbers below 2^31; <p> and <vcount> numbers that are negative
 ///   or above 2^31 - 1, and numbers in <float_array>, transform elements or
 ///   <unit meter> of 2^64 or more before the point or with an exponent of
 ///   2^32 or more (Assimp 5.2 wraps the first and reads the second as 0);

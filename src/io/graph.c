@@ -526,7 +526,10 @@ static int dae_tags(dae_scan *s, int *too_deep) {
 #undef ATTR_IS
         }
         i = j;
-        if (name_len == 1 && d[name0] == 'p' && !self_closing && !p_content_ok(s, i)) return s->bad_p = 1, 0;
+        /* <vcount> is read as <p> is: a count of 4294967299 wrapped to 3 (review s32). */
+        if (((name_len == 1 && d[name0] == 'p') || (name_len == 6 && memcmp(d + name0, "vcount", 6) == 0)) &&
+            !self_closing && !p_content_ok(s, i))
+            return s->bad_p = 1, 0;
 #define NAME_IS(s_) (name_len == sizeof(s_) - 1 && memcmp(d + name0, s_, name_len) == 0)
         if (!self_closing &&
             (NAME_IS("float_array") || NAME_IS("translate") || NAME_IS("rotate") || NAME_IS("scale") ||
@@ -735,11 +738,12 @@ px_status pxi_check_dae(const io_head *h, px_error *err) {
                            "exponent of 2^32 or more (Assimp 5.2 would read it as 0, or wrap the exponent)",
                            h->path);
         else if (s.bad_p)
-            st = pxi_error(err, PX_ERR_IO,
-                           "mesh file '%s': a COLLADA <p> index list holds something other than integers "
-                           "from 0 to 2^31 - 1 and blanks (Assimp 5.2 would push 0 indices for ever, or wrap "
-                           "the index)",
-                           h->path);
+            st =
+                pxi_error(err, PX_ERR_IO,
+                          "mesh file '%s': a COLLADA <p> or <vcount> list holds something other than "
+                          "integers from 0 to 2^31 - 1 and blanks (Assimp 5.2 would push 0 indices for ever, "
+                          "or wrap the number)",
+                          h->path);
         else if (s.bad_attr)
             st = pxi_error(err, PX_ERR_IO,
                            "mesh file '%s': a COLLADA node id, name or instance_node url holds a character "

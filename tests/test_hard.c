@@ -766,6 +766,19 @@ static void regression_near_coplanar(void) {
     px_convex_destroy(B);
 }
 
+/* A query of A against B started at features (ta, fa) and (tb, fb). */
+static void warm_start(const px_convex *a, const px_pose *pa, const px_convex *b, const px_pose *pb,
+                       uint32_t ta, uint32_t fa, uint32_t tb, uint32_t fb, const char *what, long idx) {
+    px_pair_cache cache;
+    memset(&cache, 0, sizeof cache);
+    cache.feature_a.type = ta;
+    cache.feature_a.index = fa;
+    cache.feature_b.type = tb;
+    cache.feature_b.index = fb;
+    tc_report rep;
+    hard_query(a, pa, b, pb, &cache, 0, what, idx, &rep);
+}
+
 /* Review s32: a vertex of the exact hull on a straight stretch of a face's
  * boundary (a Puma link's hull: a point 1e-19 off the line of its two
  * neighbours, the top face's angle there 180 degrees within rounding, the
@@ -803,16 +816,8 @@ static void regression_flat_vertex(void) {
                 uint32_t n = type == PX_FEATURE_VERTEX ? px_convex_vertex_count(B)
                              : type == PX_FEATURE_EDGE ? px_convex_edge_count(B)
                                                        : px_convex_face_count(B);
-                for (uint32_t f = 0; f < n; ++f, ++idx) {
-                    px_pair_cache cache;
-                    memset(&cache, 0, sizeof cache);
-                    cache.feature_a.type = PX_FEATURE_VERTEX;
-                    cache.feature_a.index = flat;
-                    cache.feature_b.type = type;
-                    cache.feature_b.index = f;
-                    tc_report rep;
-                    hard_query(A, &pa, B, &pb, &cache, 0, "flat vertex", idx, &rep);
-                }
+                for (uint32_t f = 0; f < n; ++f, ++idx)
+                    warm_start(A, &pa, B, &pb, PX_FEATURE_VERTEX, flat, type, f, "flat vertex", idx);
             }
         }
     /* The same kind of vertex facing an edge of B (review s32, helper-55:
@@ -847,16 +852,9 @@ static void regression_flat_vertex(void) {
                       : ta == PX_FEATURE_EDGE ? px_convex_edge_count(A2)
                                               : px_convex_face_count(A2);
         for (uint32_t fa = 0; fa < na; ++fa)
-            for (uint32_t eb = 0; eb < px_convex_edge_count(B); ++eb, ++idx2) {
-                px_pair_cache cache;
-                memset(&cache, 0, sizeof cache);
-                cache.feature_a.type = ta;
-                cache.feature_a.index = fa;
-                cache.feature_b.type = PX_FEATURE_EDGE;
-                cache.feature_b.index = eb;
-                tc_report rep;
-                hard_query(A2, &pa2, B, &pb2, &cache, 0, "flat vertex facing an edge", idx2, &rep);
-            }
+            for (uint32_t eb = 0; eb < px_convex_edge_count(B); ++eb, ++idx2)
+                warm_start(A2, &pa2, B, &pb2, ta, fa, PX_FEATURE_EDGE, eb, "flat vertex facing an edge",
+                           idx2);
     }
     printf("  flat vertex on a face's straight boundary: %ld warm starts against faces, %ld against edges\n",
            idx, idx2);

@@ -1180,36 +1180,31 @@ static void test_dae_indices(void) {
     }
 }
 
-/* write_gltf_prim's triangle list of 6 positions with `from` replaced by
- * `to` in its JSON. */
-static const char *write_gltf_patched(const char *name, const char *from, const char *to) {
-    const char *path = write_gltf_prim(name, 4, NULL, NULL, 0, 6);
+/* Replaces the first `from` in file `name` (in the test folder, at `path`)
+ * by `to`. */
+static const char *patch_file(const char *name, const char *path, const char *from, const char *to) {
     static char text[4096], out[4096];
     FILE *f = fopen(path, "rb");
     size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
     if (f) fclose(f);
     text[n] = '\0';
     const char *at = strstr(text, from);
-    CHECK(at != NULL, "%s: '%s' not in the generated glTF", name, from);
+    CHECK(at != NULL, "%s: '%s' not in the generated file", name, from);
     if (!at) return path;
     snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to, at + strlen(from));
     return write_file(name, out, (size_t)-1);
 }
 
+/* write_gltf_prim's triangle list of 6 positions with `from` replaced by
+ * `to` in its JSON. */
+static const char *write_gltf_patched(const char *name, const char *from, const char *to) {
+    return patch_file(name, write_gltf_prim(name, 4, NULL, NULL, 0, 6), from, to);
+}
+
 /* The same with a second replacement applied to the first's result. */
 static const char *write_gltf_patched2(const char *name, const char *from, const char *to, const char *from2,
                                        const char *to2) {
-    const char *path = write_gltf_patched(name, from, to);
-    static char text[4096], out[4096];
-    FILE *f = fopen(path, "rb");
-    size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
-    if (f) fclose(f);
-    text[n] = '\0';
-    const char *at = strstr(text, from2);
-    CHECK(at != NULL, "%s: '%s' not in the generated glTF", name, from2);
-    if (!at) return path;
-    snprintf(out, sizeof out, "%.*s%s%s", (int)(at - text), text, to2, at + strlen(from2));
-    return write_file(name, out, (size_t)-1);
+    return patch_file(name, write_gltf_patched(name, from, to), from2, to2);
 }
 
 /* glTF accessors that read outside their buffer view (review s32). Assimp

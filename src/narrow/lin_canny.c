@@ -411,10 +411,10 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
 /* Height changes along the edges at v of body c, the height growing along
  * unit n (c's frame; signs only: h * (n.u) would underflow to 0 at tiny
  * scales): the edge that descends most steeply, or NONE. The positions in
- * v's edge list of up to four edges level within rounding (an edge
+ * v's edge list of up to eight edges level within rounding (an edge
  * parallel to F within rounding is no closer) go to level[], their number
  * to *nl. */
-PXI_HOT_INLINE uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3 n, uint32_t level[4],
+PXI_HOT_INLINE uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3 n, uint32_t level[8],
                                          uint32_t *nl) {
     double worst = -4.0 * DBL_EPSILON;
     uint32_t best = NONE;
@@ -427,12 +427,12 @@ PXI_HOT_INLINE uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3
             worst = g;
             best = c->v_edges[k];
         }
-        if (!(fabs(g) > 4.0 * DBL_EPSILON) && *nl < 4) level[(*nl)++] = k;
+        if (!(fabs(g) > 4.0 * DBL_EPSILON) && *nl < 8) level[(*nl)++] = k;
     }
     return best;
 }
 
-#define LC_RIDGE_CAP 64
+#define LC_RIDGE_CAP 4096
 #define LC_RIDGE_UNKNOWN (NONE - 1)
 static int has_straight_pair(const px_convex *c, uint32_t w, const uint32_t *level, uint32_t nl) {
     for (uint32_t a = 0; a < nl; ++a)
@@ -451,28 +451,43 @@ static int has_straight_pair(const px_convex *c, uint32_t w, const uint32_t *lev
  * the walk follows level edges that continue a straight line and returns
  * the first descending edge at a vertex it reaches. (A corner of a face
  * parallel to F, a resting contact, has no straight pair, and the caller
- * does not come here.) Returns that edge, NONE, or LC_RIDGE_UNKNOWN past
- * 64 vertices (the caller leaves the answer to another method). */
-PXI_NOINLINE static uint32_t ridge_descent(const px_convex *c, uint32_t v, px_vec3 n) {
-    uint32_t seen[LC_RIDGE_CAP], ns = 0;
-    seen[ns++] = v;
-    for (uint32_t q = 0; q < ns; ++q) {
-        const uint32_t w = seen[q];
-        uint32_t level[4], nl;
-        uint32_t e = steepest_descent(c, w, n, level, &nl);
-        if (e != NONE) return e;
-        for (uint32_t a = 0; a < nl; ++a)
-            for (uint32_t b = a + 1; b < nl; ++b) {
-                if (!straight_at(c, w, level[a], level[b])) continue;
-                const uint32_t ends[2] = {c->v_adj[level[a]], c->v_adj[level[b]]};
-                for (int t = 0; t < 2; ++t) {
-                    uint32_t m = 0;
-                    while (m < ns && seen[m] != ends[t]) ++m;
-                    if (m < ns) continue;
-                    if (ns == LC_RIDGE_CAP) return LC_RIDGE_UNKNOWN;
-                    seen[ns++] = ends[t];
-                }
+ * does not come here.) Returns that edge, NONE (*end: the end of the
+ * stretch, a corner, with fewer edges), or LC_RIDGE_UNKNOWN past 4096
+ * vertices a way (the caller leaves the answer to another method). */
+PXI_NOINLINE static uint32_t ridge_descent(const px_convex *c, uint32_t v, px_vec3 n, uint32_t *end) {
+    uint32_t level[8], nl;
+    *end = NONE;
+    if (steepest_descent(c, v, n, level, &nl) != NONE) return NONE; /* not reached: the caller saw none */
+    uint32_t ka = NONE, kb = NONE;                                  /* v's straight pair */
+    for (uint32_t a = 0; a < nl && ka == NONE; ++a)
+        for (uint32_t b = a + 1; b < nl; ++b)
+            if (straight_at(c, v, level[a], level[b])) {
+                ka = level[a], kb = level[b];
+                break;
             }
+    if (ka == NONE) return NONE;
+    /* Both ways along the stretch, one vertex at a time: at each, a
+     * descending edge ends the walk; else the level edge continuing the
+     * line from the one it came by leads on, and without one the vertex is
+     * the stretch's end (a corner). */
+    for (int side = 0; side < 2; ++side) {
+        uint32_t prev = v, cur = c->v_adj[side ? kb : ka], steps = 0;
+        for (;; ++steps) {
+            if (steps == LC_RIDGE_CAP) return LC_RIDGE_UNKNOWN;
+            uint32_t e = steepest_descent(c, cur, n, level, &nl);
+            if (e != NONE) return e;
+            uint32_t back = NONE, next = NONE;
+            for (uint32_t a = 0; a < nl; ++a)
+                if (c->v_adj[level[a]] == prev) back = level[a];
+            for (uint32_t a = 0; back != NONE && a < nl && next == NONE; ++a)
+                if (level[a] != back && straight_at(c, cur, back, level[a])) next = c->v_adj[level[a]];
+            if (next == NONE || next == v) break;
+            prev = cur;
+            cur = next;
+        }
+        /* of the two ends, the one with fewer edges (cheaper to test) */
+        if (*end == NONE || c->v_first[cur + 1] - c->v_first[cur] < c->v_first[*end + 1] - c->v_first[*end])
+            *end = cur;
     }
     return NONE;
 }
@@ -503,14 +518,23 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
      * |height| decreases (h * n.u_out < 0) is closer to F (Mirtich §4). */
     px_vec3 n_i = dir_to_other(x, j, F->n);
     if (h < 0.0) n_i = pxi_neg(n_i);
-    uint32_t level[4], nl;
+    uint32_t level[8], nl;
     uint32_t best_e = steepest_descent(ci, v, n_i, level, &nl);
     /* Two edges level with F within rounding that continue a straight line:
      * v sits on a straight stretch of a face's boundary, whose descent may
      * run inside the face, along no edge of v (see ridge_descent). */
     if (best_e == NONE && nl >= 2 && has_straight_pair(ci, v, level, nl)) {
-        best_e = ridge_descent(ci, v, n_i);
+        uint32_t end;
+        best_e = ridge_descent(ci, v, n_i, &end);
         if (best_e == LC_RIDGE_UNKNOWN) return LC_OUT_OF_STEPS;
+        if (best_e == NONE && end != NONE) {
+            /* The stretch is level and nothing descends from it (it lies on
+             * a face parallel to F): its end, a corner, is as close, and a
+             * tracked query kept there does not walk the stretch again
+             * (review s32: 60 vertices walked at every query, 24x slower). */
+            x->f[i] = feat(PX_FEATURE_VERTEX, end);
+            return LC_CONTINUE;
+        }
     }
     if (best_e != NONE) {
         x->f[i] = feat(PX_FEATURE_EDGE, best_e);

@@ -91,6 +91,7 @@ static inline px_feature feat(uint32_t type, uint32_t index) {
  * and along nearly parallel edges (1e-9 rad) those add up to a visible error. */
 static inline double noise(double k, px_vec3 p, px_vec3 v) { return k * (pxi_max_abs(p) + pxi_max_abs(v)); }
 
+/* In-plane inward normal of face f along its boundary edge e. */
 static inline px_vec3 face_side_normal(uint32_t f, const pxi_edge *E) { return E->left == f ? E->wl : E->wr; }
 
 /* Two edges at a vertex this close to opposite (1 + u1 . u2 below it: an
@@ -114,11 +115,17 @@ static inline int straight_at(const px_convex *c, uint32_t w, uint32_t k1, uint3
  * stretch: its edges along the stretch, nearly opposite, say nothing about
  * a point p beyond that plane, on the face's side, which is closer to the
  * face's interior than to v (review s32: warm Lin-Canny stopped at such a
- * vertex facing an edge 380 times too far). `near` holds the positions of
- * v's edges nearly perpendicular to p - v (the only ones a straight pair
- * can be made of when no edge is violated). Returns the face, or NONE. */
-static uint32_t straight_face_violation(const px_convex *c, uint32_t v, px_vec3 dp, double worst,
-                                        const uint32_t *near, uint32_t nn) {
+ * vertex facing an edge 380 times too far). Only edges nearly
+ * perpendicular to dp = p - v (|dp . u| below 2^-14 |dp|) can make such a
+ * pair when no edge plane is violated. Returns the face whose side plane p
+ * lies beyond by more than `worst`, or NONE. */
+static uint32_t straight_face_violation(const px_convex *c, uint32_t v, px_vec3 dp, double worst) {
+    const double near2 = 0x1p-28 * pxi_len2(dp);
+    uint32_t near[4], nn = 0;
+    for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1] && nn < 4; ++k) {
+        double s = pxi_dot(dp, c->e[c->v_edges[k]].u);
+        if (s * s <= near2) near[nn++] = k;
+    }
     for (uint32_t a = 0; a < nn; ++a)
         for (uint32_t b = a + 1; b < nn; ++b) {
             if (!straight_at(c, v, near[a], near[b])) continue;
@@ -138,10 +145,7 @@ static uint32_t straight_face_violation(const px_convex *c, uint32_t v, px_vec3 
 static int vertex_violation(double tie, const px_convex *c, uint32_t v, px_vec3 p, px_feature *nbr) {
     px_vec3 dp = pxi_sub(p, c->v[v]);
     double worst = noise(tie, p, c->v[v]);
-    /* |s| below 2^-14 |p - v|: nearly perpendicular (a straight pair's two
-     * edges both are when neither is violated) */
-    const double near2 = 0x1p-28 * pxi_len2(dp);
-    uint32_t edge = NONE, near[4], nn = 0;
+    uint32_t edge = NONE;
     for (uint32_t k = c->v_first[v]; k < c->v_first[v + 1]; ++k) {
         const pxi_edge *E = &c->e[c->v_edges[k]];
         double s = pxi_dot(dp, E->u);
@@ -150,14 +154,12 @@ static int vertex_violation(double tie, const px_convex *c, uint32_t v, px_vec3 
             worst = s;
             edge = c->v_edges[k];
         }
-        if (s * s <= near2 && nn < 4) near[nn++] = k;
     }
     if (edge != NONE) {
         *nbr = feat(PX_FEATURE_EDGE, edge);
         return 1;
     }
-    if (nn < 2) return 0;
-    uint32_t f = straight_face_violation(c, v, dp, worst, near, nn);
+    uint32_t f = straight_face_violation(c, v, dp, worst);
     if (f == NONE) return 0;
     *nbr = feat(PX_FEATURE_FACE, f);
     return 1;
@@ -175,8 +177,6 @@ static int edge_violation(double tie, const px_convex *c, uint32_t e, px_vec3 p,
     if ((s = pxi_dot(dt, E->wr)) > worst) worst = s, *nbr = feat(PX_FEATURE_FACE, E->right);
     return nbr->type != PX_FEATURE_NONE;
 }
-
-/* In-plane inward normal of face f along its boundary edge e. */
 
 static int face_violation(double tie, const px_convex *c, uint32_t f, px_vec3 p, uint32_t *edge) {
     const pxi_face *F = &c->f[f];
@@ -382,15 +382,7 @@ static int vertex_edge(lc_ctx *x, int i) { /* vertex on i, edge on j */
     } else if (ci->v_first[v + 1] - ci->v_first[v] >= 3) {
         /* E crosses v's edge planes' cone: the side plane of a face running
          * straight through v may still cut it off (vertex_violation). */
-        px_vec3 dp = pxi_sub(to_other(x, j, y), ci->v[v]);
-        const double near2 = 0x1p-28 * pxi_len2(dp);
-        uint32_t near[4], nn = 0;
-        for (uint32_t k = ci->v_first[v]; k < ci->v_first[v + 1] && nn < 4; ++k) {
-            const pxi_edge *Ek = &ci->e[ci->v_edges[k]];
-            double s = pxi_dot(dp, Ek->u);
-            if (s * s <= near2) near[nn++] = k;
-        }
-        uint32_t f = nn >= 2 ? straight_face_violation(ci, v, dp, 0.0, near, nn) : NONE;
+        uint32_t f = straight_face_violation(ci, v, pxi_sub(to_other(x, j, y), ci->v[v]), 0.0);
         if (f != NONE) {
             x->f[i] = feat(PX_FEATURE_FACE, f);
             return LC_CONTINUE;
@@ -434,10 +426,16 @@ PXI_HOT_INLINE uint32_t steepest_descent(const px_convex *c, uint32_t v, px_vec3
 
 #define LC_RIDGE_CAP 4096
 #define LC_RIDGE_UNKNOWN (NONE - 1)
-static int has_straight_pair(const px_convex *c, uint32_t w, const uint32_t *level, uint32_t nl) {
+/* The first pair among w's level edges (positions level[0..nl)) that
+ * continues a straight line through w, into *ka, *kb; 0 when none. */
+static int straight_pair(const px_convex *c, uint32_t w, const uint32_t *level, uint32_t nl, uint32_t *ka,
+                         uint32_t *kb) {
     for (uint32_t a = 0; a < nl; ++a)
         for (uint32_t b = a + 1; b < nl; ++b)
-            if (straight_at(c, w, level[a], level[b])) return 1;
+            if (straight_at(c, w, level[a], level[b])) {
+                *ka = level[a], *kb = level[b];
+                return 1;
+            }
     return 0;
 }
 
@@ -449,23 +447,16 @@ static int has_straight_pair(const px_convex *c, uint32_t w, const uint32_t *lev
  * there with the distance 16 % too large on a Puma link's hull (review
  * s32). The descent starts at the stretch's ends, corners of that face: so
  * the walk follows level edges that continue a straight line and returns
- * the first descending edge at a vertex it reaches. (A corner of a face
+ * the first descending edge at a vertex it reaches, starting both ways from
+ * v's straight pair (positions ka, kb in its edge list). (A corner of a face
  * parallel to F, a resting contact, has no straight pair, and the caller
  * does not come here.) Returns that edge, NONE (*end: the end of the
  * stretch, a corner, with fewer edges), or LC_RIDGE_UNKNOWN past 4096
  * vertices a way (the caller leaves the answer to another method). */
-PXI_NOINLINE static uint32_t ridge_descent(const px_convex *c, uint32_t v, px_vec3 n, uint32_t *end) {
+PXI_NOINLINE static uint32_t ridge_descent(const px_convex *c, uint32_t v, px_vec3 n, uint32_t ka,
+                                           uint32_t kb, uint32_t *end) {
     uint32_t level[8], nl;
     *end = NONE;
-    if (steepest_descent(c, v, n, level, &nl) != NONE) return NONE; /* not reached: the caller saw none */
-    uint32_t ka = NONE, kb = NONE;                                  /* v's straight pair */
-    for (uint32_t a = 0; a < nl && ka == NONE; ++a)
-        for (uint32_t b = a + 1; b < nl; ++b)
-            if (straight_at(c, v, level[a], level[b])) {
-                ka = level[a], kb = level[b];
-                break;
-            }
-    if (ka == NONE) return NONE;
     /* Both ways along the stretch, one vertex at a time: at each, a
      * descending edge ends the walk; else the level edge continuing the
      * line from the one it came by leads on, and without one the vertex is
@@ -523,9 +514,10 @@ static int vertex_face(lc_ctx *x, int i) { /* vertex on i, face on j */
     /* Two edges level with F within rounding that continue a straight line:
      * v sits on a straight stretch of a face's boundary, whose descent may
      * run inside the face, along no edge of v (see ridge_descent). */
-    if (best_e == NONE && nl >= 2 && has_straight_pair(ci, v, level, nl)) {
+    uint32_t ka, kb;
+    if (best_e == NONE && nl >= 2 && straight_pair(ci, v, level, nl, &ka, &kb)) {
         uint32_t end;
-        best_e = ridge_descent(ci, v, n_i, &end);
+        best_e = ridge_descent(ci, v, n_i, ka, kb, &end);
         if (best_e == LC_RIDGE_UNKNOWN) return LC_OUT_OF_STEPS;
         if (best_e == NONE && end != NONE) {
             /* The stretch is level and nothing descends from it (it lies on

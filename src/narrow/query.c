@@ -144,26 +144,16 @@ static inline px_vec3 unit_or_zero(px_vec3 v) {
  * refinement costs about 140 instructions, 8 % of a tracked query). */
 PXI_COLD px_vec3 facet_normal(const px_convex *a, const px_convex *b, const pair_frames *fr,
                               const pxi_answer *ans, px_vec3 world_gap, double span) {
-    px_vec3 nf;
-    if (ans->fb.type == PX_FEATURE_FACE && ans->fb.index < b->nf) {
-        nf = pxi_neg(b->f[ans->fb.index].n); /* B's outward normal points from B to A */
-    } else if (ans->fa.type == PX_FEATURE_FACE && ans->fa.index < a->nf) {
-        nf = pxi_rot(fr->t_ab.r, a->f[ans->fa.index].n);
-    } else if (ans->fa.type == PX_FEATURE_EDGE && ans->fb.type == PX_FEATURE_EDGE && ans->fa.index < a->ne &&
-               ans->fb.index < b->ne) {
-        nf = pxi_cross(pxi_rot(fr->t_ab.r, a->e[ans->fa.index].u), b->e[ans->fb.index].u);
-        double l2 = pxi_len2(nf);
-        if (!(l2 > 1e-12)) return unit_or_zero(world_gap); /* parallel edges define no normal */
-        nf = pxi_scale(nf, 1.0 / sqrt(l2));
-    } else {
-        return unit_or_zero(world_gap);
-    }
+    const int facet = (ans->fb.type == PX_FEATURE_FACE && ans->fb.index < b->nf) ||
+                      (ans->fa.type == PX_FEATURE_FACE && ans->fa.index < a->nf) ||
+                      (ans->fa.type == PX_FEATURE_EDGE && ans->fb.type == PX_FEATURE_EDGE);
+    if (!facet) return unit_or_zero(world_gap);
     px_vec3 g = pxi_sub(ans->pb, pxi_xform(&fr->t_ab, ans->pa)); /* B's frame */
     double gg = pxi_len2(g);
     if (!(gg > 0x1p-1000 && gg < 0x1p1000)) return unit_or_zero(world_gap);
-    double d = sqrt(gg);
-    if (pxi_dot(nf, g) < 0.0) nf = pxi_neg(nf);
-    double tol = 64.0 * DBL_EPSILON * span;
+    /* the facet's normal, turned towards g (g's own direction for parallel edges) */
+    px_vec3 nf = pxi_feature_normal(a, b, &fr->t_ab, ans->fa, ans->fb, g);
+    double d = sqrt(gg), tol = 64.0 * DBL_EPSILON * span;
     if (!(pxi_len2(pxi_sub(pxi_scale(nf, d), g)) <= tol * tol)) return unit_or_zero(world_gap);
     return pxi_rot(fr->pose_b->r, nf);
 }

@@ -1101,20 +1101,12 @@ static int scene_element(json *j, u32 index, int depth, void *ctx) {
     return push_u32(j, &j->scene_end, &j->nscenes, &j->scap, j->nroots);
 }
 
-/* glTF 2.0 sparse accessors (glTF2Asset.inl Accessor::Read and
- * Sparse::PatchData) are refused: Assimp 5.2 dereferences their "indices"
- * and its "bufferView" without checking they exist (SIGSEGV on a 400-byte
- * file), reads sparse.count indices and values without checking them
- * against their buffer views, and allocates count * element size bytes for
- * an accessor without a buffer view (the review's gltf_sparse.gltf: 1.8 GB
- * before std::bad_alloc). */
+/* Members not given (J_ABSENT) or given as something other than a plain
+ * 32-bit count (J_UNREAD: negative, fractional, too large, a string). */
 #define J_ABSENT (~0u)
 #define J_UNREAD (~0u - 1)
 
-/* Member `want` as a plain 32-bit count into *out; J_UNREAD when it is
- * there but something else (negative, fractional, too large, a string). */
-/* A member's value as a plain 32-bit count; J_UNREAD when it is something
- * else (negative, fractional, too large, a string). */
+/* A member's value as a plain 32-bit count, or J_UNREAD. */
 static int j_count_value(json *j, int depth, u32 *out) {
     j_ws(j);
     if (j->p < j->end && *j->p >= '0' && *j->p <= '9') {
@@ -1150,6 +1142,13 @@ typedef struct j_accessor {
     u32 count, view, offset, ctype, ncomp;
 } j_accessor;
 
+/* glTF 2.0 sparse accessors (glTF2Asset.inl Accessor::Read and
+ * Sparse::PatchData) are refused: Assimp 5.2 dereferences their "indices"
+ * and its "bufferView" without checking they exist (SIGSEGV on a 400-byte
+ * file), reads sparse.count indices and values without checking them
+ * against their buffer views, and allocates count * element size bytes for
+ * an accessor without a buffer view (the review's gltf_sparse.gltf: 1.8 GB
+ * before std::bad_alloc). */
 static int accessor_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
     j_accessor *a = ctx;
     if (key_is(k, n, "sparse")) return j->sparse = 1, 0;
@@ -1217,15 +1216,16 @@ static int buffer_element(json *j, u32 index, int depth, void *ctx) {
     return push_u32(j, &j->bufs, &j->nbufs, &j->bufs_cap, len);
 }
 
-/* Checks that accessor `a` (the mesh primitives' indices or POSITION) reads
- * within its buffer view, and the view within its buffer, by the sizes the
- * file declares. Assimp 5.2 checks only count times the component size
- * against the view: a byteOffset or byteStride past its end was read out of
- * the heap (review s32: 100,000 positions at byteOffset 800,000 crashed it;
- * 8 of them at byteOffset 8 loaded a coordinate of 4.6e-44 from stray
- * memory). `position` asks for VEC3 floats (what glTF 2.0 requires and
- * Assimp assumes: 16-bit positions were read as float bits), otherwise
- * unsigned integer scalars. Returns NULL when it does, else what is wrong. */
+/* Checks that accessor `a` of a mesh primitive reads within its buffer
+ * view, and the view within its buffer, by the sizes the file declares.
+ * Assimp 5.2 checks only count times the component size against the view:
+ * a byteOffset or byteStride past its end was read out of the heap (review
+ * s32: 100,000 positions at byteOffset 800,000 crashed it; 8 of them at
+ * byteOffset 8 loaded a coordinate of 4.6e-44 from stray memory). `kind`:
+ * 0 indices (unsigned integer scalars), 1 POSITION (VEC3 floats, what glTF
+ * 2.0 requires and Assimp assumes: 16-bit positions were read as float
+ * bits), 2 any other attribute or morph target (any glTF element). Returns
+ * NULL when it does, else what is wrong. */
 static const char *gltf_accessor_problem(const json *j, u32 a, int kind) {
     const int position = kind == 1;
     if (a >= j->nacc || 4 * (u64)a + 3 >= j->nacc_info) return "names an accessor that does not exist";
@@ -1284,13 +1284,9 @@ static int attribute_member(json *j, const unsigned char *k, size_t n, int depth
     return j_plain_u32(j, k, n, "POSITION", depth, &((u32 *)ctx)[1]);
 }
 
-static int target_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {
-    return other_attribute(j, k, n, depth, ctx);
-}
-
 static int target_element(json *j, u32 index, int depth, void *ctx) {
     (void)index;
-    return j_object(j, depth, target_member, ctx);
+    return j_object(j, depth, other_attribute, ctx); /* a morph target: attributes */
 }
 
 static int primitive_member(json *j, const unsigned char *k, size_t n, int depth, void *ctx) {

@@ -1060,6 +1060,11 @@ static void test_stl_trailing_text(void) {
     snprintf(text, sizeof text, "%sgarbage here 1 2 3\n%s", k_tet_stl, k_tet_stl);
     EXPECT_LOAD_ERROR(write_file("stray.stl", text, (size_t)-1),
                       "text after a solid that does not start another, with a solid or facet after it");
+    /* the same with the walk's other line end, '\r' alone */
+    for (char *c = text; *c; ++c)
+        if (*c == '\n') *c = '\r';
+    EXPECT_LOAD_ERROR(write_file("stray_cr.stl", text, (size_t)-1),
+                      "text after a solid that does not start another, with a solid or facet after it");
     snprintf(text, sizeof text, "%s\n\n%s", k_tet_stl, k_tet_stl);
     px_mesh *m = load(write_file("two.stl", text, (size_t)-1), 0);
     CHECK(m && px_mesh_triangle_count(m) == 8, "two.stl: %u triangles", m ? px_mesh_triangle_count(m) : 0);

@@ -258,8 +258,8 @@ px_status pxi_check_stl_ascii(const io_head *h, px_error *err) {
                       "(Assimp 5.2 would stop reading there, losing them)";
                 break;
             }
-            while (r < end && *r && *r != '\n') ++r;
-            if (r < end && *r) ++r;
+            while (r < end && *r && !is_line_end(*r)) ++r; /* the walk's line ends: \r, \n, \f */
+            while (r < end && *r && is_line_end(*r)) ++r;
         }
     }
     st = why ? refuse(h, t, at, why, err) : PX_OK;
